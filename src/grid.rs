@@ -1,0 +1,78 @@
+//! The uniform staggered (MAC) grid: one hex block of `n[0] × n[1] × n[2]` equal cells.
+//!
+//! Pressure and every scalar live at cell centres; the velocity component `d` lives on the
+//! faces normal to direction `d`. Cell `(i, j, k)` has its centre at
+//! `origin + ((i + ½) h₀, (j + ½) h₁, (k + ½) h₂)` and the `u` sample with the same indices sits
+//! on its low-x face, at `origin + (i h₀, (j + ½) h₁, (k + ½) h₂)`.
+//!
+//! Cell-centred arrays handed between modules (output, coupling) are contiguous, unpadded,
+//! x fastest: `index = i + n₀ (j + n₁ k)`. The fluid solver may pad its own arrays with ghost
+//! layers (a later domain decomposition exchanges exactly those layers).
+
+/// Geometry of the uniform grid. Cells may be anisotropic (`h[0] ≠ h[1]`), never graded.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grid {
+    /// Number of cells per direction.
+    pub n: [usize; 3],
+    /// Cell size per direction, in metres.
+    pub h: [f64; 3],
+    /// Position of the block's lowest corner, in metres.
+    pub origin: [f64; 3],
+}
+
+impl Grid {
+    pub fn new(n: [usize; 3], h: [f64; 3], origin: [f64; 3]) -> Self {
+        Grid { n, h, origin }
+    }
+
+    /// Total number of cells.
+    pub fn cell_count(&self) -> usize {
+        self.n[0] * self.n[1] * self.n[2]
+    }
+
+    /// Domain length per direction.
+    pub fn length(&self) -> [f64; 3] {
+        [
+            self.n[0] as f64 * self.h[0],
+            self.n[1] as f64 * self.h[1],
+            self.n[2] as f64 * self.h[2],
+        ]
+    }
+
+    /// Cell volume.
+    pub fn cell_volume(&self) -> f64 {
+        self.h[0] * self.h[1] * self.h[2]
+    }
+
+    /// Linear index of cell `(i, j, k)` in an unpadded x-fastest array.
+    #[inline]
+    pub fn cell_index(&self, i: usize, j: usize, k: usize) -> usize {
+        i + self.n[0] * (j + self.n[1] * k)
+    }
+
+    /// Centre of cell `(i, j, k)`.
+    pub fn cell_centre(&self, i: usize, j: usize, k: usize) -> [f64; 3] {
+        [
+            self.origin[0] + (i as f64 + 0.5) * self.h[0],
+            self.origin[1] + (j as f64 + 0.5) * self.h[1],
+            self.origin[2] + (k as f64 + 0.5) * self.h[2],
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn index_is_x_fastest_and_centres_are_offset_by_half_a_cell() {
+        let g = Grid::new([4, 3, 2], [0.5, 1.0, 2.0], [1.0, 0.0, -1.0]);
+        assert_eq!(g.cell_count(), 24);
+        assert_eq!(g.cell_index(1, 0, 0), 1);
+        assert_eq!(g.cell_index(0, 1, 0), 4);
+        assert_eq!(g.cell_index(0, 0, 1), 12);
+        assert_eq!(g.cell_centre(0, 0, 0), [1.25, 0.5, 0.0]);
+        assert_eq!(g.length(), [2.0, 3.0, 4.0]);
+        assert_eq!(g.cell_volume(), 1.0);
+    }
+}
