@@ -4,3 +4,6 @@
 //! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
 
 pub mod grid;
+pub mod cli;
+pub mod error;
+pub mod time_control;

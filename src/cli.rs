@@ -1,0 +1,89 @@
+//! Command line in OpenFOAM's spelling: `fsimFoam -case DIR -dry-run -threads 2`.
+//!
+//! OpenFOAM utilities take long options with one dash; clap wants two. [`normalise_args`]
+//! rewrites the one-dash spellings of fsim's own options before clap sees them, so `-case`
+//! and `--case` both work, while short clusters like `-h` keep their meaning.
+
+use clap::Parser;
+use std::path::PathBuf;
+
+/// Particles in a fluid at the particle scale: direct (resolved) and drag-law (CFD-DEM) models
+/// on OpenFOAM-style case directories.
+#[derive(Parser, Debug, Clone)]
+#[command(name = "fsimFoam", version, about, long_about = None)]
+pub struct Options {
+    /// Case directory (holds system/, constant/, 0/)
+    #[arg(long = "case", value_name = "DIR", default_value = ".")]
+    pub case: PathBuf,
+
+    /// Validate the case and print the plan (grid, patches, time steps, write times,
+    /// estimated memory and run time) without running
+    #[arg(long = "dry-run")]
+    pub dry_run: bool,
+
+    /// Number of threads (default: all cores)
+    #[arg(long = "threads", value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// Long options that OpenFOAM users type with a single dash.
+const LONG_OPTIONS: [&str; 5] = ["case", "dry-run", "threads", "help", "version"];
+
+/// Turn `-case` into `--case` (and `-case=DIR` into `--case=DIR`) for fsim's long options.
+pub fn normalise_args<I: IntoIterator<Item = String>>(args: I) -> Vec<String> {
+    args.into_iter()
+        .enumerate()
+        .map(|(position, arg)| {
+            if position == 0 || !arg.starts_with('-') || arg.starts_with("--") {
+                return arg;
+            }
+            let name = arg[1..].split('=').next().unwrap_or("");
+            if LONG_OPTIONS.contains(&name) {
+                format!("-{arg}")
+            } else {
+                arg
+            }
+        })
+        .collect()
+}
+
+impl Options {
+    /// Parse the process arguments; clap prints help/version or a usage error (exit 2) itself.
+    pub fn from_env() -> Self {
+        Options::parse_from(normalise_args(std::env::args()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Options, clap::Error> {
+        Options::try_parse_from(normalise_args(args.iter().map(|s| s.to_string())))
+    }
+
+    #[test]
+    fn openfoam_spelling_and_gnu_spelling_agree() {
+        let one = parse(&["fsimFoam", "-case", "tutorials/cavity", "-threads", "2"]).unwrap();
+        let two = parse(&["fsimFoam", "--case", "tutorials/cavity", "--threads=2"]).unwrap();
+        assert_eq!(one.case, two.case);
+        assert_eq!(one.threads, Some(2));
+        assert_eq!(two.threads, Some(2));
+        assert!(parse(&["fsimFoam", "-dry-run"]).unwrap().dry_run);
+        assert_eq!(parse(&["fsimFoam"]).unwrap().case, PathBuf::from("."));
+    }
+
+    #[test]
+    fn unknown_options_are_usage_errors() {
+        let err = parse(&["fsimFoam", "-parallel"]).unwrap_err();
+        assert_eq!(err.exit_code(), 2);
+        let err = parse(&["fsimFoam", "-threads", "two"]).unwrap_err();
+        assert_eq!(err.exit_code(), 2);
+    }
+
+    #[test]
+    fn a_case_path_starting_with_a_dash_is_left_alone() {
+        let args = normalise_args(["fsimFoam", "-case", "-odd"].iter().map(|s| s.to_string()));
+        assert_eq!(args, vec!["fsimFoam", "--case", "-odd"]);
+    }
+}

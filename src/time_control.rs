@@ -1,0 +1,174 @@
+//! When to step and when to write, as `system/controlDict` says.
+//!
+//! `writeControl timeStep` writes every `writeInterval` steps (counted from time 0, so a
+//! continued run keeps the same write times); `runTime` writes at the first
+//! step that reaches each multiple of `writeInterval` (the step size is not changed);
+//! `adjustableRunTime` shortens the step that would pass a write time so that it lands on it,
+//! as OpenFOAM does with `adjustTimeStep yes`. The last step always lands on `endTime`, and
+//! the final time is always written so that a run can be continued from it.
+
+/// How write times are chosen (controlDict `writeControl`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WriteControl {
+    TimeStep,
+    RunTime,
+    AdjustableRunTime,
+}
+
+/// The time axis of a run.
+#[derive(Clone, Debug)]
+pub struct TimeControl {
+    pub time: f64,
+    pub step: u64,
+    pub end_time: f64,
+    pub write_control: WriteControl,
+    pub write_interval: f64,
+    /// Index of the next write time for the run-time controls (`write_index · writeInterval`).
+    write_index: u64,
+}
+
+/// Relative tolerance on time comparisons: steps are never shorter than this fraction of Δt.
+const TIME_EPS: f64 = 1e-9;
+
+impl TimeControl {
+    /// Start at `time` (step index `step`, from a restart or 0).
+    pub fn new(
+        time: f64,
+        step: u64,
+        end_time: f64,
+        write_control: WriteControl,
+        write_interval: f64,
+    ) -> Self {
+        let write_index = match write_control {
+            WriteControl::TimeStep => 0,
+            _ => (time / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
+        };
+        TimeControl {
+            time,
+            step,
+            end_time,
+            write_control,
+            write_interval,
+            write_index,
+        }
+    }
+
+    /// True while there is time left to run.
+    pub fn running(&self) -> bool {
+        self.end_time - self.time > TIME_EPS * self.end_time.abs()
+    }
+
+    fn next_write_time(&self) -> f64 {
+        self.write_index as f64 * self.write_interval
+    }
+
+    /// The step to take from `time`, given the step the physics allows: never past `endTime`,
+    /// and for `adjustableRunTime` never past the next write time. A step that would leave a
+    /// sliver shorter than a hundredth of itself before the target is stretched onto it.
+    pub fn step_size(&self, allowed: f64) -> f64 {
+        let mut target = self.end_time;
+        if self.write_control == WriteControl::AdjustableRunTime {
+            target = target.min(self.next_write_time());
+        }
+        let remaining = target - self.time;
+        if remaining <= allowed * 1.01 {
+            remaining.max(0.0)
+        } else if self.write_control == WriteControl::AdjustableRunTime && remaining < 2.0 * allowed
+        {
+            // Two equal steps instead of a long one and a sliver.
+            0.5 * remaining
+        } else {
+            allowed
+        }
+    }
+
+    /// Advance by `dt`; returns true when the new time is a write time.
+    pub fn advance(&mut self, dt: f64) -> bool {
+        self.step += 1;
+        // Land exactly on the end and on write times rather than a rounding error away.
+        let mut t = self.time + dt;
+        if (t - self.end_time).abs() <= TIME_EPS * dt.max(f64::MIN_POSITIVE) * 1e3 {
+            t = self.end_time;
+        }
+        self.time = t;
+        let write = match self.write_control {
+            WriteControl::TimeStep => {
+                let every = self.write_interval.round().max(1.0) as u64;
+                self.step % every == 0
+            }
+            WriteControl::RunTime | WriteControl::AdjustableRunTime => {
+                let mut hit = false;
+                while self.time >= self.next_write_time() - TIME_EPS * self.write_interval {
+                    self.write_index += 1;
+                    hit = true;
+                }
+                hit
+            }
+        };
+        write || !self.running()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(mut tc: TimeControl, allowed: f64) -> (Vec<f64>, Vec<f64>) {
+        let mut times = Vec::new();
+        let mut writes = Vec::new();
+        while tc.running() {
+            let dt = tc.step_size(allowed);
+            assert!(dt > 0.0 && dt <= allowed * 1.01 + 1e-15);
+            let w = tc.advance(dt);
+            times.push(tc.time);
+            if w {
+                writes.push(tc.time);
+            }
+            assert!(times.len() < 100_000);
+        }
+        (times, writes)
+    }
+
+    #[test]
+    fn time_step_control_writes_every_n_steps_and_at_the_end() {
+        let tc = TimeControl::new(0.0, 0, 1.0, WriteControl::TimeStep, 3.0);
+        let (times, writes) = run(tc, 0.1);
+        assert_eq!(times.len(), 10);
+        assert_eq!(*times.last().unwrap(), 1.0);
+        assert_eq!(writes.len(), 4); // steps 3, 6, 9 and the end
+    }
+
+    #[test]
+    fn adjustable_run_time_lands_on_every_write_time() {
+        let tc = TimeControl::new(0.0, 0, 1.0, WriteControl::AdjustableRunTime, 0.25);
+        let (_, writes) = run(tc, 0.07);
+        assert_eq!(writes.len(), 4);
+        for (w, expect) in writes.iter().zip([0.25, 0.5, 0.75, 1.0]) {
+            assert!((w - expect).abs() < 1e-12, "{w} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn run_time_control_writes_at_the_first_step_past_each_interval() {
+        let tc = TimeControl::new(0.0, 0, 1.0, WriteControl::RunTime, 0.3);
+        let (_, writes) = run(tc, 0.1);
+        // 0.3, 0.6, 0.9 reached (to rounding) at steps 3, 6, 9; then the end.
+        assert_eq!(writes.len(), 4);
+        assert!((writes[0] - 0.3).abs() < 1e-12);
+        assert_eq!(*writes.last().unwrap(), 1.0);
+    }
+
+    #[test]
+    fn a_restarted_time_axis_continues_where_it_stopped() {
+        let tc = TimeControl::new(0.5, 5, 1.0, WriteControl::AdjustableRunTime, 0.25);
+        let (_, writes) = run(tc, 0.1);
+        assert_eq!(writes.len(), 2);
+        assert!((writes[0] - 0.75).abs() < 1e-12);
+    }
+
+    #[test]
+    fn nothing_to_do_when_start_equals_end() {
+        let tc = TimeControl::new(1.0, 10, 1.0, WriteControl::TimeStep, 1.0);
+        assert!(!tc.running());
+    }
+}
