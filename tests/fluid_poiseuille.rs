@@ -102,3 +102,65 @@ fn poiseuille_driven_by_mean_velocity_force_reaches_bulk_velocity_and_parabola()
     );
     assert!(div < 1e-10, "divergence {div:e}");
 }
+
+#[test]
+fn channel_with_inlet_and_outlet_develops_the_parabola_and_its_pressure_drop() {
+    // Uniform inflow U at x = 0, fixed pressure 0 at x = 4H, no-slip walls; Re = UH/ν = 10,
+    // so the entry length (≈ 0.05 Re H + 0.6 H) is well inside the channel.
+    let (nu, u_in) = (0.1, 1.0);
+    let h = H / NY as f64;
+    let nx = 4 * NY;
+    let grid = Grid::new([nx, NY, 1], [h, h, h], [0.0; 3]);
+    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+    let bc = BoundaryConditions {
+        faces: [
+            FaceCondition::Inlet {
+                velocity: [u_in, 0.0, 0.0],
+            },
+            FaceCondition::Outlet { pressure: 0.0 },
+            wall.clone(),
+            wall,
+            FaceCondition::Empty,
+            FaceCondition::Empty,
+        ],
+    };
+    let mut s = FluidSolver::new(
+        grid,
+        bc,
+        FluidSettings {
+            nu,
+            scheme: TimeScheme::RK3,
+            body_force: [0.0; 3],
+        },
+    )
+    .unwrap();
+    let div = run_to(&mut s, 15.0);
+    let l = s.layout().clone();
+    // Mass: what leaves through the outlet face is what enters.
+    let outflow: f64 = (1..=NY)
+        .map(|j| s.velocity()[0][l.index(nx + 1, j, 1)] * h)
+        .sum();
+    // Developed profile at x = 3H (face slot 3 NY + 1).
+    let mut err: f64 = 0.0;
+    for j in 1..=NY {
+        let y = (j as f64 - 0.5) * h;
+        let exact = 6.0 * u_in * y * (H - y) / (H * H);
+        err = err.max((s.velocity()[0][l.index(3 * NY + 1, j, 1)] - exact).abs() / (1.5 * u_in));
+    }
+    // Pressure gradient between the cell centres at x ≈ 2.5H and 3.5H, mid-channel.
+    let p = s.pressure();
+    let g = s.grid();
+    let (i0, i1) = (5 * NY / 2, 7 * NY / 2);
+    let jm = NY / 2;
+    let dpdx = (p[g.cell_index(i1, jm, 0)] - p[g.cell_index(i0, jm, 0)]) / ((i1 - i0) as f64 * h);
+    let exact = -12.0 * nu * u_in / (H * H);
+    eprintln!(
+        "channel inlet/outlet: outflow {outflow:.15} (inflow {}), developed profile error {:.3}%, dp/dx {dpdx:.5} vs {exact:.5}, divergence {div:.1e}",
+        u_in * H,
+        100.0 * err
+    );
+    assert!((outflow - u_in * H).abs() < 1e-12, "outflow {outflow}");
+    assert!(err < 0.01, "profile error {err}");
+    assert!((dpdx / exact - 1.0).abs() < 0.02, "dp/dx {dpdx}");
+    assert!(div < 1e-10, "divergence {div:e}");
+}

@@ -66,39 +66,72 @@ fn accumulate_component(
     let source = t.source.map(|s| &s[c][..]);
     let r = t.ranges[c];
     let d0 = layout.dims[0];
+    if r[0].0 > r[0].1 || r[1].0 > r[1].1 {
+        return;
+    }
+    let len = r[0].1 - r[0].0 + 1;
     qc.par_chunks_mut(plane).enumerate().for_each(|(k, qp)| {
         if k < r[2].0 || k > r[2].1 {
             return;
         }
         for j in r[1].0..=r[1].1 {
-            let row = j * d0;
-            for i in r[0].0..=r[0].1 {
-                let p = (k * plane + row + i) as isize;
-                let at = |arr: &[f64], off: isize| arr[(p + off) as usize];
-                let q0 = at(own, 0);
+            let row = j * d0 + r[0].0;
+            let base = (k * plane + row) as isize;
+            // Every stencil point as a slice of the row's length, so the inner loop runs
+            // over `0..len` without bounds checks.
+            let sl = |arr, off| shifted(arr, base + off, len);
+            let q0 = sl(own, 0);
+            let (qpc, qmc) = (sl(own, sc), sl(own, -sc));
+            let (qp1, qm1) = (sl(own, s1), sl(own, -s1));
+            let (qp2, qm2) = (sl(own, s2), sl(own, -s2));
+            let (a1, b1, c1, e1) = (sl(v1, s1), sl(v1, s1 - sc), sl(v1, 0), sl(v1, -sc));
+            let (a2, b2, c2, e2) = (sl(v2, s2), sl(v2, s2 - sc), sl(v2, 0), sl(v2, -sc));
+            let src = source.map(|s| sl(s, 0));
+            let out = &mut qp[row..row + len];
+            let rhs = |i: usize| -> f64 {
+                let q = q0[i];
                 // Own direction: (ū_c)² at the two cell centres.
-                let hi = 0.5 * (q0 + at(own, sc));
-                let lo = 0.5 * (at(own, -sc) + q0);
-                let mut adv = (hi * hi - lo * lo) * ic;
+                let hi = 0.5 * (q + qpc[i]);
+                let lo = 0.5 * (qmc[i] + q);
                 // Transverse directions: ū_c ū_d at the two edges.
-                adv += (0.5 * (q0 + at(own, s1)) * 0.5 * (at(v1, s1) + at(v1, s1 - sc))
-                    - 0.5 * (at(own, -s1) + q0) * 0.5 * (at(v1, 0) + at(v1, -sc)))
-                    * i1;
-                adv += (0.5 * (q0 + at(own, s2)) * 0.5 * (at(v2, s2) + at(v2, s2 - sc))
-                    - 0.5 * (at(own, -s2) + q0) * 0.5 * (at(v2, 0) + at(v2, -sc)))
-                    * i2;
-                let lap = (at(own, sc) - 2.0 * q0 + at(own, -sc)) * inv_h2[c]
-                    + (at(own, s1) - 2.0 * q0 + at(own, -s1)) * inv_h2[d1]
-                    + (at(own, s2) - 2.0 * q0 + at(own, -s2)) * inv_h2[d2];
-                let mut f = -adv + nu * lap + force;
-                if let Some(src) = source {
-                    f += src[p as usize];
+                let adv = (hi * hi - lo * lo) * ic
+                    + 0.25 * ((q + qp1[i]) * (a1[i] + b1[i]) - (qm1[i] + q) * (c1[i] + e1[i])) * i1
+                    + 0.25 * ((q + qp2[i]) * (a2[i] + b2[i]) - (qm2[i] + q) * (c2[i] + e2[i])) * i2;
+                let lap = (qpc[i] - 2.0 * q + qmc[i]) * inv_h2[c]
+                    + (qp1[i] - 2.0 * q + qm1[i]) * inv_h2[d1]
+                    + (qp2[i] - 2.0 * q + qm2[i]) * inv_h2[d2];
+                -adv + nu * lap + force
+            };
+            match (src, a == 0.0) {
+                (None, true) => {
+                    for i in 0..len {
+                        out[i] = dt * rhs(i);
+                    }
                 }
-                let slot = &mut qp[row + i];
-                *slot = if a == 0.0 { dt * f } else { a * *slot + dt * f };
+                (None, false) => {
+                    for i in 0..len {
+                        out[i] = a * out[i] + dt * rhs(i);
+                    }
+                }
+                (Some(s), true) => {
+                    for i in 0..len {
+                        out[i] = dt * (rhs(i) + s[i]);
+                    }
+                }
+                (Some(s), false) => {
+                    for i in 0..len {
+                        out[i] = a * out[i] + dt * (rhs(i) + s[i]);
+                    }
+                }
             }
         }
     });
+}
+
+/// The `len` values of `arr` from `start` on.
+#[inline(always)]
+fn shifted(arr: &[f64], start: isize, len: usize) -> &[f64] {
+    &arr[start as usize..][..len]
 }
 
 /// `u ← u + b q` on the momentum faces.
@@ -122,8 +155,11 @@ pub(crate) fn add_scaled(
                 }
                 for j in r[1].0..=r[1].1 {
                     let row = j * d0;
-                    for i in r[0].0..=r[0].1 {
-                        up[row + i] += b * qp[row + i];
+                    let (lo, hi) = (row + r[0].0, row + r[0].1 + 1);
+                    if lo < hi {
+                        for (x, y) in up[lo..hi].iter_mut().zip(&qp[lo..hi]) {
+                            *x += b * y;
+                        }
                     }
                 }
             });

@@ -30,11 +30,13 @@ pub(crate) fn divergence_rhs(
             for j in 0..n1 {
                 let base = layout.index(1, j + 1, k + 1);
                 let row = &mut plane[j * n0..(j + 1) * n0];
+                let (xl, xh) = (&ux[base..base + n0], &ux[base + 1..base + 1 + n0]);
+                let (yl, yh) = (&uy[base..base + n0], &uy[base + s[1]..base + s[1] + n0]);
+                let (zl, zh) = (&uz[base..base + n0], &uz[base + s[2]..base + s[2] + n0]);
                 for i in 0..n0 {
-                    let p = base + i;
-                    row[i] = (ux[p + 1] - ux[p]) * inv[0]
-                        + (uy[p + s[1]] - uy[p]) * inv[1]
-                        + (uz[p + s[2]] - uz[p]) * inv[2];
+                    row[i] = (xh[i] - xl[i]) * inv[0]
+                        + (yh[i] - yl[i]) * inv[1]
+                        + (zh[i] - zl[i]) * inv[2];
                 }
             }
         });
@@ -72,13 +74,29 @@ enum Side {
     Ghost(f64, usize),
 }
 
-impl Side {
-    #[inline]
-    fn at(self, p: &[f64], i: usize) -> f64 {
-        match self {
-            Side::Cell(o) => p[o + i],
-            Side::Ghost(v, o) => 2.0 * v - p[o + i],
+/// `t[i] −= f (p_hi(i) − p_lo(i))` along one row of x-contiguous faces.
+fn subtract_row(t: &mut [f64], p: &[f64], lo: Side, hi: Side, f: f64) {
+    let len = t.len();
+    match (lo, hi) {
+        (Side::Cell(a), Side::Cell(b)) => {
+            let (pl, ph) = (&p[a..a + len], &p[b..b + len]);
+            for i in 0..len {
+                t[i] -= f * (ph[i] - pl[i]);
+            }
         }
+        (Side::Ghost(v, a), Side::Cell(b)) => {
+            let (pl, ph) = (&p[a..a + len], &p[b..b + len]);
+            for i in 0..len {
+                t[i] -= f * (ph[i] - (2.0 * v - pl[i]));
+            }
+        }
+        (Side::Cell(a), Side::Ghost(v, b)) => {
+            let (pl, ph) = (&p[a..a + len], &p[b..b + len]);
+            for i in 0..len {
+                t[i] -= f * ((2.0 * v - ph[i]) - pl[i]);
+            }
+        }
+        (Side::Ghost(..), Side::Ghost(..)) => unreachable!("a face has at most one boundary side"),
     }
 }
 
@@ -133,8 +151,14 @@ pub(crate) fn subtract_gradient(
                 for j in r[1].0..=r[1].1 {
                     let pr = &p[row_of(j, k)..row_of(j, k) + nx];
                     let t = &mut tp[j * d0..(j + 1) * d0];
-                    for i in r[0].0.max(2)..=r[0].1.min(nx) {
-                        t[i] -= f * (pr[i - 1] - pr[i - 2]);
+                    let (lo, hi) = (r[0].0.max(2), r[0].1.min(nx));
+                    if lo <= hi {
+                        let len = hi - lo + 1;
+                        let (pl, ph) = (&pr[lo - 2..lo - 2 + len], &pr[lo - 1..lo - 1 + len]);
+                        let t = &mut t[lo..lo + len];
+                        for i in 0..len {
+                            t[i] -= f * (ph[i] - pl[i]);
+                        }
                     }
                     if r[0].0 == 1 {
                         let lo = match out0 {
@@ -163,10 +187,7 @@ pub(crate) fn subtract_gradient(
                 }
                 for j in r[1].0..=r[1].1 {
                     let (lo, hi) = sides(1, j, &|m| row_of(m + 1, k));
-                    let t = &mut tp[j * d0..(j + 1) * d0];
-                    for i in r[0].0..=r[0].1 {
-                        t[i] -= f * (hi.at(p, i - 1) - lo.at(p, i - 1));
-                    }
+                    subtract_row(&mut tp[j * d0 + 1..j * d0 + 1 + n[0]], p, lo, hi, f);
                 }
             });
     }
@@ -183,10 +204,7 @@ pub(crate) fn subtract_gradient(
                 }
                 for j in r[1].0..=r[1].1 {
                     let (lo, hi) = sides(2, k, &|m| row_of(j, m + 1));
-                    let t = &mut tp[j * d0..(j + 1) * d0];
-                    for i in r[0].0..=r[0].1 {
-                        t[i] -= f * (hi.at(p, i - 1) - lo.at(p, i - 1));
-                    }
+                    subtract_row(&mut tp[j * d0 + 1..j * d0 + 1 + n[0]], p, lo, hi, f);
                 }
             });
     }
