@@ -1,0 +1,631 @@
+//! The fluid state and its time step.
+
+use super::boundary_conditions::{BoundaryConditions, FaceCondition};
+use super::diagnostics::FluidDiagnostics;
+use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::mean_velocity_force::MeanVelocityForce;
+use super::momentum::{accumulate_tendency, add_scaled, MomentumTerms};
+use super::padded_layout::PaddedLayout;
+use super::projection::{divergence_rhs, subtract_gradient};
+use super::spectral_poisson::SpectralPoisson;
+use super::time_scheme::TimeScheme;
+use crate::grid::Grid;
+use rayon::prelude::*;
+
+/// Physical and numerical settings of the fluid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FluidSettings {
+    /// Kinematic viscosity ν, m²/s.
+    pub nu: f64,
+    /// Time scheme (default RK3).
+    pub scheme: TimeScheme,
+    /// Uniform body force per unit mass (gravity, an imposed mean pressure gradient), m/s².
+    pub body_force: [f64; 3],
+}
+
+/// The predicted velocity of a stage, handed to a hook before it is projected (the direct
+/// model imposes the particles' velocity there).
+pub struct PredictedVelocity<'a> {
+    pub grid: &'a Grid,
+    pub layout: &'a PaddedLayout,
+    /// Time at the end of the stage.
+    pub time: f64,
+    /// The stage's projection weight: the projection subtracts `tau ∇p`.
+    pub tau: f64,
+    /// Velocity components, padded layout.
+    pub velocity: &'a mut [Vec<f64>; 3],
+}
+
+/// What one step did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepReport {
+    pub dt: f64,
+    /// Time after the step.
+    pub time: f64,
+    /// Driving gradient `−∂⟨p⟩/∂x` of `meanVelocityForce` after the step (m/s²), if any.
+    pub driving_gradient: Option<f64>,
+}
+
+/// Incompressible Navier–Stokes on a uniform MAC grid, advanced by projection.
+///
+/// Storage, all contiguous `Vec<f64>`:
+/// - `u[c]`: velocity component `c` on the faces normal to `c`, padded ([`PaddedLayout`]);
+/// - `p`: kinematic pressure `p/ρ` (m²/s²) at cell centres, unpadded x-fastest (the layout of
+///   [`Grid`]); after a step it is the pressure of the last stage (for Euler `pⁿ⁺¹`);
+/// - `q[c]`: the Runge–Kutta register (tendency), padded;
+/// - optional per-face sources `source[c]`, padded, m/s².
+///
+/// No allocation happens in [`FluidSolver::step`].
+pub struct FluidSolver {
+    grid: Grid,
+    layout: PaddedLayout,
+    bc: BoundaryConditions,
+    settings: FluidSettings,
+    u: [Vec<f64>; 3],
+    p: Vec<f64>,
+    q: [Vec<f64>; 3],
+    source: Option<[Vec<f64>; 3]>,
+    poisson: SpectralPoisson,
+    drive: Option<MeanVelocityForce>,
+    time: f64,
+    momentum_ranges: [[(usize, usize); 3]; 3],
+    corrected_ranges: [[(usize, usize); 3]; 3],
+    /// Per k-plane partial results of reductions, summed in plane order (deterministic).
+    partials: Vec<[f64; 12]>,
+    /// `[time, driving gradient]` as stored for restart.
+    scalars: [f64; 2],
+}
+
+impl FluidSolver {
+    /// A fluid at rest. Fails if the conditions do not fit the grid.
+    pub fn new(
+        grid: Grid,
+        bc: BoundaryConditions,
+        settings: FluidSettings,
+    ) -> Result<Self, String> {
+        bc.validate(&grid)?;
+        if !(settings.nu > 0.0) {
+            return Err(format!("viscosity must be positive, got {}", settings.nu));
+        }
+        let layout = PaddedLayout::new(grid.n);
+        let axes = std::array::from_fn(|d| bc.pressure_axis(d));
+        let poisson = SpectralPoisson::new(grid.n, grid.h, axes);
+        let zeros = || vec![0.0; layout.len];
+        let momentum_ranges =
+            std::array::from_fn(|c| std::array::from_fn(|d| bc.momentum_range(grid.n, c, d)));
+        let corrected_ranges =
+            std::array::from_fn(|c| std::array::from_fn(|d| bc.corrected_range(grid.n, c, d)));
+        let mut s = FluidSolver {
+            u: [zeros(), zeros(), zeros()],
+            q: [zeros(), zeros(), zeros()],
+            p: vec![0.0; grid.cell_count()],
+            source: None,
+            poisson,
+            drive: None,
+            time: 0.0,
+            momentum_ranges,
+            corrected_ranges,
+            partials: vec![[0.0; 12]; layout.dims[2]],
+            scalars: [0.0; 2],
+            grid,
+            layout,
+            bc,
+            settings,
+        };
+        fill_velocity_ghosts(&s.layout, &s.bc, &mut s.u);
+        Ok(s)
+    }
+
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+    pub fn layout(&self) -> &PaddedLayout {
+        &self.layout
+    }
+    pub fn boundary_conditions(&self) -> &BoundaryConditions {
+        &self.bc
+    }
+    pub fn settings(&self) -> &FluidSettings {
+        &self.settings
+    }
+    /// Changes ν, the scheme or the body force between steps.
+    pub fn settings_mut(&mut self) -> &mut FluidSettings {
+        &mut self.settings
+    }
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    pub fn set_time(&mut self, t: f64) {
+        self.time = t;
+    }
+
+    /// Velocity components on their faces, padded layout.
+    pub fn velocity(&self) -> &[Vec<f64>; 3] {
+        &self.u
+    }
+    /// Mutable velocity (padded); call [`Self::project`] after changing it.
+    pub fn velocity_mut(&mut self) -> &mut [Vec<f64>; 3] {
+        &mut self.u
+    }
+    /// Kinematic pressure `p/ρ` (m²/s²) at cell centres, unpadded x-fastest layout.
+    pub fn pressure(&self) -> &[f64] {
+        &self.p
+    }
+    /// Mutable pressure (e.g. to load a case's initial `p`, divided by ρ).
+    pub fn pressure_mut(&mut self) -> &mut [f64] {
+        &mut self.p
+    }
+
+    /// Allocates (once) zeroed per-face source arrays, m/s², added to the body force.
+    pub fn face_source_mut(&mut self) -> &mut [Vec<f64>; 3] {
+        let len = self.layout.len;
+        self.source
+            .get_or_insert_with(|| [vec![0.0; len], vec![0.0; len], vec![0.0; len]])
+    }
+
+    /// Drives the flow at a bulk velocity (`meanVelocityForce`); the direction must be
+    /// periodic.
+    pub fn set_mean_velocity_force(
+        &mut self,
+        drive: Option<MeanVelocityForce>,
+    ) -> Result<(), String> {
+        if let Some(d) = &drive {
+            if d.direction > 2 || !matches!(self.bc.face(d.direction, 0), FaceCondition::Periodic) {
+                return Err(format!(
+                    "meanVelocityForce needs a periodic direction, got {}",
+                    d.direction
+                ));
+            }
+        }
+        self.drive = drive;
+        Ok(())
+    }
+    pub fn mean_velocity_force(&self) -> Option<&MeanVelocityForce> {
+        self.drive.as_ref()
+    }
+
+    /// Sets every velocity sample from `f(component, position)`, then fills the boundary
+    /// faces and ghosts from the conditions. Call [`Self::project`] if `f` is not discretely
+    /// divergence-free.
+    pub fn set_velocity(&mut self, f: impl Fn(usize, [f64; 3]) -> f64) {
+        let g = &self.grid;
+        let l = &self.layout;
+        for c in 0..3 {
+            for k in 1..=l.n[2] + usize::from(c == 2) {
+                for j in 1..=l.n[1] + usize::from(c == 1) {
+                    for i in 1..=l.n[0] + usize::from(c == 0) {
+                        let idx = [i, j, k];
+                        let x: [f64; 3] = std::array::from_fn(|d| {
+                            let offset = if d == c { 1.0 } else { 0.5 };
+                            g.origin[d] + (idx[d] as f64 - offset) * g.h[d]
+                        });
+                        self.u[c][l.index(i, j, k)] = f(c, x);
+                    }
+                }
+            }
+        }
+        for d in 0..3 {
+            if matches!(self.bc.face(d, 0), FaceCondition::Empty) {
+                self.u[d].iter_mut().for_each(|x| *x = 0.0);
+            }
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+    }
+
+    /// Sets the velocity from cell-centred values (unpadded x-fastest, as a case's
+    /// `internalField`): each face takes the mean of its two cells (the one cell on the box
+    /// boundary, unless periodic), then the conditions fix the boundary faces. Call
+    /// [`Self::project`] afterwards.
+    pub fn set_cell_velocity(&mut self, cells: &[[f64; 3]]) {
+        assert_eq!(cells.len(), self.grid.cell_count());
+        let n = self.grid.n;
+        for c in 0..3 {
+            let periodic = matches!(self.bc.face(c, 0), FaceCondition::Periodic);
+            let cell_along = |idx: [usize; 3], m: isize| -> f64 {
+                let mut idx = idx;
+                let m = if m < 0 {
+                    if periodic {
+                        n[c] as isize - 1
+                    } else {
+                        0
+                    }
+                } else if m >= n[c] as isize {
+                    if periodic {
+                        0
+                    } else {
+                        n[c] as isize - 1
+                    }
+                } else {
+                    m
+                };
+                idx[c] = m as usize;
+                cells[self.grid.cell_index(idx[0], idx[1], idx[2])][c]
+            };
+            for k in 1..=n[2] + usize::from(c == 2) {
+                for j in 1..=n[1] + usize::from(c == 1) {
+                    for i in 1..=n[0] + usize::from(c == 0) {
+                        let mut idx = [i - 1, j - 1, k - 1];
+                        let s = idx[c] as isize; // face between cells s−1 and s
+                        idx[c] = 0;
+                        let v = 0.5 * (cell_along(idx, s - 1) + cell_along(idx, s));
+                        self.u[c][self.layout.index(i, j, k)] = v;
+                    }
+                }
+            }
+        }
+        for d in 0..3 {
+            if matches!(self.bc.face(d, 0), FaceCondition::Empty) {
+                self.u[d].iter_mut().for_each(|x| *x = 0.0);
+            }
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+    }
+
+    /// Makes the current velocity discretely divergence-free (one projection with unit
+    /// weight); the pressure is reset to zero.
+    pub fn project(&mut self) {
+        extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        divergence_rhs(
+            &mut self.p,
+            &self.u,
+            &self.layout,
+            self.grid.h,
+            &self.bc,
+            1.0,
+        );
+        self.poisson.solve(&mut self.p);
+        subtract_gradient(
+            &mut self.u,
+            &self.p,
+            1.0,
+            &self.layout,
+            self.grid.h,
+            &self.bc,
+            &self.corrected_ranges,
+        );
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        self.p.iter_mut().for_each(|x| *x = 0.0);
+    }
+
+    /// Advances by `dt` with the configured scheme.
+    pub fn step(&mut self, dt: f64) -> StepReport {
+        self.step_with(dt, &mut |_| {})
+    }
+
+    /// Advances by `dt`, calling `hook` on each stage's predicted velocity before it is
+    /// projected.
+    ///
+    /// Per stage `s` (coefficients `a_s, b_s` of [`TimeScheme::stages`]):
+    /// 1. `q ← a_s q + Δt F(u)` (advection, diffusion, body force, sources);
+    /// 2. `u* = u + b_s q`, then the hook, then zero-gradient outlet faces;
+    /// 3. `∇²p = ∇·u* / τ` with `τ = b_s Δt`, solved exactly;
+    /// 4. `u = u* − τ ∇p`, and `q ← q − Δt ∇p` so later stages carry the pressure too.
+    ///
+    /// Then `meanVelocityForce` corrects the bulk velocity.
+    pub fn step_with(
+        &mut self,
+        dt: f64,
+        hook: &mut dyn FnMut(PredictedVelocity<'_>),
+    ) -> StepReport {
+        let stages = self.settings.scheme.stages();
+        let t0 = self.time;
+        let h = self.grid.h;
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        for (s, &(a, b, c_end)) in stages.iter().enumerate() {
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            let terms = MomentumTerms {
+                layout: &self.layout,
+                h,
+                nu: self.settings.nu,
+                force,
+                source: self.source.as_ref(),
+                ranges: &self.momentum_ranges,
+            };
+            accumulate_tendency(&mut self.q, &self.u, &terms, a, dt);
+            add_scaled(&mut self.u, &self.q, b, &self.layout, &self.momentum_ranges);
+            let tau = b * dt;
+            hook(PredictedVelocity {
+                grid: &self.grid,
+                layout: &self.layout,
+                time: t0 + c_end * dt,
+                tau,
+                velocity: &mut self.u,
+            });
+            extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
+            self.poisson.solve(&mut self.p);
+            subtract_gradient(
+                &mut self.u,
+                &self.p,
+                tau,
+                &self.layout,
+                h,
+                &self.bc,
+                &self.corrected_ranges,
+            );
+            if s + 1 < stages.len() {
+                subtract_gradient(
+                    &mut self.q,
+                    &self.p,
+                    dt,
+                    &self.layout,
+                    h,
+                    &self.bc,
+                    &self.corrected_ranges,
+                );
+            }
+        }
+        self.time = t0 + dt;
+        if self.drive.is_some() {
+            self.correct_bulk_velocity(dt);
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        StepReport {
+            dt,
+            time: self.time,
+            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
+        }
+    }
+
+    /// `meanVelocityForce`: raise the driving gradient by `δG` and add `Δt δG` to every
+    /// face of the driven component.
+    fn correct_bulk_velocity(&mut self, dt: f64) {
+        let d = self.drive.as_ref().expect("called with a drive").direction;
+        let bulk = self.mean_component(d);
+        let drive = self.drive.as_mut().expect("called with a drive");
+        let dg = drive.increment(bulk, dt);
+        drive.gradient += dg;
+        let shift = dt * dg;
+        let r = self.momentum_ranges[d];
+        let l = &self.layout;
+        let plane = l.plane_len();
+        let d0 = l.dims[0];
+        self.u[d]
+            .par_chunks_mut(plane)
+            .enumerate()
+            .for_each(|(k, up)| {
+                if k < r[2].0 || k > r[2].1 {
+                    return;
+                }
+                for j in r[1].0..=r[1].1 {
+                    for i in r[0].0..=r[0].1 {
+                        up[j * d0 + i] += shift;
+                    }
+                }
+            });
+    }
+
+    /// Volume mean of component `c` (mean of the cell-centre interpolants), summed plane by
+    /// plane in a fixed order so the result does not depend on the thread count.
+    pub fn mean_component(&mut self, c: usize) -> f64 {
+        let l = &self.layout;
+        let n = l.n;
+        let uc = &self.u[c][..];
+        let sc = l.stride[c];
+        self.partials
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, part)| {
+                part[0] = 0.0;
+                if k == 0 || k > n[2] {
+                    return;
+                }
+                let mut sum = 0.0;
+                for j in 1..=n[1] {
+                    let base = l.index(0, j, k);
+                    for i in 1..=n[0] {
+                        sum += uc[base + i] + uc[base + i + sc];
+                    }
+                }
+                part[0] = 0.5 * sum;
+            });
+        self.partials.iter().map(|p| p[0]).sum::<f64>() / self.grid.cell_count() as f64
+    }
+
+    /// Divergence, kinetic energy, mean velocity, speeds and Courant number for step `dt`.
+    pub fn diagnostics(&mut self, dt: f64) -> FluidDiagnostics {
+        let l = &self.layout;
+        let n = l.n;
+        let s = l.stride;
+        let h = self.grid.h;
+        let (ux, uy, uz) = (&self.u[0][..], &self.u[1][..], &self.u[2][..]);
+        self.partials
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, part)| {
+                *part = [0.0; 12];
+                if k == 0 || k > n[2] {
+                    return;
+                }
+                for j in 1..=n[1] {
+                    let base = l.index(0, j, k);
+                    for i in 1..=n[0] {
+                        let p = base + i;
+                        let f = [ux[p], ux[p + 1], uy[p], uy[p + s[1]], uz[p], uz[p + s[2]]];
+                        let div =
+                            (f[1] - f[0]) / h[0] + (f[3] - f[2]) / h[1] + (f[5] - f[4]) / h[2];
+                        part[0] = part[0].max(div.abs());
+                        part[1] += 0.25
+                            * (f[0] * f[0]
+                                + f[1] * f[1]
+                                + f[2] * f[2]
+                                + f[3] * f[3]
+                                + f[4] * f[4]
+                                + f[5] * f[5]);
+                        for c in 0..3 {
+                            part[2 + c] += 0.5 * (f[2 * c] + f[2 * c + 1]);
+                            part[5 + c] = part[5 + c].max(f[2 * c].abs()).max(f[2 * c + 1].abs());
+                        }
+                        let co = 0.5
+                            * ((f[0].abs() + f[1].abs()) / h[0]
+                                + (f[2].abs() + f[3].abs()) / h[1]
+                                + (f[4].abs() + f[5].abs()) / h[2]);
+                        part[8] = part[8].max(co);
+                    }
+                }
+            });
+        let mut total = [0.0f64; 12];
+        for part in &self.partials {
+            total[0] = total[0].max(part[0]);
+            for c in 1..5 {
+                total[c] += part[c];
+            }
+            for c in 5..9 {
+                total[c] = total[c].max(part[c]);
+            }
+        }
+        let cells = self.grid.cell_count() as f64;
+        let h_min = self.active_h_min();
+        let speed = total[5].max(total[6]).max(total[7]);
+        FluidDiagnostics {
+            divergence: if speed > 0.0 {
+                total[0] * h_min / speed
+            } else {
+                total[0] * h_min
+            },
+            max_divergence: total[0],
+            kinetic_energy: total[1] / cells,
+            mean_velocity: [total[2] / cells, total[3] / cells, total[4] / cells],
+            max_speed: [total[5], total[6], total[7]],
+            max_courant: total[8] * dt,
+        }
+    }
+
+    fn active(&self) -> [bool; 3] {
+        std::array::from_fn(|d| !matches!(self.bc.face(d, 0), FaceCondition::Empty))
+    }
+
+    fn active_h_min(&self) -> f64 {
+        let a = self.active();
+        (0..3)
+            .filter(|&d| a[d])
+            .map(|d| self.grid.h[d])
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Largest face speed per component, m/s.
+    pub fn max_speed(&self) -> [f64; 3] {
+        std::array::from_fn(|c| {
+            self.u[c]
+                .par_chunks(self.layout.plane_len())
+                .map(|p| p.iter().fold(0.0f64, |m, x| m.max(x.abs())))
+                .reduce(|| 0.0, f64::max)
+        })
+    }
+
+    /// The scheme's stability bound on `Δt` for the current velocity (paper eq. 3 for Euler;
+    /// see [`TimeScheme::stability_bound`]).
+    pub fn stability_bound(&self) -> f64 {
+        self.settings.scheme.stability_bound(
+            self.settings.nu,
+            self.grid.h,
+            self.active(),
+            self.max_speed(),
+        )
+    }
+
+    /// Courant number per unit time step: `Co = Δt × courant_rate()` (OpenFOAM's definition,
+    /// `½ Σ_faces |u_f| / h` per cell, largest over cells).
+    pub fn courant_rate(&mut self) -> f64 {
+        self.diagnostics(1.0).max_courant
+    }
+
+    /// Next time step under `adjustTimeStep yes`: OpenFOAM's rule
+    /// `Δt = min(maxCo/Co · Δt_old, 1.2 Δt_old, maxDeltaT)`, never above the scheme's
+    /// stability bound. `dt_old` is the last step (or the case's `deltaT` at start).
+    pub fn adaptive_dt(&mut self, dt_old: f64, max_co: f64, max_dt: f64) -> f64 {
+        let rate = self.courant_rate();
+        let co_limited = if rate > 0.0 {
+            max_co / rate
+        } else {
+            f64::INFINITY
+        };
+        co_limited
+            .min(1.2 * dt_old)
+            .min(max_dt)
+            .min(self.stability_bound())
+    }
+
+    /// Cell-centred velocity (mean of each component's two faces) into `out`, unpadded
+    /// x-fastest.
+    pub fn cell_velocity(&self, out: &mut [[f64; 3]]) {
+        let n = self.grid.n;
+        assert_eq!(out.len(), self.grid.cell_count());
+        let l = &self.layout;
+        let s = l.stride;
+        let u = &self.u;
+        out.par_chunks_mut(n[0] * n[1])
+            .enumerate()
+            .for_each(|(k, plane)| {
+                for j in 0..n[1] {
+                    let base = l.index(1, j + 1, k + 1);
+                    for i in 0..n[0] {
+                        let p = base + i;
+                        plane[i + n[0] * j] =
+                            std::array::from_fn(|c| 0.5 * (u[c][p] + u[c][p + s[c]]));
+                    }
+                }
+            });
+    }
+
+    /// Names of the arrays [`Self::restart_arrays`] returns, in order.
+    pub const RESTART_NAMES: [&'static str; 5] = ["U.x", "U.y", "U.z", "p", "scalars"];
+
+    /// Every array a bit-identical continuation needs: the padded velocity components, the
+    /// pressure, and `scalars = [time, meanVelocityForce gradient]`. The schemes keep no
+    /// history between steps (the register `q` is overwritten by each step's first stage).
+    pub fn restart_arrays(&mut self) -> Vec<(&'static str, &[f64])> {
+        self.scalars = [self.time, self.drive.as_ref().map_or(0.0, |d| d.gradient)];
+        vec![
+            ("U.x", &self.u[0][..]),
+            ("U.y", &self.u[1][..]),
+            ("U.z", &self.u[2][..]),
+            ("p", &self.p[..]),
+            ("scalars", &self.scalars[..]),
+        ]
+    }
+
+    /// Restores one array saved by [`Self::restart_arrays`].
+    pub fn restore_array(&mut self, name: &str, data: &[f64]) -> Result<(), String> {
+        let target: &mut [f64] = match name {
+            "U.x" => &mut self.u[0],
+            "U.y" => &mut self.u[1],
+            "U.z" => &mut self.u[2],
+            "p" => &mut self.p,
+            "scalars" => &mut self.scalars,
+            _ => return Err(format!("unknown restart array '{name}'")),
+        };
+        if target.len() != data.len() {
+            return Err(format!(
+                "restart array '{name}' has {} values, expected {}",
+                data.len(),
+                target.len()
+            ));
+        }
+        target.copy_from_slice(data);
+        if name == "scalars" {
+            self.time = self.scalars[0];
+            if let Some(d) = self.drive.as_mut() {
+                d.gradient = self.scalars[1];
+            }
+        }
+        Ok(())
+    }
+
+    /// Bytes of state and work arrays per cell (velocity, pressure, register, sources,
+    /// solver scratch).
+    pub fn bytes_per_cell(&self) -> f64 {
+        let padded = self.layout.len * 8;
+        let arrays = 6 + if self.source.is_some() { 3 } else { 0 };
+        let total = arrays * padded
+            + self.p.len() * 8
+            + self.poisson.scratch_bytes()
+            + self.partials.len() * 96;
+        total as f64 / self.grid.cell_count() as f64
+    }
+}

@@ -1,0 +1,111 @@
+//! Ghost layers and boundary faces of the velocity from the face conditions.
+//!
+//! Directions are filled in the order x, y, z over the whole padded extent of the other two,
+//! so edge and corner ghosts end up consistent (a y-ghost of an x-ghost is computed from the
+//! already-filled x-ghost).
+
+use super::boundary_conditions::{BoundaryConditions, FaceCondition};
+use super::padded_layout::PaddedLayout;
+
+/// Fills ghosts and fixed boundary faces of all three components.
+pub(crate) fn fill_velocity_ghosts(
+    layout: &PaddedLayout,
+    bc: &BoundaryConditions,
+    u: &mut [Vec<f64>; 3],
+) {
+    for (c, uc) in u.iter_mut().enumerate() {
+        for d in 0..3 {
+            fill_axis(layout, bc, uc, c, d);
+        }
+    }
+}
+
+/// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`.
+fn plane_map(
+    layout: &PaddedLayout,
+    a: &mut [f64],
+    d: usize,
+    dst: usize,
+    src: usize,
+    f: impl Fn(f64) -> f64,
+) {
+    let (d1, d2) = ((d + 1) % 3, (d + 2) % 3);
+    let s = layout.stride;
+    for b in 0..layout.dims[d2] {
+        for c in 0..layout.dims[d1] {
+            let base = c * s[d1] + b * s[d2];
+            a[base + dst * s[d]] = f(a[base + src * s[d]]);
+        }
+    }
+}
+
+/// Component `c` along direction `d`: ghost slots 0 and n+1, and for the normal component
+/// the boundary faces (slot 1 and slot n+1).
+fn fill_axis(layout: &PaddedLayout, bc: &BoundaryConditions, a: &mut [f64], c: usize, d: usize) {
+    let n = layout.n[d];
+    let normal = c == d;
+    match bc.face(d, 0) {
+        FaceCondition::Periodic | FaceCondition::Empty => plane_map(layout, a, d, 0, n, |x| x),
+        FaceCondition::Wall { velocity } | FaceCondition::Inlet { velocity } => {
+            let vc = velocity[c];
+            if normal {
+                plane_map(layout, a, d, 1, 1, |_| vc);
+                plane_map(layout, a, d, 0, 1, |_| vc);
+            } else {
+                // Zero at the face: the ghost mirrors the interior value about `vc`.
+                plane_map(layout, a, d, 0, 1, |x| 2.0 * vc - x);
+            }
+        }
+        FaceCondition::Slip => {
+            if normal {
+                plane_map(layout, a, d, 1, 1, |_| 0.0);
+                plane_map(layout, a, d, 0, 1, |_| 0.0);
+            } else {
+                plane_map(layout, a, d, 0, 1, |x| x);
+            }
+        }
+        // Zero gradient; the normal boundary face is an unknown set by the step.
+        FaceCondition::Outlet { .. } => plane_map(layout, a, d, 0, 1, |x| x),
+    }
+    match bc.face(d, 1) {
+        FaceCondition::Periodic | FaceCondition::Empty => plane_map(layout, a, d, n + 1, 1, |x| x),
+        FaceCondition::Wall { velocity } | FaceCondition::Inlet { velocity } => {
+            let vc = velocity[c];
+            if normal {
+                plane_map(layout, a, d, n + 1, n + 1, |_| vc);
+            } else {
+                plane_map(layout, a, d, n + 1, n, |x| 2.0 * vc - x);
+            }
+        }
+        FaceCondition::Slip => {
+            if normal {
+                plane_map(layout, a, d, n + 1, n + 1, |_| 0.0);
+            } else {
+                plane_map(layout, a, d, n + 1, n, |x| x);
+            }
+        }
+        FaceCondition::Outlet { .. } => {
+            if !normal {
+                plane_map(layout, a, d, n + 1, n, |x| x);
+            }
+        }
+    }
+}
+
+/// Zero-gradient predictor on outlet faces: the boundary face takes its neighbour's value
+/// (the projection then corrects it with the fixed-pressure gradient).
+pub(crate) fn extrapolate_outlets(
+    layout: &PaddedLayout,
+    bc: &BoundaryConditions,
+    u: &mut [Vec<f64>; 3],
+) {
+    for d in 0..3 {
+        let n = layout.n[d];
+        if bc.outlet_pressure(d, 0).is_some() {
+            plane_map(layout, &mut u[d], d, 1, 2, |x| x);
+        }
+        if bc.outlet_pressure(d, 1).is_some() {
+            plane_map(layout, &mut u[d], d, n + 1, n, |x| x);
+        }
+    }
+}
