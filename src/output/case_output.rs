@@ -1,0 +1,157 @@
+//! The output of one case as the time loop sees it: time directories, the collection file
+//! kept in step with them, and `purgeWrite`.
+//!
+//! ```no_run
+//! # use fsim::output::*; use fsim::grid::Grid; use std::path::Path;
+//! # fn run(grid: &Grid, u: &[[f64; 3]], p: &[f64]) -> Result<(), OutputError> {
+//! let mut output = CaseOutput::open(Path::new("cavity"), 6, 0)?;
+//! let dir = output.begin(0.1)?;
+//! write_fluid_vtk(&dir.file(FLUID_FILE_NAME), grid, "fsim", &[
+//!     CellData::Vector("U", u),
+//!     CellData::Scalar("p", p),
+//! ])?;
+//! RestartHeader::new(0.1, 100, 1e-3).write(&dir.file(RESTART_FILE_NAME), &[("p", p)])?;
+//! output.commit(dir)?; // now `cavity/0.1/` exists, whole, and `cavity/cavity.pvd` lists it
+//! # Ok(()) }
+//! ```
+
+use super::collection::{collection_path, rebuild_collection, write_collection};
+use super::output_error::OutputError;
+use super::time_directory::{
+    latest_time, purge_write, remove_partial_time_directories, TimeDirectory, TimeEntry,
+};
+use super::time_name::time_name;
+use std::path::{Path, PathBuf};
+
+/// The fluid file of each time directory (collection part 0).
+pub const FLUID_FILE_NAME: &str = "fluid.vtk";
+/// The particle file of each time directory (collection part 1).
+pub const PARTICLE_FILE_NAME: &str = "particles.vtu";
+/// The restart state of each time directory.
+pub const RESTART_FILE_NAME: &str = "restart.bin";
+
+/// Files listed in the collection, in part order.
+const COLLECTION_PARTS: [&str; 2] = [FLUID_FILE_NAME, PARTICLE_FILE_NAME];
+
+/// Writer of a case's time directories and collection file.
+#[derive(Debug)]
+pub struct CaseOutput {
+    case_dir: PathBuf,
+    time_precision: usize,
+    purge_write: usize,
+    collection: PathBuf,
+}
+
+impl CaseOutput {
+    /// Prepares the case for writing: removes directories left by an interrupted write, and
+    /// rebuilds the collection file from the time directories already there, so a continued
+    /// run's collection holds the whole series. `time_precision` and `purge_write` are those
+    /// of `system/controlDict` (`purge_write == 0`: keep everything).
+    pub fn open(
+        case_dir: &Path,
+        time_precision: usize,
+        purge_write: usize,
+    ) -> Result<Self, OutputError> {
+        remove_partial_time_directories(case_dir)?;
+        let output = CaseOutput {
+            case_dir: case_dir.to_path_buf(),
+            time_precision,
+            purge_write,
+            collection: collection_path(case_dir)?,
+        };
+        output.refresh_collection()?;
+        Ok(output)
+    }
+
+    /// Name of the directory for time `t`.
+    pub fn time_name(&self, t: f64) -> String {
+        time_name(t, self.time_precision)
+    }
+
+    /// Starts the time directory of time `t`; write its files at [`TimeDirectory::file`].
+    pub fn begin(&self, t: f64) -> Result<TimeDirectory, OutputError> {
+        TimeDirectory::begin(&self.case_dir, &self.time_name(t))
+    }
+
+    /// Publishes a finished time directory, applies `purgeWrite`, and rewrites the collection.
+    /// Returns the final path of the time directory.
+    pub fn commit(&mut self, dir: TimeDirectory) -> Result<PathBuf, OutputError> {
+        let path = dir.commit()?;
+        purge_write(&self.case_dir, self.purge_write)?;
+        self.refresh_collection()?;
+        Ok(path)
+    }
+
+    /// The latest time directory of the case (for `startFrom latestTime`).
+    pub fn latest_time(&self) -> Result<Option<TimeEntry>, OutputError> {
+        latest_time(&self.case_dir)
+    }
+
+    /// `<case>/<caseName>.pvd`.
+    pub fn collection_path(&self) -> &Path {
+        &self.collection
+    }
+
+    fn refresh_collection(&self) -> Result<(), OutputError> {
+        let entries = rebuild_collection(&self.case_dir, &COLLECTION_PARTS)?;
+        write_collection(&self.collection, &entries)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::test_support::ScratchDir;
+    use std::fs;
+
+    fn write(output: &mut CaseOutput, t: f64, particles: bool) {
+        let dir = output.begin(t).unwrap();
+        fs::write(dir.file(FLUID_FILE_NAME), "f").unwrap();
+        if particles {
+            fs::write(dir.file(PARTICLE_FILE_NAME), "p").unwrap();
+        }
+        output.commit(dir).unwrap();
+    }
+
+    #[test]
+    fn collection_follows_writes_purges_and_restarts() {
+        let case = ScratchDir::new("case-output");
+        fs::create_dir_all(case.path().join("0")).unwrap();
+        fs::create_dir_all(case.path().join(".0.4.partial")).unwrap();
+        let mut output = CaseOutput::open(case.path(), 6, 3).unwrap();
+        assert!(!case.path().join(".0.4.partial").exists());
+        for step in 1..=5 {
+            write(&mut output, 0.1 * step as f64, step % 2 == 1);
+        }
+        let xml = fs::read_to_string(output.collection_path()).unwrap();
+        let files: Vec<_> = xml
+            .lines()
+            .filter_map(|l| l.split("file=\"").nth(1))
+            .map(|f| f.trim_end_matches("\"/>"))
+            .collect();
+        assert_eq!(
+            files,
+            [
+                "0.3/fluid.vtk",
+                "0.3/particles.vtu",
+                "0.4/fluid.vtk",
+                "0.5/fluid.vtk",
+                "0.5/particles.vtu"
+            ]
+        );
+        assert_eq!(output.latest_time().unwrap().unwrap().name, "0.5");
+
+        // A continued run rebuilds the same series and extends it.
+        drop(output);
+        fs::remove_file(case.path().join(format!(
+            "{}.pvd",
+            fs::canonicalize(case.path()).unwrap().file_name().unwrap().to_str().unwrap()
+        )))
+        .unwrap();
+        let mut output = CaseOutput::open(case.path(), 6, 0).unwrap();
+        write(&mut output, 0.6, false);
+        let xml = fs::read_to_string(output.collection_path()).unwrap();
+        assert_eq!(xml.matches("<DataSet ").count(), 6);
+        assert!(xml.contains("timestep=\"0.6\" group=\"\" part=\"0\" file=\"0.6/fluid.vtk\""));
+    }
+}
