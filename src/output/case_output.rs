@@ -6,7 +6,7 @@
 //! # fn run(grid: &Grid, u: &[[f64; 3]], p: &[f64]) -> Result<(), OutputError> {
 //! let mut output = CaseOutput::open(Path::new("cavity"), 6, 0)?;
 //! let dir = output.begin(0.1)?;
-//! write_fluid_vtk(&dir.file(FLUID_FILE_NAME), grid, "fsim", &[
+//! write_fluid(dir.path(), grid, "fsim t = 0.1", &[
 //!     CellData::Vector("U", u),
 //!     CellData::Scalar("p", p),
 //! ])?;
@@ -16,22 +16,41 @@
 //! ```
 
 use super::collection::{collection_path, rebuild_collection, write_collection};
+use super::fluid_vti::write_fluid_vti;
+use super::fluid_vtk::{write_fluid_vtk, CellData};
 use super::output_error::OutputError;
 use super::time_directory::{
     latest_time, purge_write, remove_partial_time_directories, TimeDirectory, TimeEntry,
 };
 use super::time_name::time_name;
+use crate::grid::Grid;
 use std::path::{Path, PathBuf};
 
-/// The fluid file of each time directory (collection part 0).
-pub const FLUID_FILE_NAME: &str = "fluid.vtk";
+/// The fluid as legacy VTK in each time directory: the file meshio reads.
+pub const FLUID_VTK_FILE_NAME: &str = "fluid.vtk";
+/// The fluid as XML ImageData in each time directory: the file ParaView's collection reader
+/// opens (collection part 0).
+pub const FLUID_VTI_FILE_NAME: &str = "fluid.vti";
 /// The particle file of each time directory (collection part 1).
 pub const PARTICLE_FILE_NAME: &str = "particles.vtu";
 /// The restart state of each time directory.
 pub const RESTART_FILE_NAME: &str = "restart.bin";
 
 /// Files listed in the collection, in part order.
-const COLLECTION_PARTS: [&str; 2] = [FLUID_FILE_NAME, PARTICLE_FILE_NAME];
+const COLLECTION_PARTS: [&str; 2] = [FLUID_VTI_FILE_NAME, PARTICLE_FILE_NAME];
+
+/// Writes the fluid twice into time directory `dir`: `fluid.vtk` (legacy, for meshio) and
+/// `fluid.vti` (XML, for ParaView's `.pvd` reader); pyvista reads either. No single format
+/// serves all three readers without a much larger file (see [`super::write_fluid_vti`]).
+pub fn write_fluid(
+    dir: &Path,
+    grid: &Grid,
+    title: &str,
+    fields: &[CellData],
+) -> Result<(), OutputError> {
+    write_fluid_vtk(&dir.join(FLUID_VTK_FILE_NAME), grid, title, fields)?;
+    write_fluid_vti(&dir.join(FLUID_VTI_FILE_NAME), grid, fields)
+}
 
 /// Writer of a case's time directories and collection file.
 #[derive(Debug)]
@@ -106,7 +125,7 @@ mod tests {
 
     fn write(output: &mut CaseOutput, t: f64, particles: bool) {
         let dir = output.begin(t).unwrap();
-        fs::write(dir.file(FLUID_FILE_NAME), "f").unwrap();
+        fs::write(dir.file(FLUID_VTI_FILE_NAME), "f").unwrap();
         if particles {
             fs::write(dir.file(PARTICLE_FILE_NAME), "p").unwrap();
         }
@@ -132,10 +151,10 @@ mod tests {
         assert_eq!(
             files,
             [
-                "0.3/fluid.vtk",
+                "0.3/fluid.vti",
                 "0.3/particles.vtu",
-                "0.4/fluid.vtk",
-                "0.5/fluid.vtk",
+                "0.4/fluid.vti",
+                "0.5/fluid.vti",
                 "0.5/particles.vtu"
             ]
         );
@@ -152,6 +171,6 @@ mod tests {
         write(&mut output, 0.6, false);
         let xml = fs::read_to_string(output.collection_path()).unwrap();
         assert_eq!(xml.matches("<DataSet ").count(), 6);
-        assert!(xml.contains("timestep=\"0.6\" group=\"\" part=\"0\" file=\"0.6/fluid.vtk\""));
+        assert!(xml.contains("timestep=\"0.6\" group=\"\" part=\"0\" file=\"0.6/fluid.vti\""));
     }
 }

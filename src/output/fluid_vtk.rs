@@ -2,8 +2,10 @@
 //! `CELL_DATA`, every value a big-endian `f64`.
 //!
 //! Why this format: meshio reads legacy `.vtk` and `.vtu` but not `.vti`; pyvista and ParaView
-//! read all three; and legacy binary is the fastest of them to write (measured here: 128³ cells,
-//! U and p, about 0.1 s and 67 MB, against 0.7 s for base64 XML and 3.3 s for zlib XML).
+//! read all three; and legacy binary is the fastest of them to write (measured in DESIGN.md:
+//! 128³ cells, U and p, about 0.1 s and 67 MB, against 0.7 s for base64 XML). ParaView's
+//! collection reader cannot take a legacy file, so the `.pvd` lists the `.vti` twin written
+//! beside it ([`super::write_fluid_vti`]).
 //! Values stay `f64` so that checks can compare the file with what the solver computed to the
 //! last bit; `f32` would halve the size but lose that.
 //!
@@ -28,7 +30,7 @@ pub enum CellData<'a> {
 }
 
 impl CellData<'_> {
-    fn name(&self) -> &str {
+    pub(crate) fn name(&self) -> &str {
         match self {
             CellData::Scalar(name, _) | CellData::Vector(name, _) => name,
         }
@@ -53,21 +55,8 @@ pub fn write_fluid_vtk(
     title: &str,
     fields: &[CellData],
 ) -> Result<(), OutputError> {
+    validate_cell_data(path, grid, fields)?;
     let cells = grid.cell_count();
-    for field in fields {
-        validate_name(path, field.name())?;
-        if field.len() != cells {
-            return Err(OutputError::invalid(
-                path,
-                format!(
-                    "field `{}` has {} values, the grid has {} cells",
-                    field.name(),
-                    field.len(),
-                    cells
-                ),
-            ));
-        }
-    }
     let io_err = |e| OutputError::io(path, "cannot write VTK file", e);
     let file = File::create(path).map_err(io_err)?;
     let mut out = BufWriter::with_capacity(1 << 20, file);
@@ -130,12 +119,38 @@ fn write_big_endian(
     out.write_all(&buffer[..filled])
 }
 
-/// Legacy VTK names are whitespace-delimited tokens.
+/// Every array has one value per cell and a valid name.
+pub(crate) fn validate_cell_data(
+    path: &Path,
+    grid: &Grid,
+    fields: &[CellData],
+) -> Result<(), OutputError> {
+    let cells = grid.cell_count();
+    for field in fields {
+        validate_name(path, field.name())?;
+        if field.len() != cells {
+            return Err(OutputError::invalid(
+                path,
+                format!(
+                    "field `{}` has {} values, the grid has {} cells",
+                    field.name(),
+                    field.len(),
+                    cells
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Legacy VTK names are whitespace-delimited tokens; XML attribute values must not need
+/// escaping.
 pub(crate) fn validate_name(path: &Path, name: &str) -> Result<(), OutputError> {
-    if name.is_empty() || name.chars().any(|c| c.is_whitespace() || c.is_control()) {
+    let forbidden = |c: char| c.is_whitespace() || c.is_control() || "&<>\"'".contains(c);
+    if name.is_empty() || name.chars().any(forbidden) {
         return Err(OutputError::invalid(
             path,
-            format!("array name `{name}` must be one word without spaces"),
+            format!("array name `{name}` must be one word without spaces or XML markup"),
         ));
     }
     Ok(())

@@ -3,6 +3,7 @@
 
 mod case_output;
 mod collection;
+mod fluid_vti;
 mod fluid_vtk;
 mod log;
 mod monitor;
@@ -12,8 +13,12 @@ mod restart_state;
 mod time_directory;
 mod time_name;
 
-pub use case_output::{CaseOutput, FLUID_FILE_NAME, PARTICLE_FILE_NAME, RESTART_FILE_NAME};
+pub use case_output::{
+    write_fluid, CaseOutput, FLUID_VTI_FILE_NAME, FLUID_VTK_FILE_NAME, PARTICLE_FILE_NAME,
+    RESTART_FILE_NAME,
+};
 pub use collection::{collection_path, rebuild_collection, write_collection, CollectionEntry};
+pub use fluid_vti::write_fluid_vti;
 pub use fluid_vtk::{write_fluid_vtk, CellData};
 pub use log::{cpu_time_seconds, Banner, Log};
 pub use monitor::{format_value, Monitor};

@@ -7,7 +7,7 @@
 use super::fluid_vtk::validate_name;
 use super::output_error::OutputError;
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType,
@@ -152,13 +152,28 @@ pub fn write_particles_vtu(
         file_path: None,
         data: DataSet::inline(piece),
     };
-    let io_err = |e| OutputError::io(path, "cannot write particle file", e);
-    let file = File::create(path).map_err(io_err)?;
-    let mut out = BufWriter::new(file);
-    vtk.write_xml(&mut out)
+    let mut xml = Vec::new();
+    vtk.write_xml(&mut xml)
         .map_err(|e| OutputError::invalid(path, format!("cannot write particle file: {e}")))?;
-    out.flush().map_err(io_err)?;
+    if count == 0 {
+        xml = declare_empty_piece(xml);
+    }
+    let io_err = |e| OutputError::io(path, "cannot write particle file", e);
+    let mut file = File::create(path).map_err(io_err)?;
+    file.write_all(&xml).map_err(io_err)?;
     Ok(())
+}
+
+/// vtkio 0.7.0-rc2 leaves out `NumberOfPoints` and `NumberOfCells` when both are zero, and
+/// meshio then refuses the file (`KeyError: 'NumberOfPoints'`); the VTK XML format requires
+/// them. Put them back on the (only) piece.
+fn declare_empty_piece(xml: Vec<u8>) -> Vec<u8> {
+    const BARE: &[u8] = b"<Piece>";
+    const DECLARED: &[u8] = b"<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">";
+    match xml.windows(BARE.len()).position(|w| w == BARE) {
+        Some(at) => [&xml[..at], DECLARED, &xml[at + BARE.len()..]].concat(),
+        None => xml,
+    }
 }
 
 #[cfg(test)]
@@ -244,6 +259,11 @@ mod tests {
         }
         .write(&path)
         .unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.contains("<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">"),
+            "{text}"
+        );
         let piece = read_back(&path);
         assert_eq!(piece.num_points(), 0);
         assert!(piece.cells.types.is_empty());
