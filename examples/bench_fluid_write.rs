@@ -23,7 +23,10 @@ fn main() {
     let p: Vec<f64> = (0..cells).map(|c| (c as f64).sqrt()).collect();
     let fields = [CellData::Vector("U", &u), CellData::Scalar("p", &p)];
     println!("{n}^3 cells, U + p as f64");
-    println!("{:<28} {:>10} {:>14} {:>9}", "format", "write s", "write+fsync s", "MB");
+    println!(
+        "{:<28} {:>10} {:>14} {:>9}",
+        "format", "write s", "write+fsync s", "MB"
+    );
     measure(&dir.join("fluid.vtk"), "legacy .vtk (big-endian)", |path| {
         write_fluid_vtk(path, &grid, "bench", &fields).unwrap()
     });
