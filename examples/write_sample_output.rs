@@ -13,8 +13,8 @@
 
 use fsim::grid::Grid;
 use fsim::output::{
-    write_fluid, CaseOutput, CellData, Monitor, OutputError, ParticleFields, RestartHeader,
-    PARTICLE_FILE_NAME, RESTART_FILE_NAME,
+    write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, ParticleFields,
+    RestartHeader, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -31,9 +31,21 @@ fn main() -> Result<(), OutputError> {
         .map_err(|e| OutputError::io(&case_dir, "cannot create case directory", e))?;
     let grid = Grid::new([16, 12, 8], [0.0625, 0.05, 0.1], [-0.5, 0.2, 1.0]);
     let mut output = CaseOutput::open(&case_dir, 6, 0)?;
+    let mut log = Log::stdout();
+    let log_err = |e| OutputError::io(std::path::Path::new("<stdout>"), "cannot write log", e);
+    log.banner(&Banner {
+        exec: std::env::args().collect::<Vec<_>>().join(" "),
+        case: case_dir.clone(),
+        model: "sample (analytic fields, no solver)".into(),
+        threads: 1,
+        grid: grid.clone(),
+        extra: vec![("Writes".into(), format!("{TIMES:?}"))],
+    })
+    .map_err(log_err)?;
     let mut monitor = Monitor::create(&case_dir, "sample", "0", &["Time", "meanP"])?;
     for (step, &t) in TIMES.iter().enumerate() {
         let (u, p) = fluid(&grid, t);
+        log.time(&output.time_name(t)).map_err(log_err)?;
         let dir = output.begin(t)?;
         write_fluid(
             dir.path(),
@@ -47,9 +59,21 @@ fn main() -> Result<(), OutputError> {
             .write(&dir.file(RESTART_FILE_NAME), &[("p", &p)])?;
         let path = output.commit(dir)?;
         monitor.row(&[t, p.iter().sum::<f64>() / p.len() as f64])?;
-        println!("wrote {}", path.display());
+        log.line(&format!("wrote {}", path.display()))
+            .map_err(log_err)?;
+        log.execution_time().map_err(log_err)?;
+        log.progress(t, TIMES[0], TIMES[TIMES.len() - 1]);
+        // Slow enough, when run in a terminal, to watch the progress bar.
+        if std::env::var_os("FSIM_SAMPLE_SLOW").is_some() {
+            std::thread::sleep(std::time::Duration::from_millis(700));
+        }
     }
-    println!("collection {}", output.collection_path().display());
+    log.line(&format!(
+        "collection {}",
+        output.collection_path().display()
+    ))
+    .map_err(log_err)?;
+    log.end().map_err(log_err)?;
     Ok(())
 }
 

@@ -59,7 +59,14 @@ pub struct CaseOutput {
     time_precision: usize,
     purge_write: usize,
     collection: PathBuf,
+    /// Time and name of the last committed write, to keep names distinct.
+    last_written: Option<(f64, String)>,
+    /// Time of the directory begun and not yet committed.
+    pending: Option<f64>,
 }
+
+/// 17 significant digits tell any two distinct f64 apart.
+const MAX_TIME_PRECISION: usize = 17;
 
 impl CaseOutput {
     /// Prepares the case for writing: removes directories left by an interrupted write, and
@@ -77,25 +84,51 @@ impl CaseOutput {
             time_precision,
             purge_write,
             collection: collection_path(case_dir)?,
+            last_written: None,
+            pending: None,
         };
         output.refresh_collection()?;
         Ok(output)
     }
 
-    /// Name of the directory for time `t`.
+    /// Name of the directory for time `t` at the current precision.
     pub fn time_name(&self, t: f64) -> String {
         time_name(t, self.time_precision)
     }
 
+    /// The `timePrecision` in use: the controlDict's, or more if it had to grow.
+    pub fn time_precision(&self) -> usize {
+        self.time_precision
+    }
+
     /// Starts the time directory of time `t`; write its files at [`TimeDirectory::file`].
-    pub fn begin(&self, t: f64) -> Result<TimeDirectory, OutputError> {
-        TimeDirectory::begin(&self.case_dir, &self.time_name(t))
+    ///
+    /// As OpenFOAM does, when `t` differs from the previously written time but would get the
+    /// same name, the precision grows (up to 17 digits, enough to tell any two f64 apart) so
+    /// that no write overwrites the previous one; [`CaseOutput::time_precision`] tells by how
+    /// much.
+    pub fn begin(&mut self, t: f64) -> Result<TimeDirectory, OutputError> {
+        if let Some((last_time, last_name)) = &self.last_written {
+            while *last_time != t
+                && time_name(t, self.time_precision) == *last_name
+                && self.time_precision < MAX_TIME_PRECISION
+            {
+                self.time_precision += 1;
+            }
+        }
+        let dir = TimeDirectory::begin(&self.case_dir, &self.time_name(t))?;
+        self.pending = Some(t);
+        Ok(dir)
     }
 
     /// Publishes a finished time directory, applies `purgeWrite`, and rewrites the collection.
     /// Returns the final path of the time directory.
     pub fn commit(&mut self, dir: TimeDirectory) -> Result<PathBuf, OutputError> {
+        let name = dir.name().to_string();
         let path = dir.commit()?;
+        if let Some(t) = self.pending.take() {
+            self.last_written = Some((t, name));
+        }
         purge_write(&self.case_dir, self.purge_write)?;
         self.refresh_collection()?;
         Ok(path)
@@ -171,6 +204,13 @@ mod tests {
         write(&mut output, 0.6, false);
         let xml = fs::read_to_string(output.collection_path()).unwrap();
         assert_eq!(xml.matches("<DataSet ").count(), 6);
+
+        // Two times that share a name at precision 6 get distinct names at precision 7.
+        write(&mut output, 0.7, false);
+        write(&mut output, 0.7 + 1e-7, false);
+        assert_eq!(output.time_precision(), 7);
+        assert_eq!(output.latest_time().unwrap().unwrap().name, "0.7000001");
+        assert!(case.path().join("0.7").is_dir());
         assert!(xml.contains("timestep=\"0.6\" group=\"\" part=\"0\" file=\"0.6/fluid.vti\""));
     }
 }
