@@ -1,10 +1,11 @@
 //! fsim: particles in a fluid at the particle scale.
 //!
-//! Data flows one way: case files → a validated [`case::Case`] → a simulation (grid, fluid
-//! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
+//! Data flows one way: case files → a validated `case::Case` → a simulation (grid, fluid
+//! state, particles, coupling) → the time loop in `run` → writers in [`output`].
 
-pub mod fluid;
-pub mod grid;
 pub mod cli;
 pub mod error;
+pub mod fluid;
+pub mod grid;
+pub mod output;
 pub mod time_control;

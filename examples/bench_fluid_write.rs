@@ -1,0 +1,59 @@
+//! Time and size of one fluid write at 128³ cells (U vector + p scalar, f64), per format.
+//!
+//! `cargo run --release --example bench_fluid_write [-- N [DIR]]` (default N = 128, DIR the
+//! system temporary directory). Each file is written three times; the best time is reported,
+//! without and with the `fsync` a time directory commit adds. Files are removed afterwards.
+
+use fsim::grid::Grid;
+use fsim::output::{write_fluid_vti, write_fluid_vtk, CellData, RestartHeader};
+use std::path::Path;
+use std::time::Instant;
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args.next().map_or(128, |s| s.parse().expect("N"));
+    let dir = args
+        .next()
+        .map_or_else(std::env::temp_dir, std::path::PathBuf::from)
+        .join(format!("fsim-bench-output-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let grid = Grid::new([n; 3], [1.0 / n as f64; 3], [0.0; 3]);
+    let cells = grid.cell_count();
+    let u: Vec<[f64; 3]> = (0..cells).map(|c| [c as f64, 0.5, -1.0]).collect();
+    let p: Vec<f64> = (0..cells).map(|c| (c as f64).sqrt()).collect();
+    let fields = [CellData::Vector("U", &u), CellData::Scalar("p", &p)];
+    println!("{n}^3 cells, U + p as f64");
+    println!(
+        "{:<28} {:>10} {:>14} {:>9}",
+        "format", "write s", "write+fsync s", "MB"
+    );
+    measure(&dir.join("fluid.vtk"), "legacy .vtk (big-endian)", |path| {
+        write_fluid_vtk(path, &grid, "bench", &fields).unwrap()
+    });
+    measure(&dir.join("fluid.vti"), "XML .vti (raw appended)", |path| {
+        write_fluid_vti(path, &grid, &fields).unwrap()
+    });
+    let flat_u: Vec<f64> = u.iter().flatten().copied().collect();
+    measure(&dir.join("restart.bin"), "restart.bin (CRC-32)", |path| {
+        RestartHeader::new(0.0, 0, 1.0)
+            .write(path, &[("U", &flat_u), ("p", &p)])
+            .unwrap()
+    });
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn measure(path: &Path, label: &str, write: impl Fn(&Path)) {
+    let mut best = f64::INFINITY;
+    let mut best_synced = f64::INFINITY;
+    for _ in 0..3 {
+        let _ = std::fs::remove_file(path);
+        let start = Instant::now();
+        write(path);
+        let written = start.elapsed().as_secs_f64();
+        std::fs::File::open(path).unwrap().sync_all().unwrap();
+        best = best.min(written);
+        best_synced = best_synced.min(start.elapsed().as_secs_f64());
+    }
+    let mb = std::fs::metadata(path).unwrap().len() as f64 / 1e6;
+    println!("{label:<28} {best:>10.3} {best_synced:>14.3} {mb:>9.1}");
+}

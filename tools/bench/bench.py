@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""fsim benchmark: throughput, wall time and peak memory, side by side with OpenFOAM.
+
+    tools/bench/bench.py [--sizes 64 128] [--threads 1 2] [--steps 20] [--no-openfoam]
+
+Runs the 2-D Taylor-Green vortex in a periodic n^3 box (nu = 0.05, dt = 0.005) with fsimFoam
+at each size and thread count, and OpenFOAM's icoFoam (Debian package `openfoam`, its cavity
+tutorial's solver settings) on the same grid, time step and number of steps. Prints cell-steps
+per second (time loop only, from fsim's per-step monitor and icoFoam's ExecutionTime), whole
+wall time, peak resident memory (bytes per cell), the velocity error against the exact
+solution at the final time, and the ratio fsim / icoFoam. The machines are shared and noisy:
+only ratios from one run mean anything, and each figure is the median of `--repeat` runs.
+"""
+import argparse
+import math
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+import cases  # noqa: E402
+
+NU = 0.05
+DT = 0.005
+FOAM_ENV = dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam", FOAM_ETC="/usr/share/openfoam/etc")
+
+
+def run_measured(cmd, cwd, env=None, log=None):
+    """Run a command; return (wall seconds, peak RSS bytes, stdout text)."""
+    out = open(log, "w") if log else subprocess.DEVNULL
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
+    _, status, usage = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    if log:
+        out.close()
+    if os.waitstatus_to_exitcode(status) != 0:
+        tail = open(log).read()[-2000:] if log else ""
+        raise RuntimeError(f"{cmd[0]} failed in {cwd}:\n{tail}")
+    return wall, usage.ru_maxrss * 1024
+
+
+def exact_velocity(centres, t):
+    decay = math.exp(-2.0 * NU * t)
+    x, y = centres[:, 0], centres[:, 1]
+    return np.stack([np.sin(x) * np.cos(y) * decay, -np.cos(x) * np.sin(y) * decay, 0 * x], axis=1)
+
+
+def relative_l2(u, exact):
+    return float(np.sqrt(np.sum((u - exact) ** 2) / np.sum(exact ** 2)))
+
+
+def fsim_binary():
+    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    return os.path.join(ROOT, "target", "release", "fsimFoam")
+
+
+def latest_time_dir(case):
+    times = [d for d in os.listdir(case) if re.fullmatch(r"[0-9.e+-]+", d) and d != "0"]
+    return max(times, key=float)
+
+
+def run_fsim(binary, n, threads, steps, scratch):
+    import meshio
+
+    case = os.path.join(scratch, f"fsim_{n}_{threads}")
+    shutil.rmtree(case, ignore_errors=True)
+    end = cases.taylor_green(case, n, steps, DT, nu=NU)
+    wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch,
+                             log=os.path.join(case, "log.fsimFoam"))
+    monitor = os.path.join(case, "postProcessing", "fluid", "0", "fluid.dat")
+    data = np.loadtxt(monitor, comments="#")
+    names = open(monitor).readline().lstrip("#").split()
+    step_wall = data[:, names.index("stepWallTime")]
+    loop = float(np.sum(step_wall[1:])) * len(step_wall) / max(len(step_wall) - 1, 1)
+    last = latest_time_dir(case)
+    mesh = meshio.read(os.path.join(case, last, "fluid.vtk"))
+    u = np.asarray(mesh.cell_data["U"][0])
+    pts = mesh.points
+    cells = mesh.cells[0].data
+    centres = pts[cells].mean(axis=1)
+    err = relative_l2(u, exact_velocity(centres, end))
+    return dict(solver="fsimFoam", n=n, threads=threads, steps=len(step_wall), loop=loop, wall=wall,
+                rss=rss, cells=n ** 3, error=err)
+
+
+def read_foam_vectors(path):
+    text = open(path).read()
+    m = re.search(r"internalField\s+nonuniform\s+List<vector>\s*(\d+)\s*\(", text)
+    count = int(m.group(1))
+    body = text[m.end():]
+    nums = re.findall(r"\(([^()]*)\)", body[: body.find("\n)")])
+    arr = np.array([[float(v) for v in s.split()] for s in nums[:count]])
+    return arr
+
+
+def run_icofoam(n, steps, scratch):
+    if shutil.which("icoFoam") is None:
+        return None
+    case = os.path.join(scratch, f"ico_{n}")
+    shutil.rmtree(case, ignore_errors=True)
+    end = cases.taylor_green(case, n, steps, DT, nu=NU)
+    run_measured(["blockMesh"], case, env=FOAM_ENV, log=os.path.join(case, "log.blockMesh"))
+    wall, rss = run_measured(["icoFoam"], case, env=FOAM_ENV, log=os.path.join(case, "log.icoFoam"))
+    exec_times = [float(x) for x in re.findall(r"ExecutionTime = ([0-9.e+-]+) s",
+                                               open(os.path.join(case, "log.icoFoam")).read())]
+    per_step = (exec_times[-1] - exec_times[0]) / max(len(exec_times) - 1, 1)
+    loop = per_step * steps
+    h = 2 * math.pi / n
+    idx = np.arange(n)
+    cx, cy, cz = np.meshgrid((idx + 0.5) * h, (idx + 0.5) * h, (idx + 0.5) * h, indexing="ij")
+    centres = np.stack([cx.ravel(order="F"), cy.ravel(order="F"), cz.ravel(order="F")], axis=1)
+    u = read_foam_vectors(os.path.join(case, latest_time_dir(case), "U"))
+    err = relative_l2(u, exact_velocity(centres, end))
+    return dict(solver="icoFoam", n=n, threads=1, steps=steps, loop=loop, wall=wall, rss=rss,
+                cells=n ** 3, error=err)
+
+
+def median_run(fn, repeat):
+    runs = [fn() for _ in range(repeat)]
+    runs = [r for r in runs if r]
+    if not runs:
+        return None
+    best = dict(runs[0])
+    for key in ("loop", "wall", "rss"):
+        best[key] = statistics.median(r[key] for r in runs)
+    return best
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[64, 128])
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--steps", type=int, default=20)
+    ap.add_argument("--openfoam-sizes", type=int, nargs="*", default=[64])
+    ap.add_argument("--no-openfoam", action="store_true")
+    ap.add_argument("--repeat", type=int, default=3)
+    a = ap.parse_args()
+
+    binary = fsim_binary()
+    scratch = tempfile.mkdtemp(prefix="fsim-bench-")
+    rows = []
+    try:
+        for n in a.sizes:
+            for t in a.threads:
+                rows.append(median_run(lambda: run_fsim(binary, n, t, a.steps, scratch), a.repeat))
+            if not a.no_openfoam and n in a.openfoam_sizes:
+                r = median_run(lambda: run_icofoam(n, a.steps, scratch), 1)
+                if r:
+                    rows.append(r)
+                else:
+                    print("note: icoFoam not found (apt-get install openfoam); no comparison")
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+    print(f"\nTaylor-Green vortex, nu = {NU}, dt = {DT}, {a.steps} steps "
+          f"(medians of {a.repeat} runs for fsimFoam)")
+    print(f"{'solver':10} {'cells':>9} {'thr':>3} {'Mcell-steps/s':>13} {'loop s':>8} {'wall s':>8} "
+          f"{'peak MB':>8} {'B/cell':>7} {'L2 error':>10}")
+    for r in rows:
+        r["rate"] = r["cells"] * r["steps"] / r["loop"]
+        print(f"{r['solver']:10} {r['cells']:>9} {r['threads']:>3} {r['rate'] / 1e6:>13.2f} "
+              f"{r['loop']:>8.2f} {r['wall']:>8.2f} {r['rss'] / 1e6:>8.1f} "
+              f"{r['rss'] / r['cells']:>7.0f} {r['error']:>10.3e}")
+    for r in rows:
+        if r["solver"] != "icoFoam":
+            continue
+        for f in rows:
+            if f["solver"] == "fsimFoam" and f["n"] == r["n"]:
+                print(f"ratio fsimFoam ({f['threads']} thr) / icoFoam at {r['n']}^3: "
+                      f"throughput x{f['rate'] / r['rate']:.1f}, "
+                      f"error {f['error'] / r['error']:.2f} of icoFoam's")
+
+
+if __name__ == "__main__":
+    main()
