@@ -3,4 +3,5 @@
 //! Data flows one way: case files → a validated [`case::Case`] → a simulation (grid, fluid
 //! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
 
+pub mod case;
 pub mod grid;

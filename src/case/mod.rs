@@ -1,0 +1,13 @@
+//! Case files: the OpenFOAM dictionary parser and the typed, validated case it feeds.
+
+pub mod dictionary;
+pub mod error;
+pub mod parser;
+pub mod source;
+pub mod value;
+
+pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
+pub use error::CaseError;
+pub use parser::{parse_dict, read_dict_file};
+pub use source::{Location, SourceFile};
+pub use value::{Dimensions, Item, ListView, Value};
