@@ -191,7 +191,9 @@ fn directive_name(i: &str) -> Nom<'_, &str> {
 }
 
 fn variable_name(i: &str) -> Nom<'_, &str> {
-    take_while1(|c: char| !is_delimiter(c) && !matches!(c, '$' | '#' | '/'))(i)
+    take_while1(|c: char| {
+        c.is_alphanumeric() || matches!(c, '_' | '-' | '.' | ':' | '/' | '<' | '>')
+    })(i)
 }
 
 /// A double-quoted string with backslash escapes; `None` when it is not closed.
@@ -295,9 +297,11 @@ impl Ctx {
                 }
                 '(' | '0'..='9' | '-' | '+' | '.' if open.is_none() && number_or_list(i) => {
                     // A value standing alone at top level (`kinematicCloudPositions`).
-                    let (rest, items) = self.token(src, i)?;
+                    // Like OpenFOAM reading a list file, stop after the list: some
+                    // tutorial files carry stray text after it (`/ *****…//`).
+                    let (_, items) = self.token(src, i)?;
                     self.current().values.extend(items);
-                    i = rest;
+                    return Ok("");
                 }
                 _ => match word(i) {
                     Ok((rest, w)) => {
@@ -413,6 +417,21 @@ impl Ctx {
                 None => Err(src.err(i, "expected '#}' to close the code block opened here")),
             },
             '#' => match directive_name(&i[1..]) {
+                Ok((rest, name)) if rest.starts_with('{') => {
+                    // `#eval{ 20*pi() }`: an expression kept as text, never evaluated.
+                    let Some(end) = balanced_brace_end(rest) else {
+                        return Err(
+                            src.err(rest, "expected '}' to close the expression opened here")
+                        );
+                    };
+                    let mut items =
+                        vec![Item::new(Value::Directive(name.to_string()), loc.clone())];
+                    items.push(Item::new(
+                        Value::Code(rest[1..end].to_string()),
+                        src.loc(rest),
+                    ));
+                    Ok((&rest[end + 1..], items))
+                }
                 Ok((rest, name)) => one(rest, Value::Directive(name.to_string())),
                 Err(_) => Err(src.err(i, "expected a directive name after '#'")),
             },
@@ -447,20 +466,24 @@ impl Ctx {
     ) -> Result<Option<(&'a str, Vec<Item>)>, CaseError> {
         let next = self.skip(src, after_count)?;
         let gap = &after_count[..after_count.len() - next.len()];
-        let list_follows = next.starts_with('(') && (gap.is_empty() || gap.contains('\n'));
+        // `3(…)` or a count alone on its line with the list below (`8\n(`); a number ending a
+        // line before a list (`… 90 0 0 0\n (liquid gas) 1`) is a table row, not a count.
+        let list_follows = next.starts_with('(')
+            && (gap.is_empty()
+                || (gap.trim().is_empty()
+                    && gap.contains('\n')
+                    && first_on_line(&src.file.text, count_loc.offset)));
         if count < 0 || !(list_follows || next.starts_with('{')) {
             return Ok(None);
         }
         let count = count as usize;
         if next.starts_with('(') {
             let (rest, items) = self.list(src, next)?;
-            if items.len() != count {
+            let found = element_count(&items);
+            if found != count {
                 return Err(CaseError::at(
                     count_loc,
-                    format!(
-                        "expected {count} elements as the count says, found a list of {}",
-                        items.len()
-                    ),
+                    format!("expected {count} elements as the count says, found a list of {found}"),
                 ));
             }
             return Ok(Some((
@@ -625,8 +648,8 @@ impl Ctx {
     /// the top; `a.b` descends into sub-dictionary `a` unless a keyword `a.b` exists.
     fn resolve(&self, name: &str) -> Option<Entry> {
         let depth = self.stack.len();
-        if let Some(path) = name.strip_prefix(':') {
-            return descend(&self.stack[0], path);
+        if let Some(path) = name.strip_prefix(':').or_else(|| name.strip_prefix('/')) {
+            return descend(&self.stack[0], &path.replace('/', "."));
         }
         let dots = name.chars().take_while(|&c| c == '.').count();
         if dots > 0 {
@@ -759,7 +782,8 @@ impl Ctx {
                 .unwrap_or_else(|| Path::new(""))
                 .join(path)
         };
-        if !path.exists() {
+        let gz = PathBuf::from(format!("{}.gz", path.display()));
+        if !path.exists() && !gz.exists() {
             if optional {
                 return Ok(());
             }
@@ -781,6 +805,48 @@ impl Ctx {
         self.include_depth -= 1;
         result.map(|_| ())
     }
+}
+
+/// Byte index of the `}` closing the `{` that `i` starts with.
+fn balanced_brace_end(i: &str) -> Option<usize> {
+    let mut depth = 0usize;
+    for (pos, c) in i.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(pos);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Elements of a counted list: a word followed by a dictionary is one element (the
+/// `name { … }` entries of `polyMesh/boundary`).
+fn element_count(items: &[Item]) -> usize {
+    let mut n = 0;
+    let mut k = 0;
+    while k < items.len() {
+        let pair = items[k].as_word().is_some()
+            && items
+                .get(k + 1)
+                .is_some_and(|next| next.as_dict().is_some());
+        k += if pair { 2 } else { 1 };
+        n += 1;
+    }
+    n
+}
+
+/// Whether only blanks stand between the start of the line and byte `offset`.
+fn first_on_line(text: &str, offset: usize) -> bool {
+    text[..offset]
+        .rsplit('\n')
+        .next()
+        .is_some_and(|line| line.trim().is_empty())
 }
 
 /// Whether top-level text starts a bare value: a list, or a count before a list.
