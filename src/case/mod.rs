@@ -8,6 +8,6 @@ pub mod value;
 
 pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
 pub use error::CaseError;
-pub use parser::{parse_dict, read_dict_file};
+pub use parser::{check_parser_invariants, parse_dict, read_dict_file};
 pub use source::{Location, SourceFile};
 pub use value::{Dimensions, Item, ListView, Value};

@@ -649,13 +649,13 @@ impl Ctx {
     fn resolve(&self, name: &str) -> Option<Entry> {
         let depth = self.stack.len();
         if let Some(path) = name.strip_prefix(':').or_else(|| name.strip_prefix('/')) {
-            return descend(&self.stack[0], &path.replace('/', "."));
+            return self.descend_from(0, &path.replace('/', "."));
         }
         let dots = name.chars().take_while(|&c| c == '.').count();
         if dots > 0 {
             let up = dots - 1;
             let level = depth.checked_sub(1 + up)?;
-            return descend(&self.stack[level], &name[dots..]);
+            return self.descend_from(level, &name[dots..]);
         }
         for d in self.stack.iter().rev() {
             if let Some(e) = d.lookup(name) {
@@ -669,6 +669,22 @@ impl Ctx {
             }
         }
         None
+    }
+
+    /// Follows a dotted path down from the open dictionary at `level`; the path may lead into
+    /// a dictionary still being read (`geometry { r 1; c $:geometry.r; }`).
+    fn descend_from(&self, level: usize, path: &str) -> Option<Entry> {
+        if let Some(e) = descend(&self.stack[level], path) {
+            return Some(e);
+        }
+        let child = self.stack.get(level + 1)?;
+        let parent = &self.stack[level].name;
+        let own = child
+            .name
+            .strip_prefix(parent.as_str())?
+            .trim_start_matches('.');
+        let rest = path.strip_prefix(own)?.strip_prefix('.')?;
+        self.descend_from(level + 1, rest)
     }
 
     /// A directive where a keyword is expected.
@@ -915,6 +931,60 @@ impl Dict {
     pub fn parse(text: &str, display: &str) -> Result<Dict, CaseError> {
         parse_dict(text, display)
     }
+}
+
+/// Parses `text` and panics if the parser breaks its contract: it must not panic, and an
+/// error must point inside the text (line within the file, column within that line or just
+/// past its end). Every accessor is also tried on every keyword of a parsed result. Shared by
+/// the fuzz target (`fuzz/`) and the property test.
+#[doc(hidden)]
+pub fn check_parser_invariants(text: &str) {
+    match parse_dict(text, "fuzz") {
+        Err(e) => {
+            let lines: Vec<&str> = text.split('\n').collect();
+            assert!(
+                e.line >= 1 && e.line <= lines.len(),
+                "line {} outside the text: {e}",
+                e.line
+            );
+            let width = lines[e.line - 1].trim_end_matches('\r').chars().count();
+            assert!(
+                e.col >= 1 && e.col <= width + 1,
+                "column {} outside line {}: {e}",
+                e.col,
+                e.line
+            );
+            assert!(e.excerpt().is_some());
+            assert!(
+                !e.to_string().contains('\n'),
+                "message is not one line: {e}"
+            );
+        }
+        Ok(dict) => exercise(&dict),
+    }
+}
+
+fn exercise(dict: &Dict) {
+    for e in dict.entries() {
+        let k = e.keyword();
+        let _ = dict.get_scalar(k);
+        let _ = dict.get_label(k);
+        let _ = dict.get_word(k);
+        let _ = dict.get_bool(k);
+        let _ = dict.get_vector(k);
+        if let Ok(sub) = dict.get_dict(k) {
+            exercise(sub);
+        }
+        if let Some(tokens) = e.as_tokens() {
+            for t in tokens {
+                let _ = t.to_string();
+                if let Some(list) = t.as_list() {
+                    let _ = list.iter().take(4).count();
+                }
+            }
+        }
+    }
+    let _ = dict.unused();
 }
 
 #[cfg(test)]
