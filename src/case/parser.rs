@@ -1035,7 +1035,7 @@ mod tests {
     fn count_prefixed_and_uniform_lists() {
         let d = parse(
             "a 3((0 0 0)(1 1 1)(2 2 2));\nb List<vector> 2((1 2 3) (4 5 6));\nc 4{0.5};\n\
-             d table ((0 (1 0 0)) (1 (2 0 0)));\ne 2\n(\n7\n8\n);",
+             d table ((0 (1 0 0)) (1 (2 0 0)));\ne List<scalar>\n2\n(\n7\n8\n);",
         );
         let a = &d.get_tokens("a").unwrap()[0];
         assert_eq!(a.as_list().unwrap().len(), 3);
@@ -1061,7 +1061,7 @@ mod tests {
         let row = row.as_list().unwrap();
         assert_eq!(row.get(0).unwrap().as_label(), Some(0));
         assert_eq!(row.get(1).unwrap().as_vector(), Some([1.0, 0.0, 0.0]));
-        assert_eq!(d.get_tokens("e").unwrap()[0].as_list().unwrap().len(), 2);
+        assert_eq!(d.get_tokens("e").unwrap()[1].as_list().unwrap().len(), 2);
     }
 
     #[test]
