@@ -1,8 +1,9 @@
 //! fsim: particles in a fluid at the particle scale.
 //!
-//! Data flows one way: case files → a validated `case::Case` → a simulation (grid, fluid
+//! Data flows one way: case files → a validated [`case::Case`] → a simulation (grid, fluid
 //! state, particles, coupling) → the time loop in `run` → writers in [`output`].
 
+pub mod case;
 pub mod cli;
 pub mod error;
 pub mod fluid;

@@ -1,0 +1,269 @@
+//! The whole case: every file read and validated before the first step.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use super::block_mesh::{BlockMesh, BoxFace};
+use super::control_dict::{time_name, ControlDict, StartFrom, WriteControl};
+use super::coupling::{Coupling, CouplingModel};
+use super::dictionary::Dict;
+use super::error::CaseError;
+use super::fields::Fields;
+use super::fv_options::{read_fv_options, MeanVelocityForce};
+use super::transport::Transport;
+
+/// A validated case directory.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// The case directory as given.
+    pub dir: PathBuf,
+    pub control: ControlDict,
+    pub mesh: BlockMesh,
+    pub transport: Transport,
+    /// Gravity from `constant/g` (zero when the file is absent), m/s².
+    pub gravity: [f64; 3],
+    /// Initial fields and boundary conditions.
+    pub fields: Fields,
+    /// `meanVelocityForce` sources from `system/fvOptions` or `constant/fvOptions`.
+    pub mean_velocity_forces: Vec<MeanVelocityForce>,
+    pub coupling: Coupling,
+    /// `fsim { timeScheme …; }` in `system/fvSolution`, unvalidated (the solver checks it).
+    pub time_scheme: Option<String>,
+    /// `system/fvSolution`, when present.
+    pub fv_solution: Option<Dict>,
+    /// `constant/kinematicCloudProperties`, when present (read by the particle code).
+    pub cloud_properties: Option<Dict>,
+    /// Notes for the user: ignored keywords (each once), ignored settings.
+    pub warnings: Vec<String>,
+}
+
+/// Whether a file exists, plain or gzipped.
+fn exists(path: &Path) -> bool {
+    path.exists() || PathBuf::from(format!("{}.gz", path.display())).exists()
+}
+
+impl Case {
+    /// Reads and validates the case in `dir`; the initial fields come from the directory
+    /// [`Case::initial_time_dir`] names.
+    pub fn load(dir: &Path) -> Result<Case, CaseError> {
+        Case::load_at(dir, None)
+    }
+
+    /// As [`Case::load`], reading the fields from time directory `time` when given.
+    pub fn load_at(dir: &Path, time: Option<&str>) -> Result<Case, CaseError> {
+        if !dir.is_dir() {
+            return Err(CaseError::plain(format!(
+                "case directory '{}' does not exist",
+                dir.display()
+            )));
+        }
+        let mut warnings = Vec::new();
+        let mut read_dicts: Vec<Dict> = Vec::new();
+        let read = |rel: &str| Dict::read(&dir.join(rel), Some(dir));
+        let optional = |rel: &str| -> Result<Option<Dict>, CaseError> {
+            if exists(&dir.join(rel)) {
+                read(rel).map(Some)
+            } else {
+                Ok(None)
+            }
+        };
+
+        let control_dict = read("system/controlDict")?;
+        let control = ControlDict::from_dict(&control_dict, &mut warnings)?;
+        // Function objects are for a later stage; they are kept, not reported.
+        if let Some(f) = control_dict.lookup("functions").and_then(|e| e.as_dict()) {
+            f.mark_all_used();
+        }
+        read_dicts.push(control_dict);
+
+        let mesh_dict = read("system/blockMeshDict")?;
+        let mesh = BlockMesh::from_dict(&mesh_dict)?;
+        read_dicts.push(mesh_dict);
+
+        let transport_dict = read("constant/transportProperties")?;
+        let transport = Transport::from_dict(&transport_dict)?;
+        read_dicts.push(transport_dict);
+
+        let gravity = match optional("constant/g")? {
+            Some(g) => {
+                let value = g.get_vector("value")?;
+                g.lookup("dimensions");
+                read_dicts.push(g);
+                value
+            }
+            None => [0.0; 3],
+        };
+
+        let time = match time {
+            Some(t) => t.to_string(),
+            None => Case::initial_time_dir(dir, &control, &transport.velocity_name()),
+        };
+        let (fields, field_dicts) =
+            Fields::read(dir, &time, &transport.velocity_name(), &mesh, &mut warnings)?;
+        read_dicts.push(field_dicts.u);
+        read_dicts.push(field_dicts.p);
+
+        let mut mean_velocity_forces = Vec::new();
+        let system_options = optional("system/fvOptions")?;
+        let constant_options = optional("constant/fvOptions")?;
+        if system_options.is_some() && constant_options.is_some() {
+            warnings
+                .push("constant/fvOptions: ignored, system/fvOptions is read instead".to_string());
+        }
+        if let Some(opts) = system_options.or(constant_options) {
+            mean_velocity_forces = read_fv_options(&opts, &transport.velocity_name())?;
+            read_dicts.push(opts);
+        }
+
+        let cloud_properties = optional("constant/kinematicCloudProperties")?;
+        let coupling = Coupling::new(
+            optional("constant/couplingProperties")?,
+            cloud_properties.is_some(),
+        )?;
+
+        let fv_solution = optional("system/fvSolution")?;
+        let time_scheme = match &fv_solution {
+            Some(s) => match s.opt_dict("fsim")? {
+                Some(fsim) => {
+                    let scheme = fsim.opt_word("timeScheme")?;
+                    for (key, loc) in fsim.unused() {
+                        let (line, col) = loc.line_col();
+                        warnings.push(format!(
+                            "{}:{line}:{col}: ignored keyword 'fsim.{key}' (fsim does not use it)",
+                            s.file()
+                        ));
+                    }
+                    scheme
+                }
+                None => None,
+            },
+            None => None,
+        };
+
+        warnings.extend(unused_keywords(&read_dicts));
+        Ok(Case {
+            dir: dir.to_path_buf(),
+            control,
+            mesh,
+            transport,
+            gravity,
+            fields,
+            mean_velocity_forces,
+            coupling,
+            time_scheme,
+            fv_solution,
+            cloud_properties,
+            warnings,
+        })
+    }
+
+    /// The time directory whose fields start the run: `startTime`'s name for
+    /// `startFrom startTime`; otherwise the earliest time directory holding the velocity file
+    /// (`0` normally; restart state is restored separately by the solver).
+    pub fn initial_time_dir(dir: &Path, control: &ControlDict, velocity: &str) -> String {
+        if control.start_from == StartFrom::StartTime {
+            return time_name(control.start_time, control.time_precision);
+        }
+        let mut times: Vec<(f64, String)> = std::fs::read_dir(dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .filter_map(|e| {
+                let name = e.file_name().to_string_lossy().into_owned();
+                let t: f64 = name.parse().ok()?;
+                exists(&e.path().join(velocity)).then_some((t, name))
+            })
+            .collect();
+        times.sort_by(|a, b| a.0.total_cmp(&b.0));
+        times
+            .into_iter()
+            .next()
+            .map_or_else(|| "0".to_string(), |(_, name)| name)
+    }
+
+    /// One line for `-dry-run`: grid, patches, fluid, time and coupling.
+    pub fn summary(&self) -> String {
+        let g = &self.mesh.grid;
+        let faces: Vec<String> = BoxFace::ALL
+            .iter()
+            .map(|&f| {
+                let p = self.mesh.patch_on(f);
+                format!("{f} {} ({})", p.name, p.kind.name())
+            })
+            .collect();
+        let write = match self.control.write_control {
+            WriteControl::TimeStep => format!("every {} steps", self.control.write_interval),
+            WriteControl::RunTime | WriteControl::AdjustableRunTime => {
+                format!("every {} s", self.control.write_interval)
+            }
+        };
+        let phase = if self.transport.phase.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.transport.phase)
+        };
+        format!(
+            "grid {}x{}x{} = {} cells, h = ({:e} {:e} {:e}) m; patches: {}; fluid{phase}: \
+             rho = {} kg/m3, nu = {:e} m2/s; t = {} .. {} s, deltaT = {:e} s{}; write {write}; \
+             coupling {}",
+            g.n[0],
+            g.n[1],
+            g.n[2],
+            g.cell_count(),
+            g.h[0],
+            g.h[1],
+            g.h[2],
+            faces.join(", "),
+            self.transport.rho,
+            self.transport.nu,
+            self.control.start_time,
+            self.control.end_time,
+            self.control.delta_t,
+            if self.control.adjust_time_step {
+                format!(" (adjustable, maxCo {})", self.control.max_co)
+            } else {
+                String::new()
+            },
+            self.coupling.model.name(),
+        )
+    }
+
+    /// Whether the case has particles to couple.
+    pub fn has_particles(&self) -> bool {
+        self.coupling.model != CouplingModel::None
+    }
+}
+
+/// One note per ignored keyword and file, at its first place, with the number of times seen
+/// (`phi` in every patch is one note).
+fn unused_keywords(dicts: &[Dict]) -> Vec<String> {
+    let mut notes = Vec::new();
+    for d in dicts {
+        let mut seen: BTreeMap<String, (String, usize)> = BTreeMap::new();
+        let mut order = Vec::new();
+        for (key, loc) in d.unused() {
+            let leaf = key.rsplit('.').next().unwrap_or(&key).to_string();
+            let (line, col) = loc.line_col();
+            let place = format!("{}:{line}:{col}", loc.file.display);
+            match seen.get_mut(&leaf) {
+                Some((_, n)) => *n += 1,
+                None => {
+                    order.push(leaf.clone());
+                    seen.insert(leaf, (place, 1));
+                }
+            }
+        }
+        for leaf in order {
+            let (place, n) = &seen[&leaf];
+            let times = if *n > 1 {
+                format!(", {n} times")
+            } else {
+                String::new()
+            };
+            notes.push(format!(
+                "{place}: ignored keyword '{leaf}' (fsim does not use it{times})"
+            ));
+        }
+    }
+    notes
+}

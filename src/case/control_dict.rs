@@ -1,0 +1,286 @@
+//! `system/controlDict`: when to start and stop, the time step, and when to write.
+
+use super::dictionary::{single_token, Dict};
+use super::error::CaseError;
+use super::value::Value;
+
+/// Where a run starts (`startFrom`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StartFrom {
+    /// At `startTime`.
+    StartTime,
+    /// At the latest time directory (continuing an interrupted run).
+    LatestTime,
+    /// At the earliest time directory.
+    FirstTime,
+}
+
+/// When time directories are written (`writeControl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WriteControl {
+    /// Every `writeInterval` time steps.
+    TimeStep,
+    /// Every `writeInterval` seconds of simulated time, at the first step reaching it.
+    RunTime,
+    /// Every `writeInterval` seconds exactly: the time step is shortened to land on it.
+    AdjustableRunTime,
+}
+
+/// The typed `system/controlDict`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ControlDict {
+    pub start_from: StartFrom,
+    pub start_time: f64,
+    pub end_time: f64,
+    /// Initial (or fixed) time step, seconds.
+    pub delta_t: f64,
+    pub write_control: WriteControl,
+    /// Steps for `TimeStep`, seconds otherwise.
+    pub write_interval: f64,
+    /// Number of time directories kept (0: all).
+    pub purge_write: usize,
+    pub adjust_time_step: bool,
+    /// Courant number bound used when `adjust_time_step` (default 1, as OpenFOAM).
+    pub max_co: f64,
+    /// Largest time step allowed when `adjust_time_step` (default: unbounded).
+    pub max_delta_t: f64,
+    /// Significant digits of time directory names (default 6).
+    pub time_precision: usize,
+}
+
+/// Reads a keyword that must be one of `choices`, returning the choice's index.
+pub(crate) fn choice(
+    dict: &Dict,
+    keyword: &str,
+    choices: &[&str],
+    default: Option<usize>,
+) -> Result<usize, CaseError> {
+    let Some(entry) = dict.lookup(keyword) else {
+        return default.ok_or_else(|| dict.missing(keyword));
+    };
+    let item = single_token(entry, "a word")?;
+    let word = match &item.value {
+        Value::Word(w) | Value::Str(w) => w.as_str(),
+        _ => "",
+    };
+    choices.iter().position(|c| *c == word).ok_or_else(|| {
+        CaseError::at(
+            &item.loc,
+            format!(
+                "expected one of {} for '{keyword}', found {}",
+                choices.join(", "),
+                item.describe()
+            ),
+        )
+    })
+}
+
+/// An error at the value of `keyword` (which must exist).
+pub(crate) fn at_value(dict: &Dict, keyword: &str, message: String) -> CaseError {
+    match dict.peek(keyword) {
+        Some(e) => CaseError::at(e.value_loc(), message),
+        None => CaseError::at(&dict.loc, message),
+    }
+}
+
+impl ControlDict {
+    /// Reads and validates the dictionary; `notes` receives what fsim ignores on purpose.
+    pub fn from_dict(d: &Dict, notes: &mut Vec<String>) -> Result<ControlDict, CaseError> {
+        let start_from = match choice(
+            d,
+            "startFrom",
+            &["startTime", "latestTime", "firstTime"],
+            Some(0),
+        )? {
+            0 => StartFrom::StartTime,
+            1 => StartFrom::LatestTime,
+            _ => StartFrom::FirstTime,
+        };
+        let start_time = d.get_scalar_or("startTime", 0.0)?;
+        let stop = choice(
+            d,
+            "stopAt",
+            &["endTime", "writeNow", "noWriteNow", "nextWrite"],
+            Some(0),
+        )?;
+        if stop != 0 {
+            return Err(at_value(
+                d,
+                "stopAt",
+                "expected 'stopAt endTime' (writeNow, noWriteNow and nextWrite stop a running \
+                 OpenFOAM job; fsim does not support them)"
+                    .to_string(),
+            ));
+        }
+        let end_time = d.get_scalar("endTime")?;
+        let delta_t = d.get_scalar("deltaT")?;
+        if delta_t.is_nan() || delta_t <= 0.0 {
+            return Err(at_value(
+                d,
+                "deltaT",
+                format!("expected a positive time step for 'deltaT', found {delta_t}"),
+            ));
+        }
+        if end_time.is_nan() || end_time < start_time {
+            return Err(at_value(
+                d,
+                "endTime",
+                format!("expected 'endTime' at or after startTime {start_time}, found {end_time}"),
+            ));
+        }
+        let write_control = match choice(
+            d,
+            "writeControl",
+            &["timeStep", "runTime", "adjustableRunTime"],
+            Some(0),
+        )? {
+            0 => WriteControl::TimeStep,
+            1 => WriteControl::RunTime,
+            _ => WriteControl::AdjustableRunTime,
+        };
+        let write_interval = d.get_scalar("writeInterval")?;
+        let interval_ok = match write_control {
+            WriteControl::TimeStep => write_interval >= 1.0 && write_interval.fract() == 0.0,
+            _ => write_interval > 0.0,
+        };
+        if !interval_ok {
+            let what = match write_control {
+                WriteControl::TimeStep => "a whole number of steps (at least 1)",
+                _ => "a positive time",
+            };
+            return Err(at_value(
+                d,
+                "writeInterval",
+                format!("expected {what} for 'writeInterval', found {write_interval}"),
+            ));
+        }
+        let purge_write = d.get_label_or("purgeWrite", 0)?;
+        let adjust_time_step = d.get_bool_or("adjustTimeStep", false)?;
+        let max_co = d.get_scalar_or("maxCo", 1.0)?;
+        if max_co.is_nan() || max_co <= 0.0 {
+            return Err(at_value(
+                d,
+                "maxCo",
+                format!("expected a positive Courant number for 'maxCo', found {max_co}"),
+            ));
+        }
+        let max_delta_t = d.get_scalar_or("maxDeltaT", f64::INFINITY)?;
+        if max_delta_t.is_nan() || max_delta_t <= 0.0 {
+            return Err(at_value(
+                d,
+                "maxDeltaT",
+                format!("expected a positive time step for 'maxDeltaT', found {max_delta_t}"),
+            ));
+        }
+        let time_precision = d.get_label_or("timePrecision", 6)?;
+        if !(1..=17).contains(&time_precision) {
+            return Err(at_value(
+                d,
+                "timePrecision",
+                format!("expected 1 to 17 digits for 'timePrecision', found {time_precision}"),
+            ));
+        }
+        for key in [
+            "writeFormat",
+            "writePrecision",
+            "writeCompression",
+            "timeFormat",
+        ] {
+            if d.lookup(key).is_some() {
+                notes.push(format!(
+                    "{}: '{key}' is ignored: fsim writes VTK files (binary, full precision)",
+                    d.file()
+                ));
+            }
+        }
+        // Every controlDict names its OpenFOAM solver; fsim is the solver here.
+        d.lookup("application");
+        Ok(ControlDict {
+            start_from,
+            start_time,
+            end_time,
+            delta_t,
+            write_control,
+            write_interval,
+            purge_write,
+            adjust_time_step,
+            max_co,
+            max_delta_t,
+            time_precision,
+        })
+    }
+}
+
+/// A time as OpenFOAM names its directory: C++'s general format with `precision`
+/// significant digits (`0`, `0.5`, `1e-05`), as `timeFormat general` writes it.
+pub fn time_name(t: f64, precision: usize) -> String {
+    if t == 0.0 || !t.is_finite() {
+        return if t == 0.0 { "0".into() } else { t.to_string() };
+    }
+    let precision = precision.max(1);
+    // The exponent after rounding to `precision` digits decides the notation (C's %g rule).
+    let sci = format!("{:.*e}", precision - 1, t);
+    let (mantissa, exp) = sci.split_once('e').expect("scientific notation has an 'e'");
+    let exp: i32 = exp.parse().expect("exponent is an integer");
+    if exp < -4 || exp >= precision as i32 {
+        let mantissa = trim_zeros(mantissa);
+        let sign = if exp < 0 { '-' } else { '+' };
+        format!("{mantissa}e{sign}{:02}", exp.abs())
+    } else {
+        let decimals = (precision as i32 - 1 - exp).max(0) as usize;
+        trim_zeros(&format!("{t:.decimals$}")).to_string()
+    }
+}
+
+fn trim_zeros(s: &str) -> &str {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    #[test]
+    fn time_names_match_cpp_general_format() {
+        assert_eq!(time_name(0.0, 6), "0");
+        assert_eq!(time_name(0.5, 6), "0.5");
+        assert_eq!(time_name(1.0, 6), "1");
+        assert_eq!(time_name(0.1 + 0.2, 6), "0.3");
+        assert_eq!(time_name(1e-5, 6), "1e-05");
+        assert_eq!(time_name(0.0001, 6), "0.0001");
+        assert_eq!(time_name(1234567.0, 6), "1.23457e+06");
+        assert_eq!(time_name(100.0, 6), "100");
+        assert_eq!(time_name(0.123456789, 6), "0.123457");
+    }
+
+    #[test]
+    fn defaults_and_choices() {
+        let d = parse_dict(
+            "endTime 1; deltaT 0.01; writeControl runTime; writeInterval 0.1; writeFormat binary;",
+            "system/controlDict",
+        )
+        .unwrap();
+        let mut notes = Vec::new();
+        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        assert_eq!(c.start_from, StartFrom::StartTime);
+        assert_eq!(c.write_control, WriteControl::RunTime);
+        assert_eq!(c.time_precision, 6);
+        assert_eq!(c.max_co, 1.0);
+        assert_eq!(notes.len(), 1);
+        let d = parse_dict(
+            "endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;",
+            "system/controlDict",
+        )
+        .unwrap();
+        let e = ControlDict::from_dict(&d, &mut notes).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 38));
+        assert!(e
+            .message
+            .contains("expected one of timeStep, runTime, adjustableRunTime"));
+    }
+}

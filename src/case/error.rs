@@ -1,0 +1,107 @@
+//! The one error type of case loading: a message anchored at a file, line and column.
+//!
+//! Display is one line, `path:line:col: message`, as compilers print it, so that editors and
+//! terminals can jump to the place. [`CaseError::excerpt`] adds the rustc-style block with the
+//! offending source line and a caret under the column.
+
+use std::fmt;
+
+use super::source::Location;
+
+/// An error in a case: where it is (when known) and what was expected there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaseError {
+    /// File as shown to the user: relative to the case directory when inside it.
+    pub file: Option<String>,
+    /// 1-based line; 0 when the error concerns a whole file (missing file, say).
+    pub line: usize,
+    /// 1-based column in characters; 0 when the error concerns a whole file.
+    pub col: usize,
+    /// What went wrong, saying what was expected.
+    pub message: String,
+    /// The source line the error points into, for the caret excerpt.
+    source_line: Option<String>,
+}
+
+impl CaseError {
+    /// An error at a position in a source file.
+    pub fn at(loc: &Location, message: impl Into<String>) -> Self {
+        let (line, col) = loc.line_col();
+        CaseError {
+            file: Some(loc.file.display.clone()),
+            line,
+            col,
+            message: message.into(),
+            source_line: Some(loc.file.line_text(line).to_string()),
+        }
+    }
+
+    /// An error about a whole file (missing, unreadable).
+    pub fn in_file(file: impl Into<String>, message: impl Into<String>) -> Self {
+        CaseError {
+            file: Some(file.into()),
+            line: 0,
+            col: 0,
+            message: message.into(),
+            source_line: None,
+        }
+    }
+
+    /// An error tied to no file (a case directory that does not exist, say).
+    pub fn plain(message: impl Into<String>) -> Self {
+        CaseError {
+            file: None,
+            line: 0,
+            col: 0,
+            message: message.into(),
+            source_line: None,
+        }
+    }
+
+    /// The rustc-style excerpt: the source line and a `^` under the column, or `None` when the
+    /// error has no position.
+    ///
+    /// ```text
+    ///   --> constant/transportProperties:19:4
+    ///    |
+    /// 19 | nu abc;
+    ///    |    ^
+    /// ```
+    pub fn excerpt(&self) -> Option<String> {
+        let text = self.source_line.as_ref()?;
+        let file = self.file.as_deref().unwrap_or("<input>");
+        let number = self.line.to_string();
+        let pad = " ".repeat(number.len());
+        // Tabs are shown as one space so that the caret stays under the column it names.
+        let shown: String = text
+            .chars()
+            .map(|c| if c == '\t' { ' ' } else { c })
+            .collect();
+        Some(format!(
+            "{pad}--> {file}:{line}:{col}\n{pad} |\n{number} | {shown}\n{pad} | {caret}^",
+            line = self.line,
+            col = self.col,
+            caret = " ".repeat(self.col.saturating_sub(1)),
+        ))
+    }
+
+    /// The one-line message followed by the excerpt, as the CLI prints it on stderr.
+    pub fn report(&self) -> String {
+        match self.excerpt() {
+            Some(excerpt) => format!("{self}\n{excerpt}"),
+            None => self.to_string(),
+        }
+    }
+}
+
+impl fmt::Display for CaseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (&self.file, self.line) {
+            (Some(file), 0) => write!(f, "{file}: {}", self.message),
+            (Some(file), line) => write!(f, "{file}:{line}:{}: {}", self.col, self.message),
+            (None, _) => write!(f, "{}", self.message),
+        }
+    }
+}
+
+impl std::error::Error for CaseError {}

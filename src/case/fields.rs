@@ -1,0 +1,515 @@
+//! The initial fields `0/U.<phase>` (or `0/U`) and `0/p`: internal values and one boundary
+//! condition per patch, checked against the patch types.
+
+use std::path::Path;
+
+use super::block_mesh::{BlockMesh, Patch, PatchType};
+use super::dictionary::{single_token, Dict, Entry, EntryBody};
+use super::error::CaseError;
+use super::value::Item;
+
+/// A field's cell values: one value for all cells, or one per cell in the grid's x-fastest
+/// order.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InternalField<T> {
+    Uniform(T),
+    Nonuniform(Vec<T>),
+}
+
+impl<T: Copy> InternalField<T> {
+    /// The value in cell `index` (x-fastest linear index).
+    pub fn value(&self, index: usize) -> T {
+        match self {
+            InternalField::Uniform(v) => *v,
+            InternalField::Nonuniform(values) => values[index],
+        }
+    }
+
+    /// All `cells` values, expanded.
+    pub fn to_vec(&self, cells: usize) -> Vec<T> {
+        match self {
+            InternalField::Uniform(v) => vec![*v; cells],
+            InternalField::Nonuniform(values) => values.clone(),
+        }
+    }
+}
+
+/// Velocity boundary conditions fsim supports.
+#[derive(Clone, Debug, PartialEq)]
+pub enum VelocityBc {
+    /// u = 0 on a wall.
+    NoSlip,
+    /// u = value.
+    FixedValue([f64; 3]),
+    /// ∂u/∂n = 0.
+    ZeroGradient,
+    /// Periodic with the neighbour patch.
+    Cyclic,
+    /// Mirror: u·n = 0, ∂(u − (u·n)n)/∂n = 0.
+    Symmetry,
+    SymmetryPlane,
+    /// u·n = 0, zero tangential stress.
+    Slip,
+    /// A direction with one cell (2-D case).
+    Empty,
+    /// Zero gradient for outflow; inflow velocity from the flux normal to the patch.
+    PressureInletOutletVelocity,
+    /// Zero gradient for outflow, `inlet_value` where the flow enters.
+    InletOutlet {
+        inlet_value: [f64; 3],
+    },
+    /// DPMFoam's inlet: the superficial `inlet_velocity` divided by the local fluid fraction
+    /// (field `alpha`) gives the interstitial velocity.
+    InterstitialInletVelocity {
+        inlet_velocity: [f64; 3],
+        alpha: String,
+    },
+}
+
+/// Pressure boundary conditions fsim supports.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PressureBc {
+    ZeroGradient,
+    /// The gradient that makes the wall flux match the velocity condition.
+    FixedFluxPressure,
+    /// p = value (kinematic).
+    FixedValue(f64),
+    /// p = p0 − ½|u|² for inflow, p0 for outflow (kinematic).
+    TotalPressure {
+        p0: f64,
+    },
+    Cyclic,
+    Symmetry,
+    SymmetryPlane,
+    Empty,
+}
+
+const VELOCITY_TYPES: [&str; 11] = [
+    "noSlip",
+    "fixedValue",
+    "zeroGradient",
+    "cyclic",
+    "symmetry",
+    "symmetryPlane",
+    "slip",
+    "empty",
+    "pressureInletOutletVelocity",
+    "inletOutlet",
+    "interstitialInletVelocity",
+];
+
+const PRESSURE_TYPES: [&str; 8] = [
+    "zeroGradient",
+    "fixedFluxPressure",
+    "fixedValue",
+    "totalPressure",
+    "cyclic",
+    "symmetry",
+    "symmetryPlane",
+    "empty",
+];
+
+/// The initial velocity and pressure with their boundary conditions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fields {
+    /// The time directory they were read from (`0`).
+    pub time: String,
+    /// `U.<phase>` or `U`.
+    pub velocity_name: String,
+    /// Cell-centred velocity, m/s.
+    pub u: InternalField<[f64; 3]>,
+    /// Cell-centred kinematic pressure, m²/s².
+    pub p: InternalField<f64>,
+    /// One condition per patch, in the order of [`BlockMesh::patches`].
+    pub u_bc: Vec<VelocityBc>,
+    pub p_bc: Vec<PressureBc>,
+}
+
+/// A field file, parsed: what `read_fields` returns besides the typed fields, so that the
+/// case loader can list the ignored keywords.
+pub struct FieldDicts {
+    pub u: Dict,
+    pub p: Dict,
+}
+
+impl Fields {
+    /// Reads `<time>/<velocity_name>` and `<time>/p` under `case_dir`.
+    pub fn read(
+        case_dir: &Path,
+        time: &str,
+        velocity_name: &str,
+        mesh: &BlockMesh,
+        warnings: &mut Vec<String>,
+    ) -> Result<(Fields, FieldDicts), CaseError> {
+        let dir = case_dir.join(time);
+        let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir))?;
+        let p_dict = Dict::read(&dir.join("p"), Some(case_dir))?;
+        let cells = mesh.grid.cell_count();
+        let u = internal(&u_dict, cells, "a vector (x y z)", Item::as_vector)?;
+        let p = internal(&p_dict, cells, "a number", Item::as_scalar)?;
+        let u_bc = conditions(&u_dict, mesh, warnings)?
+            .into_iter()
+            .zip(&mesh.patches)
+            .map(|(d, patch)| velocity_bc(d, patch))
+            .collect::<Result<Vec<_>, _>>()?;
+        let p_bc = conditions(&p_dict, mesh, warnings)?
+            .into_iter()
+            .zip(&mesh.patches)
+            .map(|(d, patch)| pressure_bc(d, patch))
+            .collect::<Result<Vec<_>, _>>()?;
+        for d in [&u_dict, &p_dict] {
+            // The dimensions are fixed by the field's kind.
+            d.lookup("dimensions");
+        }
+        let fields = Fields {
+            time: time.to_string(),
+            velocity_name: velocity_name.to_string(),
+            u,
+            p,
+            u_bc,
+            p_bc,
+        };
+        Ok((
+            fields,
+            FieldDicts {
+                u: u_dict,
+                p: p_dict,
+            },
+        ))
+    }
+}
+
+/// `internalField uniform X;` or `internalField nonuniform List<T> N(…);`.
+fn internal<T>(
+    d: &Dict,
+    cells: usize,
+    what: &str,
+    convert: impl Fn(&Item) -> Option<T>,
+) -> Result<InternalField<T>, CaseError> {
+    let entry = d.get_entry("internalField")?;
+    let (kind, value) = uniform_or_not(entry)?;
+    let bad = |item: &Item| {
+        CaseError::at(
+            &item.loc,
+            format!(
+                "expected {what} in 'internalField', found {}",
+                item.describe()
+            ),
+        )
+    };
+    if kind == "uniform" {
+        return convert(value)
+            .map(InternalField::Uniform)
+            .ok_or_else(|| bad(value));
+    }
+    let list = value.as_list().ok_or_else(|| {
+        CaseError::at(
+            &value.loc,
+            format!(
+                "expected a list of {cells} values after 'nonuniform', found {}",
+                value.describe()
+            ),
+        )
+    })?;
+    if list.len() != cells {
+        return Err(CaseError::at(
+            &value.loc,
+            format!(
+                "expected {cells} values in 'internalField' (one per cell of the block), found {}",
+                list.len()
+            ),
+        ));
+    }
+    let mut values = Vec::with_capacity(cells);
+    for item in list.iter() {
+        values.push(convert(item).ok_or_else(|| bad(item))?);
+    }
+    Ok(InternalField::Nonuniform(values))
+}
+
+/// Splits `uniform X` / `nonuniform List<T> N(…)` into the keyword and the value token.
+fn uniform_or_not(entry: &Entry) -> Result<(&'static str, &Item), CaseError> {
+    let keyword = entry.keyword();
+    let tokens = entry.as_tokens().ok_or_else(|| {
+        CaseError::at(
+            &entry.key_loc,
+            format!(
+                "expected 'uniform' or 'nonuniform' values for '{keyword}', found a dictionary"
+            ),
+        )
+    })?;
+    let first = tokens.first().ok_or_else(|| {
+        CaseError::at(
+            &entry.key_loc,
+            format!("expected 'uniform' or 'nonuniform' after '{keyword}'"),
+        )
+    })?;
+    let (kind, rest) = match first.as_word() {
+        Some("uniform") => ("uniform", &tokens[1..]),
+        // The list's type (`List<vector>`) is optional before the list.
+        Some("nonuniform") => match &tokens[1..] {
+            [ty, rest @ ..] if ty.as_word().is_some_and(|w| w.starts_with("List<")) => {
+                ("nonuniform", rest)
+            }
+            rest => ("nonuniform", rest),
+        },
+        _ => {
+            return Err(CaseError::at(
+                &first.loc,
+                format!(
+                    "expected 'uniform' or 'nonuniform' for '{keyword}', found {}",
+                    first.describe()
+                ),
+            ))
+        }
+    };
+    match rest {
+        [value] => Ok((kind, value)),
+        [] => Err(CaseError::at(
+            &first.loc,
+            format!("expected a value after '{kind}' for '{keyword}'"),
+        )),
+        [_, extra, ..] => Err(CaseError::at(
+            &extra.loc,
+            format!(
+                "expected ';' to end the entry '{keyword}' after its value, found {}",
+                extra.describe()
+            ),
+        )),
+    }
+}
+
+/// A patch value: `uniform X` only.
+fn patch_value<T>(
+    d: &Dict,
+    keyword: &str,
+    what: &str,
+    convert: impl Fn(&Item) -> Option<T>,
+) -> Result<T, CaseError> {
+    let entry = d.get_entry(keyword)?;
+    let (kind, value) = uniform_or_not(entry)?;
+    if kind != "uniform" {
+        return Err(CaseError::at(
+            entry.value_loc(),
+            format!(
+                "expected 'uniform' for '{keyword}': fsim supports only uniform values on patches"
+            ),
+        ));
+    }
+    convert(value).ok_or_else(|| {
+        CaseError::at(
+            &value.loc,
+            format!(
+                "expected {what} for '{keyword}', found {}",
+                value.describe()
+            ),
+        )
+    })
+}
+
+/// The group a patch belongs to by its type, as OpenFOAM names patch groups.
+fn group_of(patch: &Patch) -> Option<&'static str> {
+    (patch.kind != PatchType::Patch).then(|| patch.kind.name())
+}
+
+/// The `boundaryField` dictionary of each patch: exact name first, then the patch's group
+/// (`wall`, `cyclic`, `empty`, …), then the quoted patterns, last first (OpenFOAM's order).
+/// A keyword naming no patch is an error; a pattern or group that matches none is noted.
+fn conditions<'a>(
+    d: &'a Dict,
+    mesh: &BlockMesh,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<&'a Dict>, CaseError> {
+    let bf = d.get_dict("boundaryField")?;
+    let entries = bf.entries();
+    let mut matched = vec![false; entries.len()];
+    let mut out = Vec::with_capacity(mesh.patches.len());
+    for patch in &mesh.patches {
+        let exact = entries.iter().rposition(|e| e.keyword() == patch.name);
+        let group = || {
+            group_of(patch).and_then(|g| {
+                entries
+                    .iter()
+                    .rposition(|e| !e.key.is_pattern() && e.keyword() == g)
+            })
+        };
+        let pattern = || {
+            entries
+                .iter()
+                .rposition(|e| e.key.pattern_matches(&patch.name))
+        };
+        let Some(k) = exact.or_else(group).or_else(pattern) else {
+            return Err(CaseError::at(
+                &bf.loc,
+                format!(
+                    "missing boundary condition for patch '{}' in 'boundaryField' (starting at line {})",
+                    patch.name,
+                    bf.loc.line_col().0
+                ),
+            ));
+        };
+        matched[k] = true;
+        let entry = &entries[k];
+        entry.mark_used();
+        match &entry.body {
+            EntryBody::Dict(cd) => out.push(cd),
+            EntryBody::Tokens(_) => {
+                return Err(CaseError::at(
+                    &entry.key_loc,
+                    format!(
+                        "expected a dictionary {{ type …; }} for patch '{}', found a value",
+                        entry.keyword()
+                    ),
+                ))
+            }
+        }
+    }
+    let names: Vec<&str> = mesh.patches.iter().map(|p| p.name.as_str()).collect();
+    for (e, used) in entries.iter().zip(&matched) {
+        if *used {
+            continue;
+        }
+        e.mark_used();
+        let is_group = PatchType::NAMES.contains(&e.keyword()) && e.keyword() != "patch";
+        if e.key.is_pattern() || is_group {
+            let (line, col) = e.key_loc.line_col();
+            warnings.push(format!(
+                "{}:{line}:{col}: '{}' in boundaryField matches no patch; ignored",
+                d.file(),
+                e.keyword()
+            ));
+        } else {
+            return Err(CaseError::at(
+                &e.key_loc,
+                format!(
+                    "unknown patch '{}' in boundaryField: expected one of the blockMeshDict patches ({})",
+                    e.keyword(),
+                    names.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// The condition's `type`, as an index into `types`, checked against the patch type.
+fn condition_type(
+    d: &Dict,
+    patch: &Patch,
+    types: &[&str],
+    field: &str,
+) -> Result<usize, CaseError> {
+    let entry = d.get_entry("type")?;
+    let item = single_token(entry, "a boundary condition type")?;
+    let word = item.as_word().unwrap_or("");
+    let k = types.iter().position(|t| *t == word).ok_or_else(|| {
+        CaseError::at(
+            &item.loc,
+            format!(
+                "unknown {field} boundary condition {}: expected one of {}",
+                item.describe(),
+                types.join(", ")
+            ),
+        )
+    })?;
+    let kind = patch.kind;
+    let symmetric = matches!(kind, PatchType::Symmetry | PatchType::SymmetryPlane);
+    let ok = match word {
+        "cyclic" => kind == PatchType::Cyclic,
+        "empty" => kind == PatchType::Empty,
+        "symmetry" | "symmetryPlane" => symmetric,
+        "slip" => !matches!(kind, PatchType::Cyclic | PatchType::Empty),
+        _ => !kind.is_constraint(),
+    };
+    if !ok {
+        let wanted = match kind {
+            PatchType::Cyclic => "cyclic".to_string(),
+            PatchType::Empty => "empty".to_string(),
+            PatchType::Symmetry | PatchType::SymmetryPlane if field == "velocity" => {
+                "symmetry, symmetryPlane or slip".to_string()
+            }
+            PatchType::Symmetry | PatchType::SymmetryPlane => {
+                "symmetry or symmetryPlane".to_string()
+            }
+            _ => format!("a condition for a {} patch (not {word})", kind.name()),
+        };
+        return Err(CaseError::at(
+            &item.loc,
+            format!(
+                "expected {wanted} on patch '{}' of type {}, found {}",
+                patch.name,
+                kind.name(),
+                item.describe()
+            ),
+        ));
+    }
+    Ok(k)
+}
+
+fn velocity_bc(d: &Dict, patch: &Patch) -> Result<VelocityBc, CaseError> {
+    let vector = |key: &str| patch_value(d, key, "a vector (x y z)", Item::as_vector);
+    let bc = match VELOCITY_TYPES[condition_type(d, patch, &VELOCITY_TYPES, "velocity")?] {
+        "noSlip" => VelocityBc::NoSlip,
+        "fixedValue" => VelocityBc::FixedValue(vector("value")?),
+        "zeroGradient" => VelocityBc::ZeroGradient,
+        "cyclic" => VelocityBc::Cyclic,
+        "symmetry" => VelocityBc::Symmetry,
+        "symmetryPlane" => VelocityBc::SymmetryPlane,
+        "slip" => VelocityBc::Slip,
+        "empty" => VelocityBc::Empty,
+        "pressureInletOutletVelocity" => VelocityBc::PressureInletOutletVelocity,
+        "inletOutlet" => VelocityBc::InletOutlet {
+            inlet_value: vector("inletValue")?,
+        },
+        _ => VelocityBc::InterstitialInletVelocity {
+            inlet_velocity: vector("inletVelocity")?,
+            alpha: d.get_word_or("alpha", "alpha")?,
+        },
+    };
+    quiet_bookkeeping(d);
+    Ok(bc)
+}
+
+fn pressure_bc(d: &Dict, patch: &Patch) -> Result<PressureBc, CaseError> {
+    let scalar = |key: &str| patch_value(d, key, "a number", Item::as_scalar);
+    let bc = match PRESSURE_TYPES[condition_type(d, patch, &PRESSURE_TYPES, "pressure")?] {
+        "zeroGradient" => PressureBc::ZeroGradient,
+        "fixedFluxPressure" => PressureBc::FixedFluxPressure,
+        "fixedValue" => PressureBc::FixedValue(scalar("value")?),
+        "totalPressure" => PressureBc::TotalPressure { p0: scalar("p0")? },
+        "cyclic" => PressureBc::Cyclic,
+        "symmetry" => PressureBc::Symmetry,
+        "symmetryPlane" => PressureBc::SymmetryPlane,
+        _ => PressureBc::Empty,
+    };
+    quiet_bookkeeping(d);
+    Ok(bc)
+}
+
+/// Entries OpenFOAM writes for its own bookkeeping in boundary conditions (the current patch
+/// value, flux and density field names): not worth a note each.
+fn quiet_bookkeeping(d: &Dict) {
+    for key in ["value", "phi", "rho", "psi", "gamma"] {
+        d.lookup(key);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nonuniform_field_order_and_length() {
+        let d = crate::case::parse_dict("internalField nonuniform List<scalar> 3(1 2 3);", "p")
+            .unwrap();
+        assert_eq!(
+            internal(&d, 3, "a number", Item::as_scalar).unwrap(),
+            InternalField::Nonuniform(vec![1.0, 2.0, 3.0])
+        );
+        let e = internal(&d, 4, "a number", Item::as_scalar).unwrap_err();
+        assert!(e.message.contains("expected 4 values"), "{e}");
+        let d = crate::case::parse_dict("internalField uniform (1 2 x);", "U").unwrap();
+        let e = internal(&d, 4, "a vector", Item::as_vector).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 23));
+    }
+}

@@ -1,0 +1,33 @@
+//! Case files: the OpenFOAM dictionary parser and the typed, validated case it feeds.
+//!
+//! [`Case::load`] reads a case directory into typed parts ([`ControlDict`], [`BlockMesh`],
+//! [`Transport`], [`Fields`], [`MeanVelocityForce`], [`Coupling`]); every error is a
+//! [`CaseError`] naming file, line and column. The parser alone is [`read_dict_file`] /
+//! [`parse_dict`], giving a [`Dict`] with typed accessors.
+
+pub mod block_mesh;
+#[allow(clippy::module_inception)]
+pub mod case;
+pub mod control_dict;
+pub mod coupling;
+pub mod dictionary;
+pub mod error;
+pub mod fields;
+pub mod fv_options;
+pub mod parser;
+pub mod source;
+pub mod transport;
+pub mod value;
+
+pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};
+pub use case::Case;
+pub use control_dict::{time_name, ControlDict, StartFrom, WriteControl};
+pub use coupling::{Coupling, CouplingModel};
+pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
+pub use error::CaseError;
+pub use fields::{Fields, InternalField, PressureBc, VelocityBc};
+pub use fv_options::MeanVelocityForce;
+pub use parser::{check_parser_invariants, parse_dict, read_dict_file};
+pub use source::{Location, SourceFile};
+pub use transport::Transport;
+pub use value::{Dimensions, Item, ListView, Value};

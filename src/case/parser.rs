@@ -1,0 +1,1188 @@
+//! The OpenFOAM dictionary grammar, read with nom.
+//!
+//! ```text
+//! file      = body EOF
+//! body      = { entry | directive | '$'name [';'] | ';' | value }      (values only stand
+//!                                                                        alone at top level)
+//! entry     = key ( '{' body '}' | token* ';' )
+//! key       = word | '"' pattern '"'
+//! token     = number | count '(' token* ')' | count '{' token '}' | '(' token* ')'
+//!           | '{' body '}' | '[' dims ']' | '"' string '"' | '#{' code '#}'
+//!           | '#'word | '$'name | word
+//! ```
+//!
+//! The lexemes (comments, numbers, words, strings) are nom parsers; the structure above is a
+//! recursive descent over them that keeps a stack of the dictionaries being built, so that a
+//! `$var` macro is replaced by its value as soon as it is read, seeing exactly the entries
+//! written above it in this and the enclosing scopes (OpenFOAM's rule).
+//!
+//! Two lexical traps of the format are handled here. A number must end at a word boundary:
+//! `inflow`, `nanoParticle`, `e5x` and `1st` are words (nom's `double` would take `inf`, `nan`
+//! or `1` from them; [`recognize_float`] reads no `inf`/`nan` and the boundary is checked). A
+//! count before a list (`3((0 0 0) …)`, `8\n(`) is read before a plain number, but only when
+//! the `(` follows the count directly or on a later line: `(0 (1 0 0))`, a time/value table
+//! row, stays a number and a vector.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use nom::bytes::complete::{tag, take_until, take_while, take_while1};
+use nom::character::complete::{multispace1, not_line_ending};
+use nom::number::complete::recognize_float;
+use nom::IResult;
+
+use super::dictionary::{Dict, Directive, Entry, EntryBody, Key};
+use super::error::CaseError;
+use super::source::{Location, SourceFile};
+use super::value::{Dimensions, Item, Value};
+
+/// Deepest nesting of lists and dictionaries accepted (keeps recursion bounded).
+const MAX_DEPTH: usize = 200;
+/// Deepest `#include` chain accepted (catches a file including itself).
+const MAX_INCLUDE_DEPTH: usize = 16;
+/// Most tokens that `$macro` copies may create in one read (catches exponential macros).
+const MAX_MACRO_TOKENS: usize = 50_000_000;
+
+type Nom<'a, O> = IResult<&'a str, O, nom::error::Error<&'a str>>;
+
+/// Reads and parses a dictionary file (plain or gzip). `case_dir` shapes the file names shown
+/// in messages and resolves `$FOAM_CASE` and `<case>` in `#include` paths.
+pub fn read_dict_file(path: &Path, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
+    let file = Arc::new(SourceFile::read(path, case_dir)?);
+    parse_source(file, case_dir)
+}
+
+/// Parses dictionary text held in memory; `display` names it in messages.
+pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
+    let file = Arc::new(SourceFile::from_text(
+        PathBuf::from(display),
+        display.to_string(),
+        text.to_string(),
+    ));
+    parse_source(file, None)
+}
+
+fn parse_source(file: Arc<SourceFile>, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
+    let mut ctx = Ctx {
+        stack: vec![Dict::new(String::new(), Location::new(&file, 0))],
+        case_dir: case_dir.map(Path::to_path_buf),
+        depth: 0,
+        include_depth: 0,
+        macro_tokens: 0,
+    };
+    let src = Src { file: &file };
+    let rest = ctx.body(&src, &file.text, None)?;
+    debug_assert!(rest.is_empty());
+    Ok(ctx.stack.pop().expect("top-level dictionary"))
+}
+
+/// The file being read.
+struct Src<'a> {
+    file: &'a Arc<SourceFile>,
+}
+
+impl Src<'_> {
+    fn loc(&self, rest: &str) -> Location {
+        Location::new(self.file, self.file.text.len() - rest.len())
+    }
+
+    fn err(&self, rest: &str, message: impl Into<String>) -> CaseError {
+        CaseError::at(&self.loc(rest), message)
+    }
+}
+
+/// Parsing state shared by a file and the files it includes.
+struct Ctx {
+    /// The dictionaries being built, outermost first.
+    stack: Vec<Dict>,
+    case_dir: Option<PathBuf>,
+    depth: usize,
+    include_depth: usize,
+    macro_tokens: usize,
+}
+
+// ----- lexemes (nom) --------------------------------------------------------------------------
+
+fn line_comment(i: &str) -> Nom<'_, &str> {
+    let (i, _) = tag("//")(i)?;
+    not_line_ending(i)
+}
+
+fn block_comment(i: &str) -> Nom<'_, &str> {
+    let (i, _) = tag("/*")(i)?;
+    let (i, body) = take_until("*/")(i)?;
+    let (i, _) = tag("*/")(i)?;
+    Ok((i, body))
+}
+
+/// Characters that can never be part of a word.
+fn is_delimiter(c: char) -> bool {
+    c.is_whitespace() || matches!(c, '"' | '\'' | ';' | '{' | '}' | '[' | ']' | '(' | ')')
+}
+
+/// Reads a word: OpenFOAM's word characters, with balanced parentheses allowed inside once
+/// the word has started (`div(phi,U)`), and stopping before a comment.
+fn word(i: &str) -> Nom<'_, &str> {
+    let mut depth = 0usize;
+    let mut end = 0;
+    let bytes = i.as_bytes();
+    for (pos, c) in i.char_indices() {
+        let ok = match c {
+            '(' if pos > 0 => {
+                depth += 1;
+                true
+            }
+            ')' if depth > 0 => {
+                depth -= 1;
+                true
+            }
+            '/' => !matches!(bytes.get(pos + 1), Some(b'/') | Some(b'*')),
+            c => !is_delimiter(c),
+        };
+        if !ok {
+            break;
+        }
+        end = pos + c.len_utf8();
+    }
+    if end == 0 {
+        return Err(nom::Err::Error(nom::error::Error::new(
+            i,
+            nom::error::ErrorKind::Alpha,
+        )));
+    }
+    Ok((&i[end..], &i[..end]))
+}
+
+/// A number that ends at a word boundary, as a label (no `.`, no exponent) or a scalar.
+fn number(i: &str) -> Nom<'_, Value> {
+    let (rest, text) = recognize_float(i)?;
+    // A word character right after the digits makes the whole thing a word (`1st`, `0.5.1`).
+    // A parenthesis ends a number (`3(` starts a counted list) though it may continue a word.
+    let continues = match rest.chars().next() {
+        Some('/') => !rest.starts_with("//") && !rest.starts_with("/*"),
+        Some(c) => !is_delimiter(c),
+        None => false,
+    };
+    if continues {
+        return Err(nom::Err::Error(nom::error::Error::new(
+            i,
+            nom::error::ErrorKind::Float,
+        )));
+    }
+    let value = if text.contains(['.', 'e', 'E']) {
+        text.parse::<f64>().map(Value::Scalar)
+    } else {
+        Ok(text
+            .parse::<i64>()
+            .map(Value::Label)
+            .unwrap_or_else(|_| Value::Scalar(text.parse::<f64>().unwrap_or(f64::NAN))))
+    };
+    match value {
+        Ok(v) => Ok((rest, v)),
+        Err(_) => Err(nom::Err::Error(nom::error::Error::new(
+            i,
+            nom::error::ErrorKind::Float,
+        ))),
+    }
+}
+
+fn directive_name(i: &str) -> Nom<'_, &str> {
+    take_while1(|c: char| c.is_ascii_alphanumeric() || c == '_')(i)
+}
+
+fn variable_name(i: &str) -> Nom<'_, &str> {
+    take_while1(|c: char| {
+        c.is_alphanumeric() || matches!(c, '_' | '-' | '.' | ':' | '/' | '<' | '>')
+    })(i)
+}
+
+/// A double-quoted string with backslash escapes; `None` when it is not closed.
+fn quoted(i: &str) -> Option<(&str, String)> {
+    let body = i.strip_prefix('"')?;
+    let mut out = String::new();
+    let mut chars = body.char_indices();
+    while let Some((pos, c)) = chars.next() {
+        match c {
+            '"' => return Some((&body[pos + 1..], out)),
+            '\\' => match chars.next() {
+                Some((_, '"')) => out.push('"'),
+                Some((_, '\\')) => out.push('\\'),
+                Some((_, '\n')) => {}
+                Some((_, other)) => {
+                    out.push('\\');
+                    out.push(other);
+                }
+                None => return None,
+            },
+            c => out.push(c),
+        }
+    }
+    None
+}
+
+// ----- structure ------------------------------------------------------------------------------
+
+impl Ctx {
+    /// Skips blanks and comments.
+    fn skip<'a>(&self, src: &Src, mut i: &'a str) -> Result<&'a str, CaseError> {
+        loop {
+            if let Ok((rest, _)) = multispace1::<_, nom::error::Error<&str>>(i) {
+                i = rest;
+            } else if let Ok((rest, _)) = line_comment(i) {
+                i = rest;
+            } else if i.starts_with("/*") {
+                match block_comment(i) {
+                    Ok((rest, _)) => i = rest,
+                    Err(_) => {
+                        return Err(src.err(i, "expected '*/' to close the comment opened here"))
+                    }
+                }
+            } else {
+                return Ok(i);
+            }
+        }
+    }
+
+    fn enter(&mut self, src: &Src, i: &str) -> Result<(), CaseError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(src.err(
+                i,
+                format!("expected at most {MAX_DEPTH} nested lists and dictionaries"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn current(&mut self) -> &mut Dict {
+        self.stack.last_mut().expect("a dictionary is open")
+    }
+
+    /// Entries up to the closing `}` (when `open` is the location of its `{`) or the end of
+    /// the text; returns the text after the `}`.
+    fn body<'a>(
+        &mut self,
+        src: &Src,
+        mut i: &'a str,
+        open: Option<&Location>,
+    ) -> Result<&'a str, CaseError> {
+        loop {
+            i = self.skip(src, i)?;
+            let Some(c) = i.chars().next() else {
+                return match open {
+                    None => Ok(i),
+                    Some(open) => Err(src.err(
+                        i,
+                        format!(
+                            "expected '}}' to close the dictionary opened at line {}",
+                            open.line_col().0
+                        ),
+                    )),
+                };
+            };
+            match c {
+                '}' if open.is_some() => return Ok(&i[1..]),
+                '}' => {
+                    return Err(src.err(i, "expected a keyword, found '}' with no dictionary open"))
+                }
+                ';' => i = &i[1..],
+                '#' if !i.starts_with("#{") => i = self.directive(src, i)?,
+                '$' => i = self.merge_macro(src, i)?,
+                '"' => {
+                    let key_loc = src.loc(i);
+                    let Some((rest, text)) = quoted(i) else {
+                        return Err(src.err(i, "expected '\"' to close the string opened here"));
+                    };
+                    i = self.entry(src, rest, Key::quoted(&text), key_loc)?;
+                }
+                '(' | '0'..='9' | '-' | '+' | '.' if open.is_none() && number_or_list(i) => {
+                    // A value standing alone at top level (`kinematicCloudPositions`).
+                    // Like OpenFOAM reading a list file, stop after the list: some
+                    // tutorial files carry stray text after it (`/ *****…//`).
+                    let (_, items) = self.token(src, i)?;
+                    self.current().values.extend(items);
+                    return Ok("");
+                }
+                _ => match word(i) {
+                    Ok((rest, w)) => {
+                        let key_loc = src.loc(i);
+                        i = self.entry(src, rest, Key::Word(w.to_string()), key_loc)?;
+                    }
+                    Err(_) => {
+                        let expected = if open.is_some() {
+                            "expected a keyword or '}'"
+                        } else {
+                            "expected a keyword"
+                        };
+                        return Err(src.err(i, format!("{expected}, found '{c}'")));
+                    }
+                },
+            }
+        }
+    }
+
+    /// The rest of an entry after its keyword: a sub-dictionary or a value up to `;`.
+    fn entry<'a>(
+        &mut self,
+        src: &Src,
+        i: &'a str,
+        key: Key,
+        key_loc: Location,
+    ) -> Result<&'a str, CaseError> {
+        let i = self.skip(src, i)?;
+        if i.starts_with('{') {
+            let open = src.loc(i);
+            let name = scoped_name(&self.current().name, key.as_str());
+            let (rest, dict) = self.sub_dict(src, &i[1..], name, key_loc.clone(), &open)?;
+            self.current()
+                .insert(Entry::new(key, key_loc, EntryBody::Dict(dict)));
+            return Ok(rest);
+        }
+        let mut tokens = Vec::new();
+        let mut i = i;
+        // Where the `;` is expected: right after the last token read.
+        let mut after_last = i;
+        let mut first = true;
+        loop {
+            if !first {
+                i = self.skip(src, i)?;
+            }
+            first = false;
+            match i.chars().next() {
+                Some(';') => {
+                    self.current()
+                        .insert(Entry::new(key, key_loc, EntryBody::Tokens(tokens)));
+                    return Ok(&i[1..]);
+                }
+                None | Some('}') => {
+                    let at = if tokens.is_empty() { i } else { after_last };
+                    return Err(src.err(
+                        at,
+                        format!("expected ';' to end the entry '{}'", key.as_str()),
+                    ));
+                }
+                Some(_) => {
+                    let (rest, items) = self.token(src, i)?;
+                    tokens.extend(items);
+                    i = rest;
+                    after_last = rest;
+                }
+            }
+        }
+    }
+
+    /// A dictionary body after its `{`, built on the scope stack so that macros inside it
+    /// see the enclosing entries.
+    fn sub_dict<'a>(
+        &mut self,
+        src: &Src,
+        i: &'a str,
+        name: String,
+        loc: Location,
+        open: &Location,
+    ) -> Result<(&'a str, Dict), CaseError> {
+        self.enter(src, i)?;
+        self.stack.push(Dict::new(name, loc));
+        let result = self.body(src, i, Some(open));
+        let dict = self.stack.pop().expect("pushed above");
+        self.depth -= 1;
+        Ok((result?, dict))
+    }
+
+    /// One token of a value; a macro may expand to several.
+    fn token<'a>(&mut self, src: &Src, i: &'a str) -> Result<(&'a str, Vec<Item>), CaseError> {
+        let loc = src.loc(i);
+        let c = i.chars().next().expect("caller checked for a character");
+        let one = |rest, value| Ok((rest, vec![Item::new(value, loc.clone())]));
+        match c {
+            '(' => {
+                let (rest, items) = self.list(src, i)?;
+                one(rest, Value::List(items))
+            }
+            '{' => {
+                let name = scoped_name(&self.current().name, "{}");
+                let (rest, dict) = self.sub_dict(src, &i[1..], name, loc.clone(), &loc)?;
+                one(rest, Value::Dict(Box::new(dict)))
+            }
+            '[' => {
+                let (rest, dims) = self.dimensions(src, i)?;
+                one(rest, Value::Dimensions(dims))
+            }
+            '"' => match quoted(i) {
+                Some((rest, s)) => one(rest, Value::Str(s)),
+                None => Err(src.err(i, "expected '\"' to close the string opened here")),
+            },
+            '#' if i.starts_with("#{") => match i[2..].find("#}") {
+                Some(end) => one(&i[2 + end + 2..], Value::Code(i[2..2 + end].to_string())),
+                None => Err(src.err(i, "expected '#}' to close the code block opened here")),
+            },
+            '#' => match directive_name(&i[1..]) {
+                Ok((rest, name)) if rest.starts_with('{') => {
+                    // `#eval{ 20*pi() }`: an expression kept as text, never evaluated.
+                    let Some(end) = balanced_brace_end(rest) else {
+                        return Err(
+                            src.err(rest, "expected '}' to close the expression opened here")
+                        );
+                    };
+                    let mut items =
+                        vec![Item::new(Value::Directive(name.to_string()), loc.clone())];
+                    items.push(Item::new(
+                        Value::Code(rest[1..end].to_string()),
+                        src.loc(rest),
+                    ));
+                    Ok((&rest[end + 1..], items))
+                }
+                Ok((rest, name)) => one(rest, Value::Directive(name.to_string())),
+                Err(_) => Err(src.err(i, "expected a directive name after '#'")),
+            },
+            '$' => self.macro_value(src, i),
+            ')' => Err(src.err(i, "expected a value, found ')' with no list open")),
+            ']' => Err(src.err(i, "expected a value, found ']' with no dimension set open")),
+            _ => {
+                if let Ok((rest, value)) = number(i) {
+                    if let Value::Label(count) = value {
+                        if let Some(r) = self.counted(src, rest, count, &loc)? {
+                            return Ok(r);
+                        }
+                    }
+                    return one(rest, value);
+                }
+                match word(i) {
+                    Ok((rest, w)) => one(rest, Value::Word(w.to_string())),
+                    Err(_) => Err(src.err(i, format!("expected a value, found '{c}'"))),
+                }
+            }
+        }
+    }
+
+    /// A count-prefixed list `N(…)` or uniform list `N{v}` after the count, if one follows.
+    #[allow(clippy::type_complexity)]
+    fn counted<'a>(
+        &mut self,
+        src: &Src,
+        after_count: &'a str,
+        count: i64,
+        count_loc: &Location,
+    ) -> Result<Option<(&'a str, Vec<Item>)>, CaseError> {
+        let next = self.skip(src, after_count)?;
+        let gap = &after_count[..after_count.len() - next.len()];
+        // `3(…)` or a count alone on its line with the list below (`8\n(`); a number ending a
+        // line before a list (`… 90 0 0 0\n (liquid gas) 1`) is a table row, not a count.
+        let list_follows = next.starts_with('(')
+            && (gap.is_empty()
+                || (gap.trim().is_empty()
+                    && gap.contains('\n')
+                    && first_on_line(&src.file.text, count_loc.offset)));
+        if count < 0 || !(list_follows || next.starts_with('{')) {
+            return Ok(None);
+        }
+        let count = count as usize;
+        if next.starts_with('(') {
+            let (rest, items) = self.list(src, next)?;
+            let found = element_count(&items);
+            if found != count {
+                return Err(CaseError::at(
+                    count_loc,
+                    format!("expected {count} elements as the count says, found a list of {found}"),
+                ));
+            }
+            return Ok(Some((
+                rest,
+                vec![Item::new(Value::List(items), count_loc.clone())],
+            )));
+        }
+        // `N{value}`: one token between the braces.
+        let inner = self.skip(src, &next[1..])?;
+        if inner.is_empty() || inner.starts_with('}') {
+            return Err(src.err(inner, "expected the value of the uniform list N{value}"));
+        }
+        let (rest, mut items) = self.token(src, inner)?;
+        let rest = self.skip(src, rest)?;
+        if items.len() != 1 || !rest.starts_with('}') {
+            return Err(src.err(rest, "expected '}' to end the uniform list N{value}"));
+        }
+        let item = items.pop().expect("one item");
+        Ok(Some((
+            &rest[1..],
+            vec![Item::new(
+                Value::UniformList(count, Box::new(item)),
+                count_loc.clone(),
+            )],
+        )))
+    }
+
+    /// `( token* )`.
+    fn list<'a>(&mut self, src: &Src, i: &'a str) -> Result<(&'a str, Vec<Item>), CaseError> {
+        let open = src.loc(i);
+        self.enter(src, i)?;
+        let mut items = Vec::new();
+        let mut i = &i[1..];
+        loop {
+            i = self.skip(src, i)?;
+            match i.chars().next() {
+                Some(')') => {
+                    self.depth -= 1;
+                    return Ok((&i[1..], items));
+                }
+                None | Some(';') | Some('}') => {
+                    let found = i
+                        .chars()
+                        .next()
+                        .map_or("the end of the file".to_string(), |c| format!("'{c}'"));
+                    let (line, col) = open.line_col();
+                    return Err(src.err(
+                        i,
+                        format!(
+                            "expected ')' to close the list opened at line {line} column {col}, found {found}"
+                        ),
+                    ));
+                }
+                Some(_) => {
+                    let (rest, more) = self.token(src, i)?;
+                    items.extend(more);
+                    i = rest;
+                }
+            }
+        }
+    }
+
+    /// `[0 1 -1 0 0 0 0]` or a named unit such as `[m/s]`.
+    fn dimensions<'a>(&self, src: &Src, i: &'a str) -> Result<(&'a str, Dimensions), CaseError> {
+        let (body_start, body) = match take_while::<_, _, nom::error::Error<&str>>(|c: char| {
+            !matches!(c, ']' | ';' | '{' | '}' | '[')
+        })(&i[1..])
+        {
+            Ok(r) => r,
+            Err(_) => unreachable!("take_while never fails on complete input"),
+        };
+        if !body_start.starts_with(']') {
+            return Err(src.err(
+                body_start,
+                "expected ']' to close the dimension set opened here",
+            ));
+        }
+        let rest = &body_start[1..];
+        let parts: Vec<&str> = body.split_whitespace().collect();
+        let numbers: Option<Vec<f64>> = parts.iter().map(|p| p.parse::<f64>().ok()).collect();
+        let dims = match numbers {
+            Some(e) if e.len() == 5 || e.len() == 7 => Dimensions::Exponents(e),
+            Some(e) if !e.is_empty() => {
+                return Err(src.err(
+                    &i[1..],
+                    format!("expected 5 or 7 dimension exponents, found {}", e.len()),
+                ))
+            }
+            _ => Dimensions::Named(body.trim().to_string()),
+        };
+        Ok((rest, dims))
+    }
+
+    /// `$name` in a value: the value it names, copied.
+    fn macro_value<'a>(
+        &mut self,
+        src: &Src,
+        i: &'a str,
+    ) -> Result<(&'a str, Vec<Item>), CaseError> {
+        let (rest, name) = self.macro_name(src, i)?;
+        let entry = self
+            .resolve(&name)
+            .ok_or_else(|| undefined(src, i, &name))?;
+        let items = match &entry.body {
+            EntryBody::Tokens(t) => t.clone(),
+            EntryBody::Dict(d) => vec![Item::new(Value::Dict(Box::new(d.clone())), d.loc.clone())],
+        };
+        self.charge(src, i, count_items(&items))?;
+        Ok((rest, items))
+    }
+
+    /// `$name` where a keyword is expected: the named dictionary's entries merged in here.
+    fn merge_macro<'a>(&mut self, src: &Src, i: &'a str) -> Result<&'a str, CaseError> {
+        let (rest, name) = self.macro_name(src, i)?;
+        let entry = self
+            .resolve(&name)
+            .ok_or_else(|| undefined(src, i, &name))?;
+        let EntryBody::Dict(d) = &entry.body else {
+            return Err(src.err(
+                i,
+                format!("expected '${name}' to name a dictionary to merge here, found a value"),
+            ));
+        };
+        let entries: Vec<Entry> = d.entries().to_vec();
+        let size = entries.iter().map(|e| entry_size(e)).sum();
+        self.charge(src, i, size)?;
+        for e in entries {
+            self.current().insert(e);
+        }
+        let after = self.skip(src, rest)?;
+        Ok(after.strip_prefix(';').unwrap_or(rest))
+    }
+
+    fn charge(&mut self, src: &Src, i: &str, tokens: usize) -> Result<(), CaseError> {
+        self.macro_tokens += tokens;
+        if self.macro_tokens > MAX_MACRO_TOKENS {
+            return Err(src.err(
+                i,
+                format!("expected macros to expand to at most {MAX_MACRO_TOKENS} tokens"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// `$name` or `${name}`.
+    fn macro_name<'a>(&self, src: &Src, i: &'a str) -> Result<(&'a str, String), CaseError> {
+        let after = &i[1..];
+        if let Some(braced) = after.strip_prefix('{') {
+            if let Some(end) = braced.find('}') {
+                return Ok((&braced[end + 1..], braced[..end].trim().to_string()));
+            }
+            return Err(src.err(i, "expected '}' to close '${'"));
+        }
+        match variable_name(after) {
+            Ok((rest, name)) => Ok((rest, name.to_string())),
+            Err(_) => Err(src.err(i, "expected a variable name after '$'")),
+        }
+    }
+
+    /// Finds a macro's entry with OpenFOAM's scoping: `$a` searches this dictionary then the
+    /// enclosing ones; `$..a` starts one level up (one more per extra dot); `$:a.b` starts at
+    /// the top; `a.b` descends into sub-dictionary `a` unless a keyword `a.b` exists.
+    fn resolve(&self, name: &str) -> Option<Entry> {
+        let depth = self.stack.len();
+        if let Some(path) = name.strip_prefix(':').or_else(|| name.strip_prefix('/')) {
+            return self.descend_from(0, &path.replace('/', "."));
+        }
+        let dots = name.chars().take_while(|&c| c == '.').count();
+        if dots > 0 {
+            let up = dots - 1;
+            let level = depth.checked_sub(1 + up)?;
+            return self.descend_from(level, &name[dots..]);
+        }
+        for d in self.stack.iter().rev() {
+            if let Some(e) = d.lookup(name) {
+                return Some(e.clone());
+            }
+        }
+        let (head, tail) = name.split_once('.')?;
+        for d in self.stack.iter().rev() {
+            if let Some(e) = d.lookup(head) {
+                return e.as_dict().and_then(|sub| descend(sub, tail));
+            }
+        }
+        None
+    }
+
+    /// Follows a dotted path down from the open dictionary at `level`; the path may lead into
+    /// a dictionary still being read (`geometry { r 1; c $:geometry.r; }`).
+    fn descend_from(&self, level: usize, path: &str) -> Option<Entry> {
+        if let Some(e) = descend(&self.stack[level], path) {
+            return Some(e);
+        }
+        let child = self.stack.get(level + 1)?;
+        let parent = &self.stack[level].name;
+        let own = child
+            .name
+            .strip_prefix(parent.as_str())?
+            .trim_start_matches('.');
+        let rest = path.strip_prefix(own)?.strip_prefix('.')?;
+        self.descend_from(level + 1, rest)
+    }
+
+    /// A directive where a keyword is expected.
+    fn directive<'a>(&mut self, src: &Src, i: &'a str) -> Result<&'a str, CaseError> {
+        let loc = src.loc(i);
+        let Ok((rest, name)) = directive_name(&i[1..]) else {
+            return Err(src.err(i, "expected a directive name after '#'"));
+        };
+        match name {
+            "include" | "includeIfPresent" | "sinclude" => {
+                let optional = name != "include";
+                let (rest, arg) = self.directive_argument(src, rest, name)?;
+                self.include(src, &loc, &arg, optional)?;
+                Ok(rest)
+            }
+            "includeEtc" | "includeFunc" | "includeFuncIfPresent" => {
+                let (rest, arg) = if name == "includeEtc" {
+                    self.directive_argument(src, rest, name)?
+                } else {
+                    // `#includeFunc` takes the rest of its line (`#includeFunc mag(U)`).
+                    let (rest, line) =
+                        not_line_ending::<_, nom::error::Error<&str>>(rest).unwrap_or((rest, ""));
+                    (rest, line.trim().to_string())
+                };
+                self.current().directives.push(Directive {
+                    name: name.to_string(),
+                    argument: arg,
+                    loc,
+                });
+                Ok(rest)
+            }
+            "inputMode" => Ok(self.directive_argument(src, rest, name)?.0),
+            "remove" => {
+                let rest = self.skip(src, rest)?;
+                let (rest, items) = if rest.starts_with('(') || rest.starts_with('$') {
+                    self.token(src, rest)?
+                } else {
+                    let (r, w) = self.directive_argument(src, rest, name)?;
+                    (r, vec![Item::new(Value::Word(w), loc.clone())])
+                };
+                let mut names = Vec::new();
+                for item in &items {
+                    match &item.value {
+                        Value::List(list) => names.extend(list.iter().map(|x| x.to_string())),
+                        Value::Word(w) | Value::Str(w) => names.push(w.clone()),
+                        _ => names.push(item.to_string()),
+                    }
+                }
+                for n in names {
+                    self.current().remove(&n);
+                }
+                Ok(rest)
+            }
+            other => Err(CaseError::at(
+                &loc,
+                format!(
+                    "unknown directive '#{other}' (expected #include, #includeIfPresent, \
+                     #includeEtc, #includeFunc, #inputMode or #remove here)"
+                ),
+            )),
+        }
+    }
+
+    /// A directive's one argument: a quoted string or a word.
+    fn directive_argument<'a>(
+        &self,
+        src: &Src,
+        i: &'a str,
+        name: &str,
+    ) -> Result<(&'a str, String), CaseError> {
+        let i = self.skip(src, i)?;
+        if i.starts_with('"') {
+            return quoted(i)
+                .map(|(rest, s)| (rest, s))
+                .ok_or_else(|| src.err(i, "expected '\"' to close the string opened here"));
+        }
+        match word(i) {
+            Ok((rest, w)) => Ok((rest, w.to_string())),
+            Err(_) => Err(src.err(i, format!("expected a file name or word after '#{name}'"))),
+        }
+    }
+
+    /// `#include "file"`: the file's entries are read into the current dictionary. The path
+    /// is relative to the including file; `$FOAM_CASE` and `<case>` name the case directory.
+    fn include(
+        &mut self,
+        src: &Src,
+        loc: &Location,
+        arg: &str,
+        optional: bool,
+    ) -> Result<(), CaseError> {
+        let case = self.case_dir.clone().unwrap_or_else(|| PathBuf::from("."));
+        let expanded = if let Some(rest) = arg.strip_prefix("$FOAM_CASE") {
+            format!("{}{rest}", case.display())
+        } else if let Some(rest) = arg.strip_prefix("<case>") {
+            format!("{}{rest}", case.display())
+        } else if let Some(rest) = arg.strip_prefix("<system>") {
+            format!("{}/system{rest}", case.display())
+        } else if let Some(rest) = arg.strip_prefix("<constant>") {
+            format!("{}/constant{rest}", case.display())
+        } else {
+            arg.to_string()
+        };
+        let path = Path::new(&expanded);
+        let path = if path.is_absolute() {
+            path.to_path_buf()
+        } else {
+            src.file
+                .path
+                .parent()
+                .unwrap_or_else(|| Path::new(""))
+                .join(path)
+        };
+        let gz = PathBuf::from(format!("{}.gz", path.display()));
+        if !path.exists() && !gz.exists() {
+            if optional {
+                return Ok(());
+            }
+            return Err(CaseError::at(
+                loc,
+                format!("cannot include \"{arg}\": file not found"),
+            ));
+        }
+        if self.include_depth >= MAX_INCLUDE_DEPTH {
+            return Err(CaseError::at(
+                loc,
+                format!("expected at most {MAX_INCLUDE_DEPTH} nested #include (does a file include itself?)"),
+            ));
+        }
+        let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
+        let inner = Src { file: &file };
+        self.include_depth += 1;
+        let result = self.body(&inner, &file.text, None);
+        self.include_depth -= 1;
+        result.map(|_| ())
+    }
+}
+
+/// Byte index of the `}` closing the `{` that `i` starts with.
+fn balanced_brace_end(i: &str) -> Option<usize> {
+    let mut depth = 0usize;
+    for (pos, c) in i.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(pos);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Elements of a counted list: a word followed by a dictionary is one element (the
+/// `name { … }` entries of `polyMesh/boundary`).
+fn element_count(items: &[Item]) -> usize {
+    let mut n = 0;
+    let mut k = 0;
+    while k < items.len() {
+        let pair = items[k].as_word().is_some()
+            && items
+                .get(k + 1)
+                .is_some_and(|next| next.as_dict().is_some());
+        k += if pair { 2 } else { 1 };
+        n += 1;
+    }
+    n
+}
+
+/// Whether only blanks stand between the start of the line and byte `offset`.
+fn first_on_line(text: &str, offset: usize) -> bool {
+    text[..offset]
+        .rsplit('\n')
+        .next()
+        .is_some_and(|line| line.trim().is_empty())
+}
+
+/// Whether top-level text starts a bare value: a list, or a count before a list.
+fn number_or_list(i: &str) -> bool {
+    if i.starts_with('(') {
+        return true;
+    }
+    match number(i) {
+        Ok((rest, Value::Label(_))) => rest.trim_start().starts_with('('),
+        _ => false,
+    }
+}
+
+fn scoped_name(parent: &str, key: &str) -> String {
+    if parent.is_empty() {
+        key.to_string()
+    } else {
+        format!("{parent}.{key}")
+    }
+}
+
+/// Follows a dotted path `a.b.c` down from `dict`.
+fn descend(dict: &Dict, path: &str) -> Option<Entry> {
+    if let Some(e) = dict.lookup(path) {
+        return Some(e.clone());
+    }
+    let (head, tail) = path.split_once('.')?;
+    dict.lookup(head)?.as_dict().and_then(|d| descend(d, tail))
+}
+
+fn undefined(src: &Src, i: &str, name: &str) -> CaseError {
+    src.err(
+        i,
+        format!(
+            "undefined variable '${name}': expected it to be defined above, in this or an \
+             enclosing dictionary"
+        ),
+    )
+}
+
+fn count_items(items: &[Item]) -> usize {
+    items
+        .iter()
+        .map(|item| match &item.value {
+            Value::List(inner) => 1 + count_items(inner),
+            Value::Dict(d) => 1 + d.entries().iter().map(entry_size).sum::<usize>(),
+            _ => 1,
+        })
+        .sum()
+}
+
+fn entry_size(e: &Entry) -> usize {
+    match &e.body {
+        EntryBody::Tokens(t) => 1 + count_items(t),
+        EntryBody::Dict(d) => 1 + d.entries().iter().map(entry_size).sum::<usize>(),
+    }
+}
+
+impl Dict {
+    /// Reads a dictionary file; see [`read_dict_file`].
+    pub fn read(path: &Path, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
+        read_dict_file(path, case_dir)
+    }
+
+    /// Parses text; see [`parse_dict`].
+    pub fn parse(text: &str, display: &str) -> Result<Dict, CaseError> {
+        parse_dict(text, display)
+    }
+}
+
+/// Parses `text` and panics if the parser breaks its contract: it must not panic, and an
+/// error must point inside the text (line within the file, column within that line or just
+/// past its end). Every accessor is also tried on every keyword of a parsed result. Shared by
+/// the fuzz target (`fuzz/`) and the property test.
+#[doc(hidden)]
+pub fn check_parser_invariants(text: &str) {
+    match parse_dict(text, "fuzz") {
+        Err(e) => {
+            let lines: Vec<&str> = text.split('\n').collect();
+            assert!(
+                e.line >= 1 && e.line <= lines.len(),
+                "line {} outside the text: {e}",
+                e.line
+            );
+            let width = lines[e.line - 1].trim_end_matches('\r').chars().count();
+            assert!(
+                e.col >= 1 && e.col <= width + 1,
+                "column {} outside line {}: {e}",
+                e.col,
+                e.line
+            );
+            assert!(e.excerpt().is_some());
+            assert!(
+                !e.to_string().contains('\n'),
+                "message is not one line: {e}"
+            );
+        }
+        Ok(dict) => exercise(&dict),
+    }
+}
+
+fn exercise(dict: &Dict) {
+    for e in dict.entries() {
+        let k = e.keyword();
+        let _ = dict.get_scalar(k);
+        let _ = dict.get_label(k);
+        let _ = dict.get_word(k);
+        let _ = dict.get_bool(k);
+        let _ = dict.get_vector(k);
+        if let Ok(sub) = dict.get_dict(k) {
+            exercise(sub);
+        }
+        if let Some(tokens) = e.as_tokens() {
+            for t in tokens {
+                let _ = t.to_string();
+                if let Some(list) = t.as_list() {
+                    let _ = list.iter().take(4).count();
+                }
+            }
+        }
+    }
+    let _ = dict.unused();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Dict {
+        parse_dict(text, "test").unwrap_or_else(|e| panic!("{}", e.report()))
+    }
+
+    fn err(text: &str) -> CaseError {
+        parse_dict(text, "test").expect_err("expected a parse error")
+    }
+
+    #[test]
+    fn header_comments_and_nested_dictionaries() {
+        let d = parse(
+            "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n\
+             // a comment\n/* block\n comment */ application icoFoam;\n\
+             sub { inner { x 1.5; } y -2; }\n",
+        );
+        assert_eq!(d.get_word("application").unwrap(), "icoFoam");
+        let sub = d.get_dict("sub").unwrap();
+        assert_eq!(sub.get_dict("inner").unwrap().get_scalar("x").unwrap(), 1.5);
+        assert_eq!(sub.get_scalar("y").unwrap(), -2.0);
+        assert_eq!(sub.get_dict("inner").unwrap().name, "sub.inner");
+    }
+
+    #[test]
+    fn numbers_do_not_swallow_words() {
+        let d = parse("a inflow; b nanoParticle; c infinity; d e5x; e 1st; f 1e-5; g -3; h .5;");
+        for (k, w) in [
+            ("a", "inflow"),
+            ("b", "nanoParticle"),
+            ("c", "infinity"),
+            ("d", "e5x"),
+            ("e", "1st"),
+        ] {
+            assert_eq!(d.get_word(k).unwrap(), w);
+        }
+        assert_eq!(d.get_scalar("f").unwrap(), 1e-5);
+        assert_eq!(d.get_scalar("g").unwrap(), -3.0);
+        assert_eq!(d.get_scalar("h").unwrap(), 0.5);
+        assert!(d.get_label("g").is_err());
+    }
+
+    #[test]
+    fn count_prefixed_and_uniform_lists() {
+        let d = parse(
+            "a 3((0 0 0)(1 1 1)(2 2 2));\nb List<vector> 2((1 2 3) (4 5 6));\nc 4{0.5};\n\
+             d table ((0 (1 0 0)) (1 (2 0 0)));\ne List<scalar>\n2\n(\n7\n8\n);",
+        );
+        let a = &d.get_tokens("a").unwrap()[0];
+        assert_eq!(a.as_list().unwrap().len(), 3);
+        assert_eq!(
+            a.as_list().unwrap().get(2).unwrap().as_vector(),
+            Some([2.0; 3])
+        );
+        let b = d.get_tokens("b").unwrap();
+        assert_eq!(b[0].as_word(), Some("List<vector>"));
+        assert_eq!(
+            b[1].as_list().unwrap().get(1).unwrap().as_vector(),
+            Some([4.0, 5.0, 6.0])
+        );
+        let c = d.get_tokens("c").unwrap()[0].as_list().unwrap();
+        assert_eq!(c.len(), 4);
+        assert_eq!(c.get(3).unwrap().as_scalar(), Some(0.5));
+        // A table row: a number, then a vector (not a count-prefixed list).
+        let row = d.get_tokens("d").unwrap()[1]
+            .as_list()
+            .unwrap()
+            .get(0)
+            .unwrap();
+        let row = row.as_list().unwrap();
+        assert_eq!(row.get(0).unwrap().as_label(), Some(0));
+        assert_eq!(row.get(1).unwrap().as_vector(), Some([1.0, 0.0, 0.0]));
+        assert_eq!(d.get_tokens("e").unwrap()[1].as_list().unwrap().len(), 2);
+    }
+
+    #[test]
+    fn dimensions_and_dimensioned_scalars() {
+        let d = parse("nu [0 2 -1 0 0 0 0] 0.01;\nold nu [0 2 -1 0 0 0 0] 1e-3;\nold2 old2 [0 2 -1 0 0 0 0] 2;\nu [m/s] 3;");
+        assert_eq!(d.get_scalar("nu").unwrap(), 0.01);
+        assert!(d.get_scalar("old").is_err());
+        assert_eq!(d.get_scalar("old2").unwrap(), 2.0);
+        assert_eq!(d.get_scalar("u").unwrap(), 3.0);
+        match &d.get_tokens("u").unwrap()[0].value {
+            Value::Dimensions(Dimensions::Named(n)) => assert_eq!(n, "m/s"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn macros_follow_scopes() {
+        let d = parse(
+            "U0 (1 0 0);\ninternalField uniform $U0;\n\
+             boundaryField { inlet { type fixedValue; value $internalField; }\n\
+             outlet { $inlet; type zeroGradient; } }\n\
+             geo { L 2; sub { x $..L; y $..L; z ${L}; } }\nw $geo.L;\nw2 $:geo.L;",
+        );
+        let inlet = d
+            .get_dict("boundaryField")
+            .unwrap()
+            .get_dict("inlet")
+            .unwrap();
+        let v = inlet.get_tokens("value").unwrap();
+        assert_eq!(v[0].as_word(), Some("uniform"));
+        assert_eq!(v[1].as_vector(), Some([1.0, 0.0, 0.0]));
+        let outlet = d
+            .get_dict("boundaryField")
+            .unwrap()
+            .get_dict("outlet")
+            .unwrap();
+        assert_eq!(outlet.get_word("type").unwrap(), "zeroGradient");
+        assert!(outlet.contains("value"));
+        let sub = d.get_dict("geo").unwrap().get_dict("sub").unwrap();
+        for k in ["x", "y", "z"] {
+            assert_eq!(sub.get_scalar(k).unwrap(), 2.0, "{k}");
+        }
+        assert_eq!(d.get_scalar("w").unwrap(), 2.0);
+        assert_eq!(d.get_scalar("w2").unwrap(), 2.0);
+        let e = err("a $nothing;");
+        assert_eq!((e.line, e.col), (1, 3));
+        assert!(e.message.contains("undefined variable '$nothing'"));
+    }
+
+    #[test]
+    fn regex_keys_match_whole_keyword_last_first_after_exact() {
+        let d = parse("\".*\" { t a; }\n\"(top|bottom)\" { t b; }\ntop { t c; }\n");
+        assert_eq!(d.get_dict("top").unwrap().get_word("t").unwrap(), "c");
+        assert_eq!(d.get_dict("bottom").unwrap().get_word("t").unwrap(), "b");
+        assert_eq!(d.get_dict("topx").unwrap().get_word("t").unwrap(), "a");
+    }
+
+    #[test]
+    fn booleans_strings_code_and_directives() {
+        let d = parse(
+            "a on; b off; c yes; d no; e true; f false; g none;\n\
+             s \"a;b\\\"c\";\ncode #{ x = 1; #};\n\
+             x #calc \"$a*2\";\n#includeEtc \"caseDicts/setConstraintTypes\"\n\
+             #inputMode merge\nfunctions { #includeFunc mag(U)\n }\n",
+        );
+        let want = [true, false, true, false, true, false, false];
+        for (k, w) in ["a", "b", "c", "d", "e", "f", "g"].iter().zip(want) {
+            assert_eq!(d.get_bool(k).unwrap(), w);
+        }
+        assert_eq!(d.get_word("s").unwrap(), "a;b\"c");
+        assert!(matches!(
+            d.get_tokens("code").unwrap()[0].value,
+            Value::Code(_)
+        ));
+        assert!(matches!(
+            d.get_tokens("x").unwrap()[0].value,
+            Value::Directive(_)
+        ));
+        assert_eq!(d.directives[0].name, "includeEtc");
+        let f = d.get_dict("functions").unwrap();
+        assert_eq!(f.directives[0].argument, "mag(U)");
+    }
+
+    #[test]
+    fn missing_semicolon_points_after_the_value() {
+        let e = err("a 1;\nnu 0.01\n}");
+        assert_eq!((e.line, e.col), (2, 8), "{e}");
+        assert!(e.message.contains("expected ';' to end the entry 'nu'"));
+        let e = err("d { type wall }");
+        assert_eq!((e.line, e.col), (1, 14), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "test:1:14: expected ';' to end the entry 'type'"
+        );
+        let excerpt = e.excerpt().unwrap();
+        assert!(excerpt.ends_with("|              ^"), "{excerpt}");
+    }
+
+    #[test]
+    fn unused_entries_are_listed() {
+        let d = parse("FoamFile { version 2; }\na 1; b 2; c { x 1; y 2; } e { z 1; }");
+        d.get_scalar("a").unwrap();
+        d.get_dict("c").unwrap().get_scalar("x").unwrap();
+        let unused: Vec<String> = d.unused().into_iter().map(|(k, _)| k).collect();
+        assert_eq!(unused, ["b", "c.y", "e"]);
+    }
+
+    #[test]
+    fn top_level_values_are_kept() {
+        let d = parse("FoamFile { class vectorField; }\n2\n(\n(0 0 0)\n(1 2 3)\n)\n");
+        assert_eq!(d.values.len(), 1);
+        assert_eq!(
+            d.values[0].as_list().unwrap().get(1).unwrap().as_vector(),
+            Some([1.0, 2.0, 3.0])
+        );
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_crash() {
+        let text = format!("a {};", "(".repeat(10_000));
+        let e = err(&text);
+        assert!(e.message.contains("nested"), "{e}");
+    }
+}

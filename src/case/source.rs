@@ -1,0 +1,194 @@
+//! Source files as read from disk (plain or gzip) and positions inside them.
+//!
+//! Every parsed token keeps a [`Location`]: the shared file plus a byte offset. Line and
+//! column are computed only when an error is reported, by a binary search in the line starts.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::error::CaseError;
+
+/// The two bytes every gzip stream starts with (RFC 1952, §2.3.1).
+const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// A file's text, with the name to show in messages.
+#[derive(Debug)]
+pub struct SourceFile {
+    /// Path on disk (empty for text parsed from memory).
+    pub path: PathBuf,
+    /// Path as shown to the user: relative to the case directory when inside it.
+    pub display: String,
+    /// The whole text (decompressed).
+    pub text: String,
+    /// Byte offset of the start of every line.
+    line_starts: Vec<usize>,
+}
+
+impl SourceFile {
+    /// A source held in memory, shown as `display` in messages.
+    pub fn from_text(path: PathBuf, display: String, text: String) -> Self {
+        let mut line_starts = vec![0];
+        line_starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
+        SourceFile {
+            path,
+            display,
+            text,
+            line_starts,
+        }
+    }
+
+    /// Reads a file, decompressing it when its name ends in `.gz` or its content starts with
+    /// the gzip magic bytes. When `path` does not exist but `path.gz` does, reads that one, as
+    /// OpenFOAM does. `case_dir` only shapes the name shown in messages.
+    pub fn read(path: &Path, case_dir: Option<&Path>) -> Result<SourceFile, CaseError> {
+        let mut path = path.to_path_buf();
+        if !path.exists() {
+            let mut gz = path.clone().into_os_string();
+            gz.push(".gz");
+            let gz = PathBuf::from(gz);
+            if gz.exists() {
+                path = gz;
+            }
+        }
+        let display = display_path(&path, case_dir);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            let reason = match e.kind() {
+                std::io::ErrorKind::NotFound => "file not found".to_string(),
+                _ => format!("cannot read the file: {e}"),
+            };
+            CaseError::in_file(display.clone(), reason)
+        })?;
+        let gzipped = path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&GZIP_MAGIC);
+        let bytes = if gzipped {
+            let mut out = Vec::new();
+            flate2::read::MultiGzDecoder::new(&bytes[..])
+                .read_to_end(&mut out)
+                .map_err(|e| {
+                    CaseError::in_file(display.clone(), format!("cannot decompress gzip data: {e}"))
+                })?;
+            out
+        } else {
+            bytes
+        };
+        match String::from_utf8(bytes) {
+            Ok(text) => Ok(SourceFile::from_text(path, display, text)),
+            Err(e) => {
+                let valid = e.utf8_error().valid_up_to();
+                let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+                let file = Arc::new(SourceFile::from_text(path, display, text));
+                // The lossy text keeps every byte before the first invalid one in place.
+                Err(CaseError::at(
+                    &Location::new(&file, valid),
+                    "expected UTF-8 text (binary file content is not supported)",
+                ))
+            }
+        }
+    }
+
+    /// 1-based line and column (in characters) of a byte offset.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.text.len());
+        let line = self.line_starts.partition_point(|&s| s <= offset) - 1;
+        let start = self.line_starts[line];
+        let col = self
+            .text
+            .get(start..offset)
+            .map_or(offset - start, |s| s.chars().count());
+        (line + 1, col + 1)
+    }
+
+    /// The text of a 1-based line, without its line break.
+    pub fn line_text(&self, line: usize) -> &str {
+        let Some(&start) = self.line_starts.get(line.wrapping_sub(1)) else {
+            return "";
+        };
+        let end = self
+            .line_starts
+            .get(line)
+            .map_or(self.text.len(), |&next| next - 1);
+        self.text
+            .get(start..end)
+            .unwrap_or("")
+            .trim_end_matches('\r')
+    }
+}
+
+/// A position in a source file.
+#[derive(Clone, Debug)]
+pub struct Location {
+    pub file: Arc<SourceFile>,
+    /// Byte offset into the file's text.
+    pub offset: usize,
+}
+
+impl Location {
+    pub fn new(file: &Arc<SourceFile>, offset: usize) -> Self {
+        Location {
+            file: file.clone(),
+            offset,
+        }
+    }
+
+    /// 1-based line and column.
+    pub fn line_col(&self) -> (usize, usize) {
+        self.file.line_col(self.offset)
+    }
+
+    /// `file:line:col`, for messages that point at a second place.
+    pub fn describe(&self) -> String {
+        let (line, col) = self.line_col();
+        format!("{}:{line}:{col}", self.file.display)
+    }
+}
+
+/// `path` relative to `case_dir` when it lies inside it, else as given.
+pub fn display_path(path: &Path, case_dir: Option<&Path>) -> String {
+    if let Some(dir) = case_dir {
+        if let Ok(rel) = path.strip_prefix(dir) {
+            return rel.display().to_string();
+        }
+        if let (Ok(p), Ok(d)) = (path.canonicalize(), dir.canonicalize()) {
+            if let Ok(rel) = p.strip_prefix(&d) {
+                return rel.display().to_string();
+            }
+        }
+    }
+    path.display().to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_count_characters_from_one() {
+        let f = SourceFile::from_text(PathBuf::new(), "t".into(), "ab\nµc d\n".into());
+        assert_eq!(f.line_col(0), (1, 1));
+        assert_eq!(f.line_col(3), (2, 1));
+        // 'd' is after a two-byte character: byte 7, character column 4.
+        assert_eq!(f.line_col(7), (2, 4));
+        assert_eq!(f.line_text(2), "µc d");
+        assert_eq!(f.line_text(3), "");
+    }
+
+    #[test]
+    fn gzip_is_detected_by_magic_bytes() {
+        use std::io::Write;
+        let dir = std::env::temp_dir().join(format!("fsim-source-gz-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("positions");
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        enc.write_all(b"a 1;\n").unwrap();
+        std::fs::write(&path, enc.finish().unwrap()).unwrap();
+        let f = SourceFile::read(&path, Some(&dir)).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(f.text, "a 1;\n");
+        assert_eq!(f.display, "positions");
+    }
+}

@@ -1,0 +1,200 @@
+//! The token tree of an entry's value: what stands between a keyword and its `;`.
+//!
+//! `internalField uniform (0 0 0);` is the stream `[Word("uniform"), List([0, 0, 0])]`.
+//! Every token keeps the [`Location`] it was read at (for a macro, where the macro's value was
+//! written), so that a type error can point at it.
+
+use std::fmt;
+
+use super::dictionary::Dict;
+use super::source::Location;
+
+/// One token of a value, with where it was read.
+#[derive(Clone, Debug)]
+pub struct Item {
+    pub value: Value,
+    pub loc: Location,
+}
+
+/// The kinds of token an OpenFOAM value is made of.
+#[derive(Clone, Debug)]
+pub enum Value {
+    /// A bare word: `uniform`, `List<vector>`, `div(phi,U)`, `on`, `inflow`.
+    Word(String),
+    /// A double-quoted string, unescaped.
+    Str(String),
+    /// A number written without a decimal point or exponent.
+    Label(i64),
+    /// Any other number.
+    Scalar(f64),
+    /// `( … )`, plain or count-prefixed (`3(…)`: the count is checked and dropped).
+    List(Vec<Item>),
+    /// `N{value}`: `count` copies of one value, kept unexpanded.
+    UniformList(usize, Box<Item>),
+    /// `[0 1 -1 0 0 0 0]` or a named form such as `[m/s]`.
+    Dimensions(Dimensions),
+    /// `{ … }` inside a value (a list of dictionaries, `#codeStream { … }`).
+    Dict(Box<Dict>),
+    /// A verbatim code block `#{ … #}`, kept as text and never run.
+    Code(String),
+    /// A `#name` directive inside a value (`#calc`, `#codeStream`), kept, never evaluated.
+    Directive(String),
+}
+
+/// A dimension set.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Dimensions {
+    /// Exponents of kg, m, s, K, mol, A, cd (5 or 7 of them).
+    Exponents(Vec<f64>),
+    /// A unit written by name, such as `m/s`, kept as written.
+    Named(String),
+}
+
+/// The elements of a list token, without expanding a uniform list.
+#[derive(Clone, Copy, Debug)]
+pub enum ListView<'a> {
+    Items(&'a [Item]),
+    Repeat(usize, &'a Item),
+}
+
+impl<'a> ListView<'a> {
+    pub fn len(&self) -> usize {
+        match self {
+            ListView::Items(items) => items.len(),
+            ListView::Repeat(n, _) => *n,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    pub fn get(&self, i: usize) -> Option<&'a Item> {
+        match *self {
+            ListView::Items(items) => items.get(i),
+            ListView::Repeat(n, item) => (i < n).then_some(item),
+        }
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &'a Item> + 'a {
+        let view = *self;
+        (0..view.len()).map(move |i| view.get(i).expect("index below len"))
+    }
+}
+
+impl Item {
+    pub fn new(value: Value, loc: Location) -> Self {
+        Item { value, loc }
+    }
+
+    /// The number, for a label or a scalar.
+    pub fn as_scalar(&self) -> Option<f64> {
+        match self.value {
+            Value::Label(n) => Some(n as f64),
+            Value::Scalar(x) => Some(x),
+            _ => None,
+        }
+    }
+
+    /// The integer, for a label.
+    pub fn as_label(&self) -> Option<i64> {
+        match self.value {
+            Value::Label(n) => Some(n),
+            _ => None,
+        }
+    }
+
+    /// The text of a bare word.
+    pub fn as_word(&self) -> Option<&str> {
+        match &self.value {
+            Value::Word(w) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// The elements of a list (plain or uniform).
+    pub fn as_list(&self) -> Option<ListView<'_>> {
+        match &self.value {
+            Value::List(items) => Some(ListView::Items(items)),
+            Value::UniformList(n, item) => Some(ListView::Repeat(*n, item)),
+            _ => None,
+        }
+    }
+
+    /// A list of exactly three numbers.
+    pub fn as_vector(&self) -> Option<[f64; 3]> {
+        let list = self.as_list()?;
+        if list.len() != 3 {
+            return None;
+        }
+        let mut v = [0.0; 3];
+        for (slot, item) in v.iter_mut().zip(list.iter()) {
+            *slot = item.as_scalar()?;
+        }
+        Some(v)
+    }
+
+    /// OpenFOAM's `Switch` words: `on/off`, `yes/no`, `true/false`, `y/n`, `t/f`, `none`.
+    pub fn as_bool(&self) -> Option<bool> {
+        match self.as_word()? {
+            "on" | "yes" | "true" | "y" | "t" => Some(true),
+            "off" | "no" | "false" | "n" | "f" | "none" => Some(false),
+            _ => None,
+        }
+    }
+
+    /// The dictionary inside a `{ … }` token.
+    pub fn as_dict(&self) -> Option<&Dict> {
+        match &self.value {
+            Value::Dict(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// A short description of the token for "found …" in messages.
+    pub fn describe(&self) -> String {
+        match &self.value {
+            Value::Word(w) => format!("the word '{w}'"),
+            Value::Str(s) => format!("the string \"{s}\""),
+            Value::Label(n) => format!("the integer {n}"),
+            Value::Scalar(x) => format!("the number {x}"),
+            Value::List(items) => format!("a list of {} elements", items.len()),
+            Value::UniformList(n, _) => format!("a uniform list of {n} elements"),
+            Value::Dimensions(_) => "a dimension set".to_string(),
+            Value::Dict(_) => "a dictionary".to_string(),
+            Value::Code(_) => "a code block #{ … #}".to_string(),
+            Value::Directive(d) => format!("the directive '#{d}' (fsim does not evaluate it)"),
+        }
+    }
+}
+
+impl fmt::Display for Item {
+    /// OpenFOAM's own spelling of the token, for messages and round trips.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.value {
+            Value::Word(w) => write!(f, "{w}"),
+            Value::Str(s) => write!(f, "{s:?}"),
+            Value::Label(n) => write!(f, "{n}"),
+            Value::Scalar(x) => write!(f, "{x:?}"),
+            Value::List(items) => {
+                write!(f, "(")?;
+                for (i, item) in items.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, " ")?;
+                    }
+                    write!(f, "{item}")?;
+                }
+                write!(f, ")")
+            }
+            Value::UniformList(n, item) => write!(f, "{n}{{{item}}}"),
+            Value::Dimensions(Dimensions::Exponents(e)) => {
+                let parts: Vec<String> = e.iter().map(|x| x.to_string()).collect();
+                write!(f, "[{}]", parts.join(" "))
+            }
+            Value::Dimensions(Dimensions::Named(s)) => write!(f, "[{s}]"),
+            Value::Dict(_) => write!(f, "{{ … }}"),
+            Value::Code(_) => write!(f, "#{{ … #}}"),
+            Value::Directive(d) => write!(f, "#{d}"),
+        }
+    }
+}
