@@ -9,4 +9,6 @@ pub mod error;
 pub mod fluid;
 pub mod grid;
 pub mod output;
+pub mod run;
+pub mod simulation;
 pub mod time_control;

@@ -1,0 +1,240 @@
+//! The time loop, read like the algorithm (DPMFoam's main file in spirit):
+//!
+//! ```text
+//! load and validate the case                  (nothing is written before this succeeds)
+//! build the simulation: grid, fluid, initial or restart state
+//! while time remains:
+//!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
+//!     evolve the fluid                        (momentum predictor, pressure projection)
+//!     check the solution                      (a diverged run stops, keeping its last time)
+//!     monitor, log
+//!     write the time directory when due       (whole or not at all)
+//! ```
+
+use crate::case::Case;
+use crate::cli::Options;
+use crate::error::FsimError;
+use crate::output::{
+    write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, RESTART_FILE_NAME,
+};
+use crate::simulation::{continues, Simulation, StepSizing};
+use std::time::Instant;
+
+/// Columns of the per-step fluid monitor `postProcessing/fluid/<startTime>/fluid.dat`.
+const FLUID_MONITOR_COLUMNS: [&str; 11] = [
+    "Time",
+    "deltaT",
+    "CoMax",
+    "divergence",
+    "kineticEnergy",
+    "Ux",
+    "Uy",
+    "Uz",
+    "drivingGradient",
+    "stepWallTime",
+    "step",
+];
+
+/// Runs `fsimFoam` with the given options.
+pub fn run(options: &Options) -> Result<(), FsimError> {
+    let case = load_case(options)?;
+    let threads = options.threads.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    if threads == 0 {
+        return Err(FsimError::input("-threads must be at least 1"));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| FsimError::run(format!("cannot start {threads} threads: {e}")))?;
+    pool.install(|| run_case(&case, options, threads))
+}
+
+/// Reads and validates every file of the case, listing the keywords fsim ignores.
+fn load_case(options: &Options) -> Result<Case, FsimError> {
+    let case = Case::load(&options.case).map_err(|e| FsimError::Input {
+        reason: e.to_string(),
+        excerpt: e.excerpt(),
+    })?;
+    for warning in &case.warnings {
+        eprintln!("fsimFoam: note: {warning}");
+    }
+    Ok(case)
+}
+
+fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimError> {
+    let output_error = |e: OutputError| FsimError::run(e.to_string());
+    let restart = if continues(case) {
+        crate::output::latest_time(&case.dir)
+            .map_err(output_error)?
+            .filter(|t| case.dir.join(&t.name).join(RESTART_FILE_NAME).exists())
+    } else {
+        None
+    };
+    let mut sim = Simulation::new(case, restart.as_ref())?;
+    check_first_step(&mut sim)?;
+    if options.dry_run {
+        print_plan(case, &mut sim, threads);
+        return Ok(());
+    }
+
+    let mut output = CaseOutput::open(
+        &case.dir,
+        case.control.time_precision,
+        case.control.purge_write,
+    )
+    .map_err(output_error)?;
+    let start_name = output.time_name(sim.time.time);
+    let mut monitor = Monitor::create(&case.dir, "fluid", &start_name, &FLUID_MONITOR_COLUMNS)
+        .map_err(output_error)?;
+    let mut log = Log::stdout();
+    log.banner(&banner(case, &sim, threads))?;
+    if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
+        // The start time gets its VTK files and restart state too, so the series opens at t0.
+        write_time(&mut output, &mut sim)?;
+    }
+    let start = sim.time.time;
+    log.line("Starting time loop")?;
+    log.line("")?;
+
+    while sim.time.running() {
+        let clock = Instant::now();
+        let dt = sim.next_time_step()?;
+        let report = sim.evolve_fluid(dt);
+        let write_due = sim.time.advance(dt);
+        let diagnostics = sim.check_health()?;
+        let wall = clock.elapsed().as_secs_f64();
+
+        log.time(&output.time_name(sim.time.time))?;
+        log.line(&format!(
+            "Courant Number max: {:.6}\ndeltaT = {}\nProjection: divergence = {:.3e}, kinetic \
+             energy = {:.6e}",
+            diagnostics.max_courant, dt, diagnostics.divergence, diagnostics.kinetic_energy
+        ))?;
+        if let Some(g) = report.driving_gradient {
+            log.line(&format!("meanVelocityForce: pressure gradient = {g:.6e}"))?;
+        }
+        let [ux, uy, uz] = diagnostics.mean_velocity;
+        monitor
+            .row(&[
+                sim.time.time,
+                dt,
+                diagnostics.max_courant,
+                diagnostics.divergence,
+                diagnostics.kinetic_energy,
+                ux,
+                uy,
+                uz,
+                report.driving_gradient.unwrap_or(0.0),
+                wall,
+                sim.time.step as f64,
+            ])
+            .map_err(output_error)?;
+        if write_due {
+            write_time(&mut output, &mut sim)?;
+        }
+        log.execution_time()?;
+        log.progress(sim.time.time, start, case.control.end_time);
+    }
+    monitor.flush().map_err(output_error)?;
+    log.end()?;
+    Ok(())
+}
+
+/// A fixed `deltaT` above the scheme's bound for the initial field is bad input (exit 2),
+/// found before anything is written.
+fn check_first_step(sim: &mut Simulation) -> Result<(), FsimError> {
+    if let StepSizing::Fixed(_) = sim.sizing {
+        sim.next_time_step()
+            .map_err(|e| FsimError::input(e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// Writes the current time directory: fluid fields for ParaView and meshio, restart state.
+fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimError> {
+    let output_error = |e: OutputError| FsimError::run(e.to_string());
+    let grid = sim.grid().clone();
+    let mut velocity = vec![[0.0; 3]; grid.cell_count()];
+    sim.fluid.cell_velocity(&mut velocity);
+    let pressure = sim.fluid.pressure().to_vec();
+    let dir = output.begin(sim.time.time).map_err(output_error)?;
+    let title = format!("fsim t = {}", output.time_name(sim.time.time));
+    write_fluid(
+        dir.path(),
+        &grid,
+        &title,
+        &[
+            CellData::Vector("U", &velocity),
+            CellData::Scalar("p", &pressure),
+        ],
+    )
+    .map_err(output_error)?;
+    sim.write_restart(&dir.file(RESTART_FILE_NAME))?;
+    output.commit(dir).map_err(output_error)?;
+    Ok(())
+}
+
+fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
+    Banner {
+        exec: std::env::args().collect::<Vec<_>>().join(" "),
+        case: case.dir.clone(),
+        model: case.coupling.model.name().to_string(),
+        threads,
+        grid: sim.grid().clone(),
+        extra: vec![
+            (
+                "Scheme".to_string(),
+                sim.fluid.settings().scheme.name().to_string(),
+            ),
+            ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
+        ],
+    }
+}
+
+/// `-dry-run`: what the run would do, and roughly what it would cost.
+fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
+    let grid = sim.grid().clone();
+    let cells = grid.cell_count();
+    println!("Case    : {}", case.dir.display());
+    println!("Plan    : {}", case.summary());
+    println!("Scheme  : {}", sim.fluid.settings().scheme.name());
+    let span = case.control.end_time - sim.time.time;
+    let dt = sim
+        .next_time_step()
+        .unwrap_or(sim.dt)
+        .max(f64::MIN_POSITIVE);
+    let bound = sim.fluid.stability_bound();
+    let steps = (span / dt).ceil().max(0.0);
+    println!(
+        "Steps   : about {steps} of {dt:e} s from t = {} to {} s (stability bound {bound:e} s{})",
+        sim.time.time,
+        case.control.end_time,
+        if case.control.adjust_time_step {
+            ", adjusted by maxCo as the flow develops"
+        } else {
+            ""
+        }
+    );
+    let writes = match case.control.write_control {
+        crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
+        _ => span / case.control.write_interval,
+    }
+    .floor();
+    println!(
+        "Writes  : about {writes} time directories (+ the start and the end), each about {:.1} MB",
+        cells as f64 * 2.0 * 4.0 * 8.0 / 1e6
+    );
+    let memory = sim.fluid.bytes_per_cell() * cells as f64;
+    println!("Memory  : about {:.1} MB for the fluid", memory / 1e6);
+    // Throughput measured by tools/bench on 2 cores (README); per thread, RK3 step.
+    let rate = 4.0e6 * threads as f64;
+    println!(
+        "Run time: about {:.0} s on {threads} thread(s) (at {:.0} million cell-steps/s)",
+        steps * cells as f64 / rate * sim.fluid.settings().scheme.stages().len() as f64 / 3.0,
+        rate / 1e6
+    );
+}

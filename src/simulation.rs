@@ -1,0 +1,331 @@
+//! A case turned into a running simulation: the grid, the fluid with its boundary conditions
+//! and driving, the time axis, and (later) the particles and their coupling.
+//!
+//! Everything a case asks for is checked here, before the first step: a boundary condition
+//! the solver cannot honour, a time scheme it does not know, a fixed `deltaT` above the
+//! scheme's stability bound (paper eq. 3) all stop the run with exit code 2.
+
+use crate::case::{Case, CouplingModel, PatchType, PressureBc, StartFrom, VelocityBc};
+use crate::error::FsimError;
+use crate::fluid::{
+    BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
+    MeanVelocityForce, StepReport, TimeScheme,
+};
+use crate::grid::Grid;
+use crate::output::{RestartHeader, RestartState, TimeEntry};
+use crate::time_control::TimeControl;
+
+/// How each step's size is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepSizing {
+    /// `adjustTimeStep no`: controlDict's `deltaT`, which must stay under the scheme's bound.
+    Fixed(f64),
+    /// `adjustTimeStep yes`: from `maxCo`, never above `maxDeltaT` nor the scheme's bound.
+    Adaptive { max_co: f64, max_delta_t: f64 },
+}
+
+/// The state of a run between two steps.
+pub struct Simulation {
+    pub fluid: FluidSolver,
+    pub time: TimeControl,
+    pub sizing: StepSizing,
+    /// The last step taken (controlDict's `deltaT` before the first).
+    pub dt: f64,
+    pub model: CouplingModel,
+    /// Fluid density, kg/m³ (the solver works with kinematic pressure p/ρ).
+    pub rho: f64,
+}
+
+impl Simulation {
+    /// Builds the simulation from a validated case, starting from the case's initial fields,
+    /// or from the restart state of `restart` when continuing (`startFrom latestTime`).
+    pub fn new(case: &Case, restart: Option<&TimeEntry>) -> Result<Self, FsimError> {
+        if case.coupling.model != CouplingModel::None {
+            return Err(FsimError::input(format!(
+                "constant/couplingProperties: model '{}' is not available yet in this fsim \
+                 (only the fluid alone, model none, runs)",
+                case.coupling.model.name()
+            )));
+        }
+        let grid = case.mesh.grid.clone();
+        let bc = boundary_conditions(case)?;
+        let scheme = match &case.time_scheme {
+            None => TimeScheme::default(),
+            Some(name) => TimeScheme::from_name(name).ok_or_else(|| {
+                FsimError::input(format!(
+                    "system/fvSolution: unknown fsim timeScheme '{name}'; expected one of \
+                     Euler, RK2, RK3, RK3CN"
+                ))
+            })?,
+        };
+        let settings = FluidSettings {
+            nu: case.transport.nu,
+            scheme,
+            body_force: [0.0; 3],
+        };
+        let mut fluid = FluidSolver::new(grid.clone(), bc, settings)
+            .map_err(|e| FsimError::input(format!("case: {e}")))?;
+        fluid
+            .set_mean_velocity_force(mean_velocity_force(case)?)
+            .map_err(|e| FsimError::input(format!("fvOptions: {e}")))?;
+
+        let control = &case.control;
+        let sizing = if control.adjust_time_step {
+            StepSizing::Adaptive {
+                max_co: control.max_co,
+                max_delta_t: control.max_delta_t,
+            }
+        } else {
+            StepSizing::Fixed(control.delta_t)
+        };
+        let write_control = match control.write_control {
+            crate::case::WriteControl::TimeStep => crate::time_control::WriteControl::TimeStep,
+            crate::case::WriteControl::RunTime => crate::time_control::WriteControl::RunTime,
+            crate::case::WriteControl::AdjustableRunTime => {
+                crate::time_control::WriteControl::AdjustableRunTime
+            }
+        };
+
+        let mut sim = Simulation {
+            fluid,
+            time: TimeControl::new(
+                control.start_time,
+                0,
+                control.end_time,
+                write_control,
+                control.write_interval,
+            ),
+            sizing,
+            dt: control.delta_t,
+            model: case.coupling.model,
+            rho: case.transport.rho,
+        };
+        match restart {
+            Some(entry) => sim.restore(&case.dir.join(&entry.name), write_control, control)?,
+            None => sim.set_initial_fields(case),
+        }
+        Ok(sim)
+    }
+
+    fn set_initial_fields(&mut self, case: &Case) {
+        let cells = case.mesh.grid.cell_count();
+        self.fluid.set_cell_velocity(&case.fields.u.to_vec(cells));
+        // The initial field need not be discretely divergence-free: project it once, as the
+        // first pressure correction would.
+        self.fluid.project();
+        self.fluid.set_time(self.time.time);
+    }
+
+    fn restore(
+        &mut self,
+        time_dir: &std::path::Path,
+        write_control: crate::time_control::WriteControl,
+        control: &crate::case::ControlDict,
+    ) -> Result<(), FsimError> {
+        let path = time_dir.join(crate::output::RESTART_FILE_NAME);
+        let state = RestartState::read(&path).map_err(|e| FsimError::input(e.to_string()))?;
+        for name in FluidSolver::RESTART_NAMES {
+            let data = state.array(name).ok_or_else(|| {
+                FsimError::input(format!("{}: no array '{name}'", path.display()))
+            })?;
+            self.fluid
+                .restore_array(name, data)
+                .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+        }
+        let header = &state.header;
+        self.time = TimeControl::new(
+            header.time,
+            header.step,
+            control.end_time,
+            write_control,
+            control.write_interval,
+        );
+        self.dt = header.delta_t;
+        Ok(())
+    }
+
+    /// The grid of the fluid.
+    pub fn grid(&self) -> &Grid {
+        self.fluid.grid()
+    }
+
+    /// The step to take now: controlDict's `deltaT`, or the `maxCo` rule; never above the
+    /// scheme's stability bound (paper eq. 3 for the explicit Euler scheme), never past the
+    /// next write time for `adjustableRunTime` nor past `endTime`.
+    pub fn next_time_step(&mut self) -> Result<f64, FsimError> {
+        let allowed = match self.sizing {
+            StepSizing::Fixed(dt) => {
+                let bound = self.fluid.stability_bound();
+                if dt > bound {
+                    return Err(FsimError::run(format!(
+                        "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the {} \
+                         scheme at t = {} s (paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)); lower \
+                         deltaT or set adjustTimeStep yes",
+                        self.fluid.settings().scheme.name(),
+                        self.time.time
+                    )));
+                }
+                dt
+            }
+            StepSizing::Adaptive {
+                max_co,
+                max_delta_t,
+            } => {
+                let previous = if self.time.step == 0 {
+                    // OpenFOAM starts from deltaT and lets the Courant rule shrink it.
+                    self.dt / 1.2
+                } else {
+                    self.dt
+                };
+                self.fluid.adaptive_dt(previous, max_co, max_delta_t)
+            }
+        };
+        Ok(self.time.step_size(allowed))
+    }
+
+    /// Advances the fluid by `dt`: momentum predictor, pressure projection, bulk driving.
+    pub fn evolve_fluid(&mut self, dt: f64) -> StepReport {
+        let report = self.fluid.step(dt);
+        self.dt = dt;
+        report
+    }
+
+    /// Divergence, energy, mean velocity and Courant number of the last step; a velocity
+    /// that is no longer finite means the run diverged.
+    pub fn check_health(&mut self) -> Result<FluidDiagnostics, FsimError> {
+        let d = self.fluid.diagnostics(self.dt);
+        if !d.kinetic_energy.is_finite() || !d.max_courant.is_finite() {
+            return Err(FsimError::run(format!(
+                "the solution diverged at t = {} s (step {}): the velocity is no longer finite",
+                self.time.time, self.time.step
+            )));
+        }
+        Ok(d)
+    }
+
+    /// Writes the restart state (every array a bit-identical continuation needs).
+    pub fn write_restart(&mut self, path: &std::path::Path) -> Result<(), FsimError> {
+        let header = RestartHeader::new(self.time.time, self.time.step, self.dt);
+        let arrays = self.fluid.restart_arrays();
+        header
+            .write(path, &arrays)
+            .map_err(|e| FsimError::run(e.to_string()))
+    }
+}
+
+/// Whether the case starts from the latest time directory.
+pub fn continues(case: &Case) -> bool {
+    case.control.start_from == StartFrom::LatestTime
+}
+
+/// The `meanVelocityForce` of the case, along the one axis its `Ubar` points.
+fn mean_velocity_force(case: &Case) -> Result<Option<MeanVelocityForce>, FsimError> {
+    match case.mean_velocity_forces.as_slice() {
+        [] => Ok(None),
+        [one] => {
+            let axes: Vec<usize> = (0..3).filter(|&d| one.ubar[d] != 0.0).collect();
+            match axes.as_slice() {
+                [d] => Ok(Some(MeanVelocityForce::new(
+                    *d,
+                    one.ubar[*d],
+                    one.relaxation,
+                ))),
+                _ => Err(FsimError::input(format!(
+                    "fvOptions '{}': fsim drives the flow along one axis; Ubar ({} {} {}) \
+                     must have exactly one non-zero component",
+                    one.name, one.ubar[0], one.ubar[1], one.ubar[2]
+                ))),
+            }
+        }
+        _ => Err(FsimError::input(
+            "fvOptions: fsim takes at most one meanVelocityForce".to_string(),
+        )),
+    }
+}
+
+/// The solver's condition on each box face, from the patch type and the `U`/`p` conditions
+/// the case gives it.
+fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
+    let mesh = &case.mesh;
+    let fields = &case.fields;
+    let mut faces: [FaceCondition; 6] = std::array::from_fn(|_| FaceCondition::Periodic);
+    for (face, slot) in faces.iter_mut().enumerate() {
+        let index = mesh.face_patch[face];
+        let patch = &mesh.patches[index];
+        let (u, p) = (&fields.u_bc[index], &fields.p_bc[index]);
+        let cannot = || {
+            FsimError::input(format!(
+                "0/{} and 0/p: fsim cannot honour U '{}' with p '{}' on patch '{}' ({})",
+                fields.velocity_name,
+                velocity_bc_name(u),
+                pressure_bc_name(p),
+                patch.name,
+                patch.kind.name()
+            ))
+        };
+        *slot = match patch.kind {
+            PatchType::Cyclic => FaceCondition::Periodic,
+            PatchType::Empty => FaceCondition::Empty,
+            PatchType::Symmetry | PatchType::SymmetryPlane => FaceCondition::Slip,
+            PatchType::Wall | PatchType::Patch => match (u, p) {
+                (VelocityBc::Slip, _) => FaceCondition::Slip,
+                (VelocityBc::NoSlip, PressureBc::ZeroGradient | PressureBc::FixedFluxPressure) => {
+                    FaceCondition::Wall { velocity: [0.0; 3] }
+                }
+                (
+                    VelocityBc::FixedValue(v),
+                    PressureBc::ZeroGradient | PressureBc::FixedFluxPressure,
+                ) => {
+                    if patch.kind == PatchType::Wall {
+                        FaceCondition::Wall { velocity: *v }
+                    } else {
+                        FaceCondition::Inlet { velocity: *v }
+                    }
+                }
+                (
+                    VelocityBc::InterstitialInletVelocity { inlet_velocity, .. },
+                    PressureBc::ZeroGradient | PressureBc::FixedFluxPressure,
+                ) => FaceCondition::Inlet {
+                    velocity: *inlet_velocity,
+                },
+                (
+                    VelocityBc::ZeroGradient
+                    | VelocityBc::PressureInletOutletVelocity
+                    | VelocityBc::InletOutlet { .. },
+                    PressureBc::FixedValue(p0) | PressureBc::TotalPressure { p0 },
+                ) => FaceCondition::Outlet { pressure: *p0 },
+                _ => return Err(cannot()),
+            },
+        };
+    }
+    Ok(BoundaryConditions { faces })
+}
+
+fn velocity_bc_name(bc: &VelocityBc) -> &'static str {
+    match bc {
+        VelocityBc::NoSlip => "noSlip",
+        VelocityBc::FixedValue(_) => "fixedValue",
+        VelocityBc::ZeroGradient => "zeroGradient",
+        VelocityBc::Cyclic => "cyclic",
+        VelocityBc::Symmetry => "symmetry",
+        VelocityBc::SymmetryPlane => "symmetryPlane",
+        VelocityBc::Slip => "slip",
+        VelocityBc::Empty => "empty",
+        VelocityBc::PressureInletOutletVelocity => "pressureInletOutletVelocity",
+        VelocityBc::InletOutlet { .. } => "inletOutlet",
+        VelocityBc::InterstitialInletVelocity { .. } => "interstitialInletVelocity",
+    }
+}
+
+fn pressure_bc_name(bc: &PressureBc) -> &'static str {
+    match bc {
+        PressureBc::ZeroGradient => "zeroGradient",
+        PressureBc::FixedFluxPressure => "fixedFluxPressure",
+        PressureBc::FixedValue(_) => "fixedValue",
+        PressureBc::TotalPressure { .. } => "totalPressure",
+        PressureBc::Cyclic => "cyclic",
+        PressureBc::Symmetry => "symmetry",
+        PressureBc::SymmetryPlane => "symmetryPlane",
+        PressureBc::Empty => "empty",
+    }
+}
