@@ -78,13 +78,7 @@ impl Simulation {
         } else {
             StepSizing::Fixed(control.delta_t)
         };
-        let write_control = match control.write_control {
-            crate::case::WriteControl::TimeStep => crate::time_control::WriteControl::TimeStep,
-            crate::case::WriteControl::RunTime => crate::time_control::WriteControl::RunTime,
-            crate::case::WriteControl::AdjustableRunTime => {
-                crate::time_control::WriteControl::AdjustableRunTime
-            }
-        };
+        let write_control = control.write_control;
 
         let mut sim = Simulation {
             fluid,
@@ -119,7 +113,7 @@ impl Simulation {
     fn restore(
         &mut self,
         time_dir: &std::path::Path,
-        write_control: crate::time_control::WriteControl,
+        write_control: crate::case::WriteControl,
         control: &crate::case::ControlDict,
     ) -> Result<(), FsimError> {
         let path = time_dir.join(crate::output::RESTART_FILE_NAME);

@@ -7,13 +7,7 @@
 //! as OpenFOAM does with `adjustTimeStep yes`. The last step always lands on `endTime`, and
 //! the final time is always written so that a run can be continued from it.
 
-/// How write times are chosen (controlDict `writeControl`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum WriteControl {
-    TimeStep,
-    RunTime,
-    AdjustableRunTime,
-}
+pub use crate::case::WriteControl;
 
 /// The time axis of a run.
 #[derive(Clone, Debug)]
@@ -94,7 +88,7 @@ impl TimeControl {
         let write = match self.write_control {
             WriteControl::TimeStep => {
                 let every = self.write_interval.round().max(1.0) as u64;
-                self.step % every == 0
+                self.step.is_multiple_of(every)
             }
             WriteControl::RunTime | WriteControl::AdjustableRunTime => {
                 let mut hit = false;
