@@ -34,7 +34,9 @@ impl TimeDirectory {
     /// Starts writing time `time_name` of the case: creates the empty hidden directory
     /// `<case>/.<time_name>.partial/`, removing a stale one left by a crash.
     pub fn begin(case_dir: &Path, time_name: &str) -> Result<Self, OutputError> {
-        if time_name.parse::<f64>().map_or(true, |t| !t.is_finite()) {
+        let is_time =
+            looks_numeric(time_name) && time_name.parse::<f64>().is_ok_and(f64::is_finite);
+        if !is_time {
             return Err(OutputError::invalid(
                 &case_dir.join(time_name),
                 "a time directory name must be a finite number",
@@ -378,5 +380,9 @@ mod tests {
         let case = ScratchDir::new("refuse");
         assert!(TimeDirectory::begin(case.path(), "latest").is_err());
         assert!(TimeDirectory::begin(case.path(), "inf").is_err());
+        assert!(
+            TimeDirectory::begin(case.path(), ".5").is_err(),
+            "would be hidden"
+        );
     }
 }
