@@ -6,10 +6,9 @@ recomputed here: 1e-12 absolute (the Rust writer and numpy evaluate the same for
 cell centres differ by a few ulps between `origin + (i + ½) h` and the mean of 8 corners).
 Values compared between readers are compared exactly.
 
-Set FSIM_CHECK_CASES=dir1:dir2 to run the generic checks on finished runs as well.
+test_tutorials.py runs the same checks on the tutorials as fsimFoam writes them.
 """
 
-import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -167,12 +166,3 @@ def test_checks_fail_on_damaged_output(sample_case, tmp_path):
     restart.write_bytes(bytes(raw))
     with pytest.raises(AssertionError, match="checksum"):
         vtk_checks.read_restart(restart)
-
-
-CASES = [c for c in os.environ.get("FSIM_CHECK_CASES", "").split(os.pathsep) if c]
-
-
-@pytest.mark.skipif(not CASES, reason="FSIM_CHECK_CASES not set")
-@pytest.mark.parametrize("case", CASES)
-def test_finished_run(case):
-    vtk_checks.check_case(Path(case), log=lambda *_: None)
