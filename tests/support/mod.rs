@@ -1,0 +1,101 @@
+//! Helpers for tests that run `fsimFoam` on copies of the tutorials.
+#![allow(dead_code)]
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A scratch directory removed when dropped.
+pub struct Scratch(pub PathBuf);
+
+impl Scratch {
+    pub fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!(
+            "fsim-test-{tag}-{}-{:?}",
+            std::process::id(),
+            std::thread::current().id()
+        ));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+fn copy_tree(src: &Path, dst: &Path) {
+    fs::create_dir_all(dst).unwrap();
+    for entry in fs::read_dir(src).unwrap() {
+        let entry = entry.unwrap();
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        // Outputs of an earlier run in the tutorial folder are not inputs.
+        if name.starts_with("fluid.vt") || name == "restart.bin" || name == "particles.vtu" {
+            continue;
+        }
+        let to = dst.join(&*name);
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&entry.path(), &to);
+        } else {
+            fs::copy(entry.path(), to).unwrap();
+        }
+    }
+}
+
+/// Copies the input folders of `tutorials/<name>` to `<dir>/<as_name>`.
+pub fn copy_tutorial(name: &str, dir: &Path, as_name: &str) -> PathBuf {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tutorials")
+        .join(name);
+    let case = dir.join(as_name);
+    for sub in ["system", "constant", "0"] {
+        copy_tree(&src.join(sub), &case.join(sub));
+    }
+    case
+}
+
+/// Sets `keyword value;` in a dictionary file, replacing the entry or appending it.
+pub fn set_entry(file: &Path, keyword: &str, value: &str) {
+    let text = fs::read_to_string(file).unwrap();
+    let mut found = false;
+    let mut out: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let first = line.split_whitespace().next();
+            if first == Some(keyword) && line.trim_end().ends_with(';') && !found {
+                found = true;
+                format!("{keyword} {value};")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect();
+    if !found {
+        out.push(format!("{keyword} {value};"));
+    }
+    fs::write(file, out.join("\n") + "\n").unwrap();
+}
+
+/// Runs fsimFoam on `case` with extra arguments.
+pub fn fsim(case: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fsimFoam"))
+        .arg("-case")
+        .arg(case)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Names of the entries of a directory, sorted.
+pub fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
