@@ -35,7 +35,7 @@ fn run(solver: &mut FluidSolver, t_end: f64, dt_max: f64) -> f64 {
     let mut worst_div: f64 = 0.0;
     for _ in 0..steps {
         solver.step(dt);
-        worst_div = worst_div.max(solver.diagnostics(dt).divergence);
+        worst_div = worst(worst_div, solver.diagnostics(dt).divergence);
     }
     worst_div
 }
@@ -104,7 +104,7 @@ fn taylor_green_error(n: usize, nu: f64, t_end: f64) -> f64 {
                     (idx[d] as f64 - if d == c { 1.0 } else { 0.5 }) * g.h[d]
                 });
                 let e = s.velocity()[c][l.index(i, j, 1)] - taylor_green(c, x, decay);
-                err = err.max(e.abs());
+                err = worst(err, e.abs());
             }
         }
     }
@@ -121,4 +121,13 @@ fn taylor_green_velocity_error_is_second_order() {
     let order = [(e[0] / e[1]).log2(), (e[1] / e[2]).log2()];
     eprintln!("Taylor–Green (n×n×1, RK3) max velocity errors 16/32/64: {:.3e} {:.3e} {:.3e}; observed orders {:.3} {:.3}", e[0], e[1], e[2], order[0], order[1]);
     assert!(order[0] >= 1.9 && order[1] >= 1.9, "orders {order:?}");
+}
+
+/// Larger of two errors, NaN if either is (`f64::max` would drop a NaN).
+fn worst(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
 }

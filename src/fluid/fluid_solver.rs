@@ -3,12 +3,15 @@
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::diagnostics::FluidDiagnostics;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
-use super::momentum::{accumulate_tendency, add_scaled, MomentumTerms};
+use super::momentum::{
+    accumulate_tendency, add_scaled, semi_implicit_rhs, store_momentum_box, MomentumTerms,
+};
 use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
-use super::time_scheme::TimeScheme;
+use super::time_scheme::{TimeScheme, SMR_STAGES};
 use crate::grid::Grid;
 use rayon::prelude::*;
 
@@ -66,6 +69,8 @@ pub struct FluidSolver {
     q: [Vec<f64>; 3],
     source: Option<[Vec<f64>; 3]>,
     poisson: SpectralPoisson,
+    /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
+    implicit: Option<ImplicitViscosity>,
     drive: Option<MeanVelocityForce>,
     time: f64,
     momentum_ranges: [[(usize, usize); 3]; 3],
@@ -101,6 +106,7 @@ impl FluidSolver {
             p: vec![0.0; grid.cell_count()],
             source: None,
             poisson,
+            implicit: None,
             drive: None,
             time: 0.0,
             momentum_ranges,
@@ -113,6 +119,7 @@ impl FluidSolver {
             settings,
         };
         fill_velocity_ghosts(&s.layout, &s.bc, &mut s.u);
+        s.set_scheme(s.settings.scheme)?;
         Ok(s)
     }
 
@@ -128,9 +135,30 @@ impl FluidSolver {
     pub fn settings(&self) -> &FluidSettings {
         &self.settings
     }
-    /// Changes ν, the scheme or the body force between steps.
-    pub fn settings_mut(&mut self) -> &mut FluidSettings {
-        &mut self.settings
+    /// Changes the viscosity between steps.
+    pub fn set_nu(&mut self, nu: f64) {
+        self.settings.nu = nu;
+    }
+    /// Changes the uniform body force between steps.
+    pub fn set_body_force(&mut self, f: [f64; 3]) {
+        self.settings.body_force = f;
+    }
+    /// Changes the time scheme, preparing the implicit viscous solvers if it needs them
+    /// (fails for `RK3CN` with outlets).
+    pub fn set_scheme(&mut self, scheme: TimeScheme) -> Result<(), String> {
+        if scheme.is_semi_implicit() {
+            if self.implicit.is_none() {
+                self.implicit = Some(ImplicitViscosity::new(
+                    &self.grid,
+                    &self.bc,
+                    &self.momentum_ranges,
+                )?);
+            }
+        } else {
+            self.implicit = None;
+        }
+        self.settings.scheme = scheme;
+        Ok(())
     }
     pub fn time(&self) -> f64 {
         self.time
@@ -308,6 +336,9 @@ impl FluidSolver {
         dt: f64,
         hook: &mut dyn FnMut(PredictedVelocity<'_>),
     ) -> StepReport {
+        if self.settings.scheme.is_semi_implicit() {
+            return self.step_semi_implicit(dt, hook);
+        }
         let stages = self.settings.scheme.stages();
         let t0 = self.time;
         let h = self.grid.h;
@@ -359,6 +390,85 @@ impl FluidSolver {
                     &self.corrected_ranges,
                 );
             }
+        }
+        self.time = t0 + dt;
+        if self.drive.is_some() {
+            self.correct_bulk_velocity(dt);
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        StepReport {
+            dt,
+            time: self.time,
+            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
+        }
+    }
+
+    /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
+    /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
+    /// 2. `(I − β Δt ν∇²) u* = r`, solved exactly per component; then the hook;
+    /// 3. `∇²p = ∇·u* / τ`, `u = u* − τ∇p` with `τ = (α + β) Δt`.
+    fn step_semi_implicit(
+        &mut self,
+        dt: f64,
+        hook: &mut dyn FnMut(PredictedVelocity<'_>),
+    ) -> StepReport {
+        let t0 = self.time;
+        let h = self.grid.h;
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        let mut c_end = 0.0;
+        let implicit = self
+            .implicit
+            .as_mut()
+            .expect("set_scheme prepares the implicit solvers");
+        for &(gamma, zeta, alpha) in SMR_STAGES.iter() {
+            c_end += gamma + zeta;
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            let terms = MomentumTerms {
+                layout: &self.layout,
+                h,
+                nu: self.settings.nu,
+                force,
+                source: self.source.as_ref(),
+                ranges: &self.momentum_ranges,
+            };
+            semi_implicit_rhs(
+                &mut implicit.work,
+                &mut self.q,
+                &self.u,
+                &terms,
+                (gamma, zeta, alpha),
+                dt,
+            );
+            implicit.solve(alpha * dt * self.settings.nu);
+            store_momentum_box(
+                &mut self.u,
+                &implicit.work,
+                &self.layout,
+                &self.momentum_ranges,
+            );
+            let tau = 2.0 * alpha * dt;
+            hook(PredictedVelocity {
+                grid: &self.grid,
+                layout: &self.layout,
+                time: t0 + c_end * dt,
+                tau,
+                velocity: &mut self.u,
+            });
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
+            self.poisson.solve(&mut self.p);
+            subtract_gradient(
+                &mut self.u,
+                &self.p,
+                tau,
+                &self.layout,
+                h,
+                &self.bc,
+                &self.corrected_ranges,
+            );
         }
         self.time = t0 + dt;
         if self.drive.is_some() {
@@ -482,8 +592,12 @@ impl FluidSolver {
         let cells = self.grid.cell_count() as f64;
         let h_min = self.active_h_min();
         let speed = total[5].max(total[6]).max(total[7]);
+        // f64::max skips NaN: a blown-up field must not report a clean divergence.
+        let blown_up = !total[1].is_finite();
         FluidDiagnostics {
-            divergence: if speed > 0.0 {
+            divergence: if blown_up {
+                f64::NAN
+            } else if speed > 0.0 {
                 total[0] * h_min / speed
             } else {
                 total[0] * h_min
@@ -625,6 +739,7 @@ impl FluidSolver {
         let total = arrays * padded
             + self.p.len() * 8
             + self.poisson.scratch_bytes()
+            + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
     }

@@ -16,6 +16,7 @@ mod boundary_conditions;
 mod diagnostics;
 mod fluid_solver;
 mod ghost_fill;
+mod implicit_viscosity;
 mod mean_velocity_force;
 mod momentum;
 mod padded_layout;

@@ -41,6 +41,10 @@ pub struct VariablePoisson {
 impl VariablePoisson {
     /// A solver with `β = 1` everywhere; set the coefficients with [`Self::beta_mut`].
     pub fn new(n: [usize; 3], h: [f64; 3], axes: [AxisKind; 3]) -> Self {
+        assert!(
+            !axes.contains(&AxisKind::Nodes),
+            "the pressure lives at cell centres"
+        );
         let len = n[0] * n[1] * n[2];
         let beta = std::array::from_fn(|d| {
             let mut m = n;
@@ -110,6 +114,7 @@ impl VariablePoisson {
                             match self.axes[d] {
                                 AxisKind::Periodic => p[c + (nd - 1) * s],
                                 AxisKind::Bounded { low, .. } => ghost(low),
+                                AxisKind::Nodes => unreachable!("rejected in new"),
                             }
                         };
                         let hi = if idx[d] + 1 < nd {
@@ -118,6 +123,7 @@ impl VariablePoisson {
                             match self.axes[d] {
                                 AxisKind::Periodic => p[c - (nd - 1) * s],
                                 AxisKind::Bounded { high, .. } => ghost(high),
+                                AxisKind::Nodes => unreachable!("rejected in new"),
                             }
                         };
                         acc += (b_hi * (hi - p[c]) - b_lo * (p[c] - lo)) / (self.h[d] * self.h[d]);
@@ -275,6 +281,7 @@ mod tests {
         }
         let singular = axes.iter().all(|a| match a {
             AxisKind::Periodic => true,
+            AxisKind::Nodes => false,
             AxisKind::Bounded { low, high } => {
                 *low == PressureBoundary::Neumann && *high == PressureBoundary::Neumann
             }
