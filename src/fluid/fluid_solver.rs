@@ -89,7 +89,7 @@ impl FluidSolver {
         settings: FluidSettings,
     ) -> Result<Self, String> {
         bc.validate(&grid)?;
-        if !(settings.nu > 0.0) {
+        if settings.nu.is_nan() || settings.nu <= 0.0 {
             return Err(format!("viscosity must be positive, got {}", settings.nu));
         }
         let layout = PaddedLayout::new(grid.n);

@@ -149,7 +149,7 @@ impl AxisTransform {
                     line[2 * m - 1] = spec[m].re;
                     line[2 * m] = spec[m].im;
                 }
-                if n % 2 == 0 {
+                if n.is_multiple_of(2) {
                     line[n - 1] = spec[n / 2].re;
                 }
             }
@@ -181,7 +181,7 @@ impl AxisTransform {
                 for m in 1..n.div_ceil(2) {
                     spec[m] = Complex::new(line[2 * m - 1], line[2 * m]);
                 }
-                if n % 2 == 0 {
+                if n.is_multiple_of(2) {
                     spec[n / 2] = Complex::new(line[n - 1], 0.0);
                 }
                 inverse
