@@ -26,6 +26,17 @@ pub struct FluidSettings {
     pub body_force: [f64; 3],
 }
 
+impl FluidSettings {
+    /// Viscosity `nu` (m²/s), the default scheme (RK3), no body force.
+    pub fn new(nu: f64) -> Self {
+        FluidSettings {
+            nu,
+            scheme: TimeScheme::default(),
+            body_force: [0.0; 3],
+        }
+    }
+}
+
 /// The predicted velocity of a stage, handed to a hook before it is projected (the direct
 /// model imposes the particles' velocity there).
 pub struct PredictedVelocity<'a> {
