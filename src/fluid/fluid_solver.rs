@@ -660,20 +660,15 @@ impl FluidSolver {
         self.diagnostics(1.0).max_courant
     }
 
-    /// Next time step under `adjustTimeStep yes`: OpenFOAM's rule
-    /// `Δt = min(maxCo/Co · Δt_old, 1.2 Δt_old, maxDeltaT)`, never above the scheme's
-    /// stability bound. `dt_old` is the last step (or the case's `deltaT` at start).
+    /// Next time step under `adjustTimeStep yes`, by OpenFOAM's rule (setDeltaT): with
+    /// `f = maxCo / Co` at the old step, `Δt = min(min(f, 1 + 0.1 f, 1.2) Δt_old, maxDeltaT)`
+    /// (shrink at once, grow by at most 20 %), and never above the scheme's stability bound.
+    /// `dt_old` is the last step (or the case's `deltaT` at start).
     pub fn adaptive_dt(&mut self, dt_old: f64, max_co: f64, max_dt: f64) -> f64 {
-        let rate = self.courant_rate();
-        let co_limited = if rate > 0.0 {
-            max_co / rate
-        } else {
-            f64::INFINITY
-        };
-        co_limited
-            .min(1.2 * dt_old)
-            .min(max_dt)
-            .min(self.stability_bound())
+        let co = self.courant_rate() * dt_old;
+        let f = if co > 0.0 { max_co / co } else { f64::INFINITY };
+        let factor = f.min(1.0 + 0.1 * f).min(1.2);
+        (factor * dt_old).min(max_dt).min(self.stability_bound())
     }
 
     /// Cell-centred velocity (mean of each component's two faces) into `out`, unpadded
@@ -753,5 +748,50 @@ impl FluidSolver {
             + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn uniform_flow(nu: f64) -> FluidSolver {
+        let grid = Grid::new([8, 8, 8], [0.1; 3], [0.0; 3]);
+        let mut s =
+            FluidSolver::new(grid, BoundaryConditions::periodic(), FluidSettings::new(nu)).unwrap();
+        s.set_velocity(|c, _| if c == 0 { 1.0 } else { 0.0 });
+        s
+    }
+
+    #[test]
+    fn adaptive_step_follows_openfoam_rule_and_the_stability_bound() {
+        let mut s = uniform_flow(1e-6);
+        // Co per unit Δt = ½ (1 + 1) / 0.1 = 10.
+        assert!((s.courant_rate() - 10.0).abs() < 1e-12);
+        assert!((s.adaptive_dt(0.01, 0.5, 1.0) - 0.012).abs() < 1e-15); // grow by 20 %
+        assert!((s.adaptive_dt(0.1, 0.5, 1.0) - 0.05).abs() < 1e-15); // shrink to maxCo
+        assert!((s.adaptive_dt(0.01, 0.5, 0.011) - 0.011).abs() < 1e-15); // maxDeltaT
+        let mut viscous = uniform_flow(1.0);
+        let bound = viscous.stability_bound();
+        assert!((bound - 2.51 / (4.0 * 300.0)).abs() < 1e-12); // RK3: 2.51 / (4ν Σ 1/h²)
+        assert_eq!(viscous.adaptive_dt(0.01, 0.5, 1.0), bound);
+    }
+
+    #[test]
+    fn cell_velocity_and_bulk_mean_of_a_uniform_flow() {
+        let mut s = uniform_flow(1e-3);
+        let mut cells = vec![[0.0; 3]; 512];
+        s.cell_velocity(&mut cells);
+        assert!(cells.iter().all(|v| *v == [1.0, 0.0, 0.0]));
+        assert_eq!(s.mean_component(0), 1.0);
+        let d = s.diagnostics(0.01);
+        assert!((d.kinetic_energy - 0.5).abs() < 1e-15);
+        assert!((d.max_courant - 0.1).abs() < 1e-15);
+        assert!(FluidSolver::new(
+            s.grid().clone(),
+            BoundaryConditions::periodic(),
+            FluidSettings::new(-1.0)
+        )
+        .is_err());
     }
 }
