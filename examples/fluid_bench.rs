@@ -1,8 +1,9 @@
 //! Throughput of the periodic projection step (Taylor–Green vortex) at 64³ and 128³ on 1 and
 //! 2 threads, in cell-steps per second, and the solver's bytes per cell.
 //!
-//! `cargo run --release --example fluid_bench [-- scheme]` (scheme: Euler, RK2, RK3; default
-//! Euler, the paper's single-projection step).
+//! `cargo run --release --example fluid_bench [-- scheme [n [threads]]]` (scheme: Euler, RK2,
+//! RK3, RK3CN; default Euler, the paper's single-projection step; default sizes 64 and 128,
+//! threads 1 and 2).
 
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, TimeScheme};
 use fsim::grid::Grid;
@@ -30,8 +31,15 @@ fn main() {
         .map(|s| TimeScheme::from_name(&s).expect("scheme: Euler, RK2 or RK3"))
         .unwrap_or(TimeScheme::Euler);
     println!("scheme {}", scheme.name());
-    for n in [64usize, 128] {
-        for threads in [1usize, 2] {
+    let arg = |i: usize| {
+        std::env::args()
+            .nth(i)
+            .and_then(|a| a.parse::<usize>().ok())
+    };
+    let sizes = arg(2).map_or(vec![64, 128], |n| vec![n]);
+    let thread_counts = arg(3).map_or(vec![1, 2], |t| vec![t]);
+    for &n in &sizes {
+        for &threads in &thread_counts {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()

@@ -577,6 +577,16 @@ mod tests {
         check_exact([15, 12, 10], [AxisKind::Nodes, b(Dirichlet, Dirichlet), p]);
         check_exact([7, 1, 9], [AxisKind::Nodes, p, AxisKind::Nodes]);
         check_exact([63, 1, 1], [AxisKind::Nodes, p, p]);
+        // Tiny lines, where the transforms take their special small-size paths.
+        check_exact(
+            [2, 3, 2],
+            [b(Neumann, Dirichlet), b(Dirichlet, Dirichlet), p],
+        );
+        check_exact(
+            [3, 2, 2],
+            [b(Dirichlet, Neumann), b(Neumann, Neumann), AxisKind::Nodes],
+        );
+        check_exact([2, 2, 3], [p, p, b(Neumann, Neumann)]);
         check_exact([1, 63, 1], [p, AxisKind::Nodes, p]);
         check_exact([1, 15, 1], [p, AxisKind::Nodes, p]);
         check_exact([1, 31, 1], [p, AxisKind::Nodes, p]);
