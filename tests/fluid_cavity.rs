@@ -50,6 +50,11 @@ fn cavity_re100_centre_lines_match_ghia_within_two_percent() {
 }
 
 #[test]
+fn cavity_re100_explicit_euler_matches_ghia_within_two_percent() {
+    cavity(TimeScheme::Euler, 0.5);
+}
+
+#[test]
 fn cavity_re100_semi_implicit_matches_ghia_within_two_percent() {
     cavity(TimeScheme::RK3CN, 1.0);
 }
