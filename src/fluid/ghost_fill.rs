@@ -6,18 +6,19 @@
 
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::padded_layout::PaddedLayout;
+use rayon::prelude::*;
 
-/// Fills ghosts and fixed boundary faces of all three components.
+/// Fills ghosts and fixed boundary faces of all three components (one task per component).
 pub(crate) fn fill_velocity_ghosts(
     layout: &PaddedLayout,
     bc: &BoundaryConditions,
     u: &mut [Vec<f64>; 3],
 ) {
-    for (c, uc) in u.iter_mut().enumerate() {
+    u.par_iter_mut().enumerate().for_each(|(c, uc)| {
         for d in 0..3 {
             fill_axis(layout, bc, uc, c, d);
         }
-    }
+    });
 }
 
 /// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`.

@@ -16,6 +16,12 @@
 //! [`crate::grid::Grid`], as kinematic pressure `p/ρ` (m²/s²): multiply by ρ for a case whose
 //! `p` is dimensional. Outlet pressures in [`FaceCondition::Outlet`] are kinematic too.
 //!
+//! Hooks for the coupling models: [`FluidSolver::step_with`] hands each stage's predicted
+//! velocity to a closure before it is projected (the direct model imposes the particles'
+//! rigid motion there), and [`FluidSolver::face_source_mut`] holds per-face accelerations
+//! (the drag-law model's reaction forces). `RK3CN` removes the viscous time-step limit that
+//! dominates when the grid is finer than the particles.
+//!
 //! A time loop uses it like this (the caller owns the rayon pool: run it inside
 //! `pool.install`):
 //!
