@@ -1,6 +1,6 @@
 //! Incompressible Navier–Stokes on the uniform staggered (MAC) grid of [`crate::grid`].
 //!
-//! Fractional-step projection (Chorin/Temam, as in Peyret & Taylor, the paper's ref. [19]):
+//! Fractional-step projection (Chorin/Temam, as in Peyret & Taylor, the paper's ref. \[19\]):
 //! a predictor `u* = uⁿ + Δt (−∇·(uu) + ν∇²u + f)` (paper eq. 2), a pressure Poisson equation
 //! `∇²p = ∇·u*/Δt`, and the correction `uⁿ⁺¹ = u* − Δt ∇p`, once per stage of the chosen
 //! [`TimeScheme`]: `Euler` (the paper's), `RK2`, `RK3` (default), or `RK3CN` (implicit
