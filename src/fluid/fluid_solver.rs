@@ -38,7 +38,8 @@ impl FluidSettings {
 }
 
 /// The predicted velocity of a stage, handed to a hook before it is projected (the direct
-/// model imposes the particles' velocity there).
+/// model imposes the particles' velocity there). Only the faces the momentum equation
+/// advances are current; ghost layers and boundary faces are refilled after the hook.
 pub struct PredictedVelocity<'a> {
     pub grid: &'a Grid,
     pub layout: &'a PaddedLayout,
