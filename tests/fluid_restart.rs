@@ -46,7 +46,7 @@ fn solver(scheme: TimeScheme) -> FluidSolver {
 
 #[test]
 fn continued_run_equals_uninterrupted_bit_for_bit() {
-    for scheme in [TimeScheme::Euler, TimeScheme::RK3] {
+    for scheme in [TimeScheme::Euler, TimeScheme::RK3, TimeScheme::RK3CN] {
         let dt = 0.01;
         let mut whole = solver(scheme);
         for _ in 0..20 {
@@ -95,4 +95,28 @@ fn restore_rejects_wrong_names_and_lengths() {
     let mut s = solver(TimeScheme::RK3);
     assert!(s.restore_array("U.w", &[0.0]).is_err());
     assert!(s.restore_array("p", &[0.0; 3]).is_err());
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = solver(TimeScheme::RK3);
+            for _ in 0..10 {
+                s.step(0.01);
+            }
+            s.restart_arrays()
+                .into_iter()
+                .map(|(_, a)| a.to_vec())
+                .collect::<Vec<_>>()
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    for (a, b) in one.iter().zip(&two) {
+        assert!(a.iter().zip(b).all(|(p, q)| p.to_bits() == q.to_bits()));
+    }
 }

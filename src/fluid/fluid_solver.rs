@@ -3,12 +3,15 @@
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::diagnostics::FluidDiagnostics;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
-use super::momentum::{accumulate_tendency, add_scaled, MomentumTerms};
+use super::momentum::{
+    accumulate_tendency, add_scaled, semi_implicit_rhs, store_momentum_box, MomentumTerms,
+};
 use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
-use super::time_scheme::TimeScheme;
+use super::time_scheme::{TimeScheme, SMR_STAGES};
 use crate::grid::Grid;
 use rayon::prelude::*;
 
@@ -23,8 +26,20 @@ pub struct FluidSettings {
     pub body_force: [f64; 3],
 }
 
+impl FluidSettings {
+    /// Viscosity `nu` (m²/s), the default scheme (RK3), no body force.
+    pub fn new(nu: f64) -> Self {
+        FluidSettings {
+            nu,
+            scheme: TimeScheme::default(),
+            body_force: [0.0; 3],
+        }
+    }
+}
+
 /// The predicted velocity of a stage, handed to a hook before it is projected (the direct
-/// model imposes the particles' velocity there).
+/// model imposes the particles' velocity there). Only the faces the momentum equation
+/// advances are current; ghost layers and boundary faces are refilled after the hook.
 pub struct PredictedVelocity<'a> {
     pub grid: &'a Grid,
     pub layout: &'a PaddedLayout,
@@ -66,6 +81,8 @@ pub struct FluidSolver {
     q: [Vec<f64>; 3],
     source: Option<[Vec<f64>; 3]>,
     poisson: SpectralPoisson,
+    /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
+    implicit: Option<ImplicitViscosity>,
     drive: Option<MeanVelocityForce>,
     time: f64,
     momentum_ranges: [[(usize, usize); 3]; 3],
@@ -84,7 +101,7 @@ impl FluidSolver {
         settings: FluidSettings,
     ) -> Result<Self, String> {
         bc.validate(&grid)?;
-        if !(settings.nu > 0.0) {
+        if settings.nu.is_nan() || settings.nu <= 0.0 {
             return Err(format!("viscosity must be positive, got {}", settings.nu));
         }
         let layout = PaddedLayout::new(grid.n);
@@ -101,6 +118,7 @@ impl FluidSolver {
             p: vec![0.0; grid.cell_count()],
             source: None,
             poisson,
+            implicit: None,
             drive: None,
             time: 0.0,
             momentum_ranges,
@@ -113,6 +131,7 @@ impl FluidSolver {
             settings,
         };
         fill_velocity_ghosts(&s.layout, &s.bc, &mut s.u);
+        s.set_scheme(s.settings.scheme)?;
         Ok(s)
     }
 
@@ -128,9 +147,30 @@ impl FluidSolver {
     pub fn settings(&self) -> &FluidSettings {
         &self.settings
     }
-    /// Changes ν, the scheme or the body force between steps.
-    pub fn settings_mut(&mut self) -> &mut FluidSettings {
-        &mut self.settings
+    /// Changes the viscosity between steps.
+    pub fn set_nu(&mut self, nu: f64) {
+        self.settings.nu = nu;
+    }
+    /// Changes the uniform body force between steps.
+    pub fn set_body_force(&mut self, f: [f64; 3]) {
+        self.settings.body_force = f;
+    }
+    /// Changes the time scheme, preparing the implicit viscous solvers if it needs them
+    /// (fails for `RK3CN` with outlets).
+    pub fn set_scheme(&mut self, scheme: TimeScheme) -> Result<(), String> {
+        if scheme.is_semi_implicit() {
+            if self.implicit.is_none() {
+                self.implicit = Some(ImplicitViscosity::new(
+                    &self.grid,
+                    &self.bc,
+                    &self.momentum_ranges,
+                )?);
+            }
+        } else {
+            self.implicit = None;
+        }
+        self.settings.scheme = scheme;
+        Ok(())
     }
     pub fn time(&self) -> f64 {
         self.time
@@ -308,6 +348,9 @@ impl FluidSolver {
         dt: f64,
         hook: &mut dyn FnMut(PredictedVelocity<'_>),
     ) -> StepReport {
+        if self.settings.scheme.is_semi_implicit() {
+            return self.step_semi_implicit(dt, hook);
+        }
         let stages = self.settings.scheme.stages();
         let t0 = self.time;
         let h = self.grid.h;
@@ -359,6 +402,85 @@ impl FluidSolver {
                     &self.corrected_ranges,
                 );
             }
+        }
+        self.time = t0 + dt;
+        if self.drive.is_some() {
+            self.correct_bulk_velocity(dt);
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        StepReport {
+            dt,
+            time: self.time,
+            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
+        }
+    }
+
+    /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
+    /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
+    /// 2. `(I − β Δt ν∇²) u* = r`, solved exactly per component; then the hook;
+    /// 3. `∇²p = ∇·u* / τ`, `u = u* − τ∇p` with `τ = (α + β) Δt`.
+    fn step_semi_implicit(
+        &mut self,
+        dt: f64,
+        hook: &mut dyn FnMut(PredictedVelocity<'_>),
+    ) -> StepReport {
+        let t0 = self.time;
+        let h = self.grid.h;
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        let mut c_end = 0.0;
+        let implicit = self
+            .implicit
+            .as_mut()
+            .expect("set_scheme prepares the implicit solvers");
+        for &(gamma, zeta, alpha) in SMR_STAGES.iter() {
+            c_end += gamma + zeta;
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            let terms = MomentumTerms {
+                layout: &self.layout,
+                h,
+                nu: self.settings.nu,
+                force,
+                source: self.source.as_ref(),
+                ranges: &self.momentum_ranges,
+            };
+            semi_implicit_rhs(
+                &mut implicit.work,
+                &mut self.q,
+                &self.u,
+                &terms,
+                (gamma, zeta, alpha),
+                dt,
+            );
+            implicit.solve(alpha * dt * self.settings.nu);
+            store_momentum_box(
+                &mut self.u,
+                &implicit.work,
+                &self.layout,
+                &self.momentum_ranges,
+            );
+            let tau = 2.0 * alpha * dt;
+            hook(PredictedVelocity {
+                grid: &self.grid,
+                layout: &self.layout,
+                time: t0 + c_end * dt,
+                tau,
+                velocity: &mut self.u,
+            });
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
+            self.poisson.solve(&mut self.p);
+            subtract_gradient(
+                &mut self.u,
+                &self.p,
+                tau,
+                &self.layout,
+                h,
+                &self.bc,
+                &self.corrected_ranges,
+            );
         }
         self.time = t0 + dt;
         if self.drive.is_some() {
@@ -482,8 +604,12 @@ impl FluidSolver {
         let cells = self.grid.cell_count() as f64;
         let h_min = self.active_h_min();
         let speed = total[5].max(total[6]).max(total[7]);
+        // f64::max skips NaN: a blown-up field must not report a clean divergence.
+        let blown_up = !total[1].is_finite();
         FluidDiagnostics {
-            divergence: if speed > 0.0 {
+            divergence: if blown_up {
+                f64::NAN
+            } else if speed > 0.0 {
                 total[0] * h_min / speed
             } else {
                 total[0] * h_min
@@ -535,20 +661,15 @@ impl FluidSolver {
         self.diagnostics(1.0).max_courant
     }
 
-    /// Next time step under `adjustTimeStep yes`: OpenFOAM's rule
-    /// `Δt = min(maxCo/Co · Δt_old, 1.2 Δt_old, maxDeltaT)`, never above the scheme's
-    /// stability bound. `dt_old` is the last step (or the case's `deltaT` at start).
+    /// Next time step under `adjustTimeStep yes`, by OpenFOAM's rule (setDeltaT): with
+    /// `f = maxCo / Co` at the old step, `Δt = min(min(f, 1 + 0.1 f, 1.2) Δt_old, maxDeltaT)`
+    /// (shrink at once, grow by at most 20 %), and never above the scheme's stability bound.
+    /// `dt_old` is the last step (or the case's `deltaT` at start).
     pub fn adaptive_dt(&mut self, dt_old: f64, max_co: f64, max_dt: f64) -> f64 {
-        let rate = self.courant_rate();
-        let co_limited = if rate > 0.0 {
-            max_co / rate
-        } else {
-            f64::INFINITY
-        };
-        co_limited
-            .min(1.2 * dt_old)
-            .min(max_dt)
-            .min(self.stability_bound())
+        let co = self.courant_rate() * dt_old;
+        let f = if co > 0.0 { max_co / co } else { f64::INFINITY };
+        let factor = f.min(1.0 + 0.1 * f).min(1.2);
+        (factor * dt_old).min(max_dt).min(self.stability_bound())
     }
 
     /// Cell-centred velocity (mean of each component's two faces) into `out`, unpadded
@@ -625,7 +746,53 @@ impl FluidSolver {
         let total = arrays * padded
             + self.p.len() * 8
             + self.poisson.scratch_bytes()
+            + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn uniform_flow(nu: f64) -> FluidSolver {
+        let grid = Grid::new([8, 8, 8], [0.1; 3], [0.0; 3]);
+        let mut s =
+            FluidSolver::new(grid, BoundaryConditions::periodic(), FluidSettings::new(nu)).unwrap();
+        s.set_velocity(|c, _| if c == 0 { 1.0 } else { 0.0 });
+        s
+    }
+
+    #[test]
+    fn adaptive_step_follows_openfoam_rule_and_the_stability_bound() {
+        let mut s = uniform_flow(1e-6);
+        // Co per unit Δt = ½ (1 + 1) / 0.1 = 10.
+        assert!((s.courant_rate() - 10.0).abs() < 1e-12);
+        assert!((s.adaptive_dt(0.01, 0.5, 1.0) - 0.012).abs() < 1e-15); // grow by 20 %
+        assert!((s.adaptive_dt(0.1, 0.5, 1.0) - 0.05).abs() < 1e-15); // shrink to maxCo
+        assert!((s.adaptive_dt(0.01, 0.5, 0.011) - 0.011).abs() < 1e-15); // maxDeltaT
+        let mut viscous = uniform_flow(1.0);
+        let bound = viscous.stability_bound();
+        assert!((bound - 2.51 / (4.0 * 300.0)).abs() < 1e-12); // RK3: 2.51 / (4ν Σ 1/h²)
+        assert_eq!(viscous.adaptive_dt(0.01, 0.5, 1.0), bound);
+    }
+
+    #[test]
+    fn cell_velocity_and_bulk_mean_of_a_uniform_flow() {
+        let mut s = uniform_flow(1e-3);
+        let mut cells = vec![[0.0; 3]; 512];
+        s.cell_velocity(&mut cells);
+        assert!(cells.iter().all(|v| *v == [1.0, 0.0, 0.0]));
+        assert_eq!(s.mean_component(0), 1.0);
+        let d = s.diagnostics(0.01);
+        assert!((d.kinetic_energy - 0.5).abs() < 1e-15);
+        assert!((d.max_courant - 0.1).abs() < 1e-15);
+        assert!(FluidSolver::new(
+            s.grid().clone(),
+            BoundaryConditions::periodic(),
+            FluidSettings::new(-1.0)
+        )
+        .is_err());
     }
 }

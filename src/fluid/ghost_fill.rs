@@ -6,18 +6,19 @@
 
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::padded_layout::PaddedLayout;
+use rayon::prelude::*;
 
-/// Fills ghosts and fixed boundary faces of all three components.
+/// Fills ghosts and fixed boundary faces of all three components (one task per component).
 pub(crate) fn fill_velocity_ghosts(
     layout: &PaddedLayout,
     bc: &BoundaryConditions,
     u: &mut [Vec<f64>; 3],
 ) {
-    for (c, uc) in u.iter_mut().enumerate() {
+    u.par_iter_mut().enumerate().for_each(|(c, uc)| {
         for d in 0..3 {
             fill_axis(layout, bc, uc, c, d);
         }
-    }
+    });
 }
 
 /// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`.
@@ -107,5 +108,51 @@ pub(crate) fn extrapolate_outlets(
         if bc.outlet_pressure(d, 1).is_some() {
             plane_map(layout, &mut u[d], d, n + 1, n, |x| x);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ghosts_put_the_wall_velocity_on_the_face_and_wrap_periodic_directions() {
+        let layout = PaddedLayout::new([4, 3, 2]);
+        let bc = BoundaryConditions {
+            faces: [
+                FaceCondition::Periodic,
+                FaceCondition::Periodic,
+                FaceCondition::Wall { velocity: [0.0; 3] },
+                FaceCondition::Wall {
+                    velocity: [2.0, 0.0, 0.0],
+                },
+                FaceCondition::Slip,
+                FaceCondition::Slip,
+            ],
+        };
+        let mut u: [Vec<f64>; 3] = std::array::from_fn(|c| {
+            (0..layout.len)
+                .map(|i| (i * (c + 3)) as f64 * 0.01)
+                .collect()
+        });
+        fill_velocity_ghosts(&layout, &bc, &mut u);
+        for k in 1..=2 {
+            for i in 1..=4 {
+                // Tangential u: the mean of ghost and first cell is the wall's velocity.
+                let lo = 0.5 * (u[0][layout.index(i, 0, k)] + u[0][layout.index(i, 1, k)]);
+                let hi = 0.5 * (u[0][layout.index(i, 3, k)] + u[0][layout.index(i, 4, k)]);
+                assert!(lo.abs() < 1e-15 && (hi - 2.0).abs() < 1e-15);
+                // Normal v on both walls is zero.
+                assert_eq!(u[1][layout.index(i, 1, k)], 0.0);
+                assert_eq!(u[1][layout.index(i, 4, k)], 0.0);
+            }
+            for j in 1..=3 {
+                assert_eq!(u[1][layout.index(0, j, k)], u[1][layout.index(4, j, k)]);
+                assert_eq!(u[1][layout.index(5, j, k)], u[1][layout.index(1, j, k)]);
+            }
+        }
+        // Slip in z: no normal velocity, tangential ghost mirrors the interior.
+        assert_eq!(u[2][layout.index(2, 2, 1)], 0.0);
+        assert_eq!(u[0][layout.index(2, 2, 0)], u[0][layout.index(2, 2, 1)]);
     }
 }

@@ -34,3 +34,16 @@ impl MeanVelocityForce {
         self.relaxation * (self.ubar - bulk) / dt
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn increment_closes_the_bulk_velocity_gap_over_one_step() {
+        let drive = MeanVelocityForce::new(0, 2.0, 0.5);
+        // Half the gap (relaxation 0.5) of 0.5 m/s over 0.1 s: 2.5 m/s².
+        assert!((drive.increment(1.5, 0.1) - 2.5).abs() < 1e-12);
+        assert_eq!(drive.gradient, 0.0);
+    }
+}

@@ -25,7 +25,7 @@
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustdct::{DctPlanner, TransformType2And3, TransformType4};
+use rustdct::{DctPlanner, Dst1, TransformType2And3, TransformType4};
 use std::sync::Arc;
 
 /// Condition on the pressure at one end of a bounded direction.
@@ -41,6 +41,10 @@ pub enum PressureBoundary {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AxisKind {
     Periodic,
+    /// Unknowns on the `n` interior nodes of a line whose two end nodes (one spacing beyond
+    /// each end) hold zero: a face-normal velocity between fixed boundary faces, as an
+    /// implicit viscous step needs. Basis `sin θ(i+1)`, DST-I, `θₘ = π (m+1) / (n+1)`.
+    Nodes,
     Bounded {
         low: PressureBoundary,
         high: PressureBoundary,
@@ -60,6 +64,7 @@ enum AxisTransform {
     Cosine2(Arc<dyn TransformType2And3<f64>>),
     Sine2(Arc<dyn TransformType2And3<f64>>),
     Cosine4(Arc<dyn TransformType4<f64>>),
+    Sine1(Arc<dyn Dst1<f64>>),
     Sine4(Arc<dyn TransformType4<f64>>),
 }
 
@@ -69,7 +74,9 @@ struct LineWork {
     real: Vec<f64>,
     spectrum: Vec<Complex<f64>>,
     complex_scratch: Vec<Complex<f64>>,
-    real_scratch: Vec<f64>,
+    /// One per axis: rustdct's FFT-based DST-I assumes its scratch keeps the zeros it
+    /// left there, so transforms must not share it.
+    real_scratch: [Vec<f64>; 3],
 }
 
 impl AxisTransform {
@@ -80,6 +87,13 @@ impl AxisTransform {
         }
         let half = n as f64 / 2.0;
         match kind {
+            AxisKind::Nodes => {
+                let mut planner = DctPlanner::<f64>::new();
+                (
+                    AxisTransform::Sine1(planner.plan_dst1(n)),
+                    (n as f64 + 1.0) / 2.0,
+                )
+            }
             AxisKind::Periodic => {
                 let mut planner = RealFftPlanner::<f64>::new();
                 (
@@ -111,10 +125,11 @@ impl AxisTransform {
             }
             AxisTransform::Cosine2(t) | AxisTransform::Sine2(t) => (0, t.get_scratch_len()),
             AxisTransform::Cosine4(t) | AxisTransform::Sine4(t) => (0, t.get_scratch_len()),
+            AxisTransform::Sine1(t) => (0, t.get_scratch_len()),
         }
     }
 
-    fn forward(&self, line: &mut [f64], w: &mut LineWork) {
+    fn forward(&self, line: &mut [f64], w: &mut LineWork, axis: usize) {
         match self {
             AxisTransform::Identity => {}
             AxisTransform::Fourier { forward, .. } => {
@@ -123,25 +138,40 @@ impl AxisTransform {
                 real.copy_from_slice(line);
                 let spec = &mut w.spectrum[..n / 2 + 1];
                 forward
-                    .process_with_scratch(real, spec, &mut w.complex_scratch)
+                    .process_with_scratch(
+                        real,
+                        spec,
+                        &mut w.complex_scratch[..forward.get_scratch_len()],
+                    )
                     .expect("FFT buffer lengths are fixed at planning");
                 line[0] = spec[0].re;
                 for m in 1..n.div_ceil(2) {
                     line[2 * m - 1] = spec[m].re;
                     line[2 * m] = spec[m].im;
                 }
-                if n % 2 == 0 {
+                if n.is_multiple_of(2) {
                     line[n - 1] = spec[n / 2].re;
                 }
             }
-            AxisTransform::Cosine2(t) => t.process_dct2_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Sine2(t) => t.process_dst2_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Cosine4(t) => t.process_dct4_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Sine4(t) => t.process_dst4_with_scratch(line, &mut w.real_scratch),
+            AxisTransform::Cosine2(t) => {
+                t.process_dct2_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine2(t) => {
+                t.process_dst2_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Cosine4(t) => {
+                t.process_dct4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine4(t) => {
+                t.process_dst4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine1(t) => {
+                t.process_dst1_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
         }
     }
 
-    fn inverse(&self, line: &mut [f64], w: &mut LineWork) {
+    fn inverse(&self, line: &mut [f64], w: &mut LineWork, axis: usize) {
         match self {
             AxisTransform::Identity => {}
             AxisTransform::Fourier { inverse, .. } => {
@@ -151,17 +181,32 @@ impl AxisTransform {
                 for m in 1..n.div_ceil(2) {
                     spec[m] = Complex::new(line[2 * m - 1], line[2 * m]);
                 }
-                if n % 2 == 0 {
+                if n.is_multiple_of(2) {
                     spec[n / 2] = Complex::new(line[n - 1], 0.0);
                 }
                 inverse
-                    .process_with_scratch(spec, line, &mut w.complex_scratch)
+                    .process_with_scratch(
+                        spec,
+                        line,
+                        &mut w.complex_scratch[..inverse.get_scratch_len()],
+                    )
                     .expect("FFT buffer lengths are fixed at planning");
             }
-            AxisTransform::Cosine2(t) => t.process_dct3_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Sine2(t) => t.process_dst3_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Cosine4(t) => t.process_dct4_with_scratch(line, &mut w.real_scratch),
-            AxisTransform::Sine4(t) => t.process_dst4_with_scratch(line, &mut w.real_scratch),
+            AxisTransform::Cosine2(t) => {
+                t.process_dct3_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine2(t) => {
+                t.process_dst3_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Cosine4(t) => {
+                t.process_dct4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine4(t) => {
+                t.process_dst4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
+            AxisTransform::Sine1(t) => {
+                t.process_dst1_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
+            }
         }
     }
 }
@@ -174,6 +219,7 @@ fn axis_angles(n: usize, kind: AxisKind) -> Vec<f64> {
     (0..n)
         .map(|m| match kind {
             AxisKind::Periodic => 2.0 * pi * m.div_ceil(2) as f64 / nf,
+            AxisKind::Nodes => pi * (m + 1) as f64 / (nf + 1.0),
             AxisKind::Bounded { low, high } => match (low, high) {
                 (Neumann, Neumann) => pi * m as f64 / nf,
                 (Dirichlet, Dirichlet) => pi * (m + 1) as f64 / nf,
@@ -230,11 +276,12 @@ impl SpectralPoisson {
                 .collect()
         });
         let nmax = n[0].max(n[1]).max(n[2]);
-        let (mut cs, mut rs) = (0, 0);
-        for t in &transforms {
+        let mut cs = 0;
+        let mut rs = [0; 3];
+        for (d, t) in transforms.iter().enumerate() {
             let (c, r) = t.scratch_lens();
             cs = cs.max(c);
-            rs = rs.max(r);
+            rs[d] = r;
         }
         let workers = n[1].max(n[2]);
         let work = (0..workers)
@@ -243,7 +290,7 @@ impl SpectralPoisson {
                 real: vec![0.0; nmax],
                 spectrum: vec![Complex::new(0.0, 0.0); nmax / 2 + 1],
                 complex_scratch: vec![Complex::new(0.0, 0.0); cs],
-                real_scratch: vec![0.0; rs],
+                real_scratch: rs.map(|r| vec![0.0; r]),
             })
             .collect();
         SpectralPoisson {
@@ -275,7 +322,9 @@ impl SpectralPoisson {
         self.work
             .iter()
             .map(|w| {
-                8 * (w.lines.len() + w.real.len() + w.real_scratch.len())
+                8 * (w.lines.len()
+                    + w.real.len()
+                    + w.real_scratch.iter().map(Vec::len).sum::<usize>())
                     + 16 * (w.spectrum.len() + w.complex_scratch.len())
             })
             .sum()
@@ -301,7 +350,7 @@ impl SpectralPoisson {
             .zip(work[..n2].par_iter_mut())
             .for_each(|(p, w)| {
                 for row in p.chunks_mut(n0) {
-                    transforms[0].forward(row, w);
+                    transforms[0].forward(row, w, 0);
                 }
                 transform_plane_columns(&transforms[1], p, n0, n1, w, true);
             });
@@ -327,7 +376,7 @@ impl SpectralPoisson {
             .for_each(|(p, w)| {
                 transform_plane_columns(&transforms[1], p, n0, n1, w, false);
                 for row in p.chunks_mut(n0) {
-                    transforms[0].inverse(row, w);
+                    transforms[0].inverse(row, w, 0);
                 }
             });
     }
@@ -367,6 +416,7 @@ fn neighbours(phi: &[f64], c: usize, i: usize, n: usize, s: usize, kind: AxisKin
     } else {
         match kind {
             AxisKind::Periodic => phi[c + (n - 1) * s],
+            AxisKind::Nodes => 0.0,
             AxisKind::Bounded { low, .. } => ghost(low),
         }
     };
@@ -375,6 +425,7 @@ fn neighbours(phi: &[f64], c: usize, i: usize, n: usize, s: usize, kind: AxisKin
     } else {
         match kind {
             AxisKind::Periodic => phi[c - (n - 1) * s],
+            AxisKind::Nodes => 0.0,
             AxisKind::Bounded { high, .. } => ghost(high),
         }
     };
@@ -406,9 +457,9 @@ fn transform_plane_columns(
         for bb in 0..b {
             let line = &mut lines[bb * n1..(bb + 1) * n1];
             if forward {
-                t.forward(line, w);
+                t.forward(line, w, 1);
             } else {
-                t.inverse(line, w);
+                t.inverse(line, w, 1);
             }
         }
         for j in 0..n1 {
@@ -449,9 +500,9 @@ fn transform_z(
             for bb in 0..b {
                 let line = &mut lines[bb * n2..(bb + 1) * n2];
                 if forward {
-                    t.forward(line, w);
+                    t.forward(line, w, 2);
                 } else {
-                    t.inverse(line, w);
+                    t.inverse(line, w, 2);
                 }
             }
             for k in 0..n2 {
@@ -523,6 +574,46 @@ mod tests {
         );
         check_exact([12, 16, 1], [b(Neumann, Neumann), b(Dirichlet, Neumann), p]);
         check_exact([8, 1, 6], [p, b(Neumann, Neumann), b(Dirichlet, Dirichlet)]);
+        check_exact([15, 12, 10], [AxisKind::Nodes, b(Dirichlet, Dirichlet), p]);
+        check_exact([7, 1, 9], [AxisKind::Nodes, p, AxisKind::Nodes]);
+        check_exact([63, 1, 1], [AxisKind::Nodes, p, p]);
+        // Tiny lines, where the transforms take their special small-size paths.
+        check_exact(
+            [2, 3, 2],
+            [b(Neumann, Dirichlet), b(Dirichlet, Dirichlet), p],
+        );
+        check_exact(
+            [3, 2, 2],
+            [b(Dirichlet, Neumann), b(Neumann, Neumann), AxisKind::Nodes],
+        );
+        check_exact([2, 2, 3], [p, p, b(Neumann, Neumann)]);
+        check_exact([1, 63, 1], [p, AxisKind::Nodes, p]);
+        check_exact([1, 15, 1], [p, AxisKind::Nodes, p]);
+        check_exact([1, 31, 1], [p, AxisKind::Nodes, p]);
+        check_exact(
+            [64, 40, 1],
+            [
+                b(Dirichlet, Dirichlet),
+                b(Dirichlet, Dirichlet),
+                b(Neumann, Neumann),
+            ],
+        );
+        check_exact(
+            [40, 63, 1],
+            [
+                b(Dirichlet, Dirichlet),
+                AxisKind::Nodes,
+                b(Neumann, Neumann),
+            ],
+        );
+        check_exact(
+            [63, 40, 1],
+            [
+                AxisKind::Nodes,
+                b(Dirichlet, Dirichlet),
+                b(Neumann, Neumann),
+            ],
+        );
     }
 
     #[test]

@@ -20,7 +20,21 @@ pub enum TimeScheme {
     /// Williamson's three-stage low-storage scheme, third order. Name `RK3`.
     #[default]
     RK3,
+    /// Semi-implicit: advection and forces by low-storage RK3, diffusion by Crank–Nicolson
+    /// per stage (Spalart, Moser & Rogers, J. Comput. Phys. 96, 297–324, 1991), the viscous
+    /// Helmholtz problems solved exactly by FFT/DCT/DST. Second order; no viscous time-step
+    /// limit, which pays on grids finer than the particles. Not with outlets. Name `RK3CN`.
+    RK3CN,
 }
+
+/// Spalart–Moser–Rogers stage coefficients `(γ_s, ζ_s, α_s = β_s)`:
+/// `(I − β_s Δt ν∇²) u* = u + Δt (γ_s N(u) + ζ_s N_old + α_s ν∇²u)`, projection weight
+/// `(α_s + β_s) Δt`.
+pub(crate) const SMR_STAGES: [(f64, f64, f64); 3] = [
+    (8.0 / 15.0, 0.0, 4.0 / 15.0),
+    (5.0 / 12.0, -17.0 / 60.0, 1.0 / 15.0),
+    (3.0 / 4.0, -5.0 / 12.0, 1.0 / 6.0),
+];
 
 /// Williamson's RK3 coefficients (Williamson, J. Comput. Phys. 35, 48–56, 1980).
 const RK3_STAGES: [(f64, f64, f64); 3] = [
@@ -39,6 +53,7 @@ impl TimeScheme {
             "euler" => Some(TimeScheme::Euler),
             "rk2" | "heun" => Some(TimeScheme::RK2),
             "rk3" => Some(TimeScheme::RK3),
+            "rk3cn" | "cranknicolson" => Some(TimeScheme::RK3CN),
             _ => None,
         }
     }
@@ -48,21 +63,31 @@ impl TimeScheme {
             TimeScheme::Euler => "Euler",
             TimeScheme::RK2 => "RK2",
             TimeScheme::RK3 => "RK3",
+            TimeScheme::RK3CN => "RK3CN",
         }
     }
 
     /// Order of accuracy of the velocity in time.
     pub fn order(&self) -> usize {
-        self.stages().len()
+        match self {
+            TimeScheme::RK3CN => 2,
+            _ => self.stages().len(),
+        }
+    }
+
+    /// True when diffusion is implicit (no viscous limit on Δt).
+    pub fn is_semi_implicit(&self) -> bool {
+        matches!(self, TimeScheme::RK3CN)
     }
 
     /// Stage coefficients `(a_s, b_s, c_s)`: `q ← a_s q + Δt F`, `u ← u + b_s q`, and `c_s`
-    /// the fraction of the step reached at the end of the stage.
+    /// the fraction of the step reached at the end of the stage. For `RK3CN` the explicit
+    /// part's stage times are those of RK3 (its coefficients are in `SMR_STAGES`).
     pub fn stages(&self) -> &'static [(f64, f64, f64)] {
         match self {
             TimeScheme::Euler => &EULER_STAGES,
             TimeScheme::RK2 => &RK2_STAGES,
-            TimeScheme::RK3 => &RK3_STAGES,
+            TimeScheme::RK3 | TimeScheme::RK3CN => &RK3_STAGES,
         }
     }
 
@@ -73,6 +98,7 @@ impl TimeScheme {
     /// `min(1 / (2ν Σ 1/h_d²), 2ν / |v|²_max)`, which is `min(h²/(6ν), 2ν/|v|²)` for cubes.
     /// RK3: its stability region reaches −2.51 on the real axis and ±√3 on the imaginary
     /// axis, so `min(2.51 / (4ν Σ 1/h_d²), √3 / Σ |v_d|_max / h_d)`.
+    /// RK3CN: the advective part only, `√3 / Σ |v_d|_max / h_d`.
     pub fn stability_bound(
         &self,
         nu: f64,
@@ -96,6 +122,7 @@ impl TimeScheme {
                 div(1.0, 2.0 * nu * inv_h2).min(div(2.0 * nu, speed2))
             }
             TimeScheme::RK3 => div(2.51, 4.0 * nu * inv_h2).min(div(3f64.sqrt(), speed_over_h)),
+            TimeScheme::RK3CN => div(3f64.sqrt(), speed_over_h),
         }
     }
 }
@@ -108,6 +135,13 @@ mod tests {
     fn stage_weights_are_consistent() {
         // Expanding the two-register form, each scheme's weights of the stage tendencies must
         // sum to one (consistency), and the c_s must match the stage times.
+        let smr: f64 = SMR_STAGES.iter().map(|s| s.0 + s.1).sum();
+        let smr_visc: f64 = SMR_STAGES.iter().map(|s| 2.0 * s.2).sum();
+        assert!((smr - 1.0).abs() < 1e-14 && (smr_visc - 1.0).abs() < 1e-14);
+        assert_eq!(
+            TimeScheme::from_name("CrankNicolson"),
+            Some(TimeScheme::RK3CN)
+        );
         for scheme in [TimeScheme::Euler, TimeScheme::RK2, TimeScheme::RK3] {
             let st = scheme.stages();
             // weight of F_m in the final u: Σ_{s≥m} b_s Π_{r=m+1..s} a_r
