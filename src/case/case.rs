@@ -203,22 +203,22 @@ impl Case {
             format!(" {}", self.transport.phase)
         };
         format!(
-            "grid {}x{}x{} = {} cells, h = ({:e} {:e} {:e}) m; patches: {}; fluid{phase}: \
-             rho = {} kg/m3, nu = {:e} m2/s; t = {} .. {} s, deltaT = {:e} s{}; write {write}; \
+            "grid {}x{}x{} = {} cells, h = ({} {} {}) m; patches: {}; fluid{phase}: \
+             rho = {} kg/m3, nu = {} m2/s; t = {} .. {} s, deltaT = {} s{}; write {write}; \
              coupling {}",
             g.n[0],
             g.n[1],
             g.n[2],
             g.cell_count(),
-            g.h[0],
-            g.h[1],
-            g.h[2],
+            short(g.h[0]),
+            short(g.h[1]),
+            short(g.h[2]),
             faces.join(", "),
-            self.transport.rho,
-            self.transport.nu,
-            self.control.start_time,
-            self.control.end_time,
-            self.control.delta_t,
+            short(self.transport.rho),
+            short(self.transport.nu),
+            short(self.control.start_time),
+            short(self.control.end_time),
+            short(self.control.delta_t),
             if self.control.adjust_time_step {
                 format!(" (adjustable, maxCo {})", self.control.max_co)
             } else {
@@ -232,6 +232,11 @@ impl Case {
     pub fn has_particles(&self) -> bool {
         self.coupling.model != CouplingModel::None
     }
+}
+
+/// A number with 6 significant digits, as OpenFOAM prints it.
+fn short(x: f64) -> String {
+    time_name(x, 6)
 }
 
 /// One note per ignored keyword and file, at its first place, with the number of times seen

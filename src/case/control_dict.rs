@@ -180,18 +180,22 @@ impl ControlDict {
                 format!("expected 1 to 17 digits for 'timePrecision', found {time_precision}"),
             ));
         }
-        for key in [
+        let output: Vec<&str> = [
             "writeFormat",
             "writePrecision",
             "writeCompression",
             "timeFormat",
-        ] {
-            if d.lookup(key).is_some() {
-                notes.push(format!(
-                    "{}: '{key}' is ignored: fsim writes VTK files (binary, full precision)",
-                    d.file()
-                ));
-            }
+        ]
+        .into_iter()
+        .filter(|key| d.lookup(key).is_some())
+        .collect();
+        if !output.is_empty() {
+            notes.push(format!(
+                "{}: {} ignored: fsim writes binary VTK at full precision and names time \
+                 directories in OpenFOAM's general format",
+                d.file(),
+                output.join(", ")
+            ));
         }
         // Every controlDict names its OpenFOAM solver; fsim is the solver here.
         d.lookup("application");
