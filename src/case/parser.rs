@@ -330,10 +330,10 @@ impl Ctx {
         key_loc: Location,
     ) -> Result<&'a str, CaseError> {
         let i = self.skip(src, i)?;
-        if i.starts_with('{') {
+        if let Some(inner) = i.strip_prefix('{') {
             let open = src.loc(i);
             let name = scoped_name(&self.current().name, key.as_str());
-            let (rest, dict) = self.sub_dict(src, &i[1..], name, key_loc.clone(), &open)?;
+            let (rest, dict) = self.sub_dict(src, inner, name, key_loc.clone(), &open)?;
             self.current()
                 .insert(Entry::new(key, key_loc, EntryBody::Dict(dict)));
             return Ok(rest);
@@ -608,7 +608,7 @@ impl Ctx {
             ));
         };
         let entries: Vec<Entry> = d.entries().to_vec();
-        let size = entries.iter().map(|e| entry_size(e)).sum();
+        let size = entries.iter().map(entry_size).sum();
         self.charge(src, i, size)?;
         for e in entries {
             self.current().insert(e);
@@ -758,7 +758,6 @@ impl Ctx {
         let i = self.skip(src, i)?;
         if i.starts_with('"') {
             return quoted(i)
-                .map(|(rest, s)| (rest, s))
                 .ok_or_else(|| src.err(i, "expected '\"' to close the string opened here"));
         }
         match word(i) {
