@@ -52,10 +52,12 @@ pub fn read_dict_file(path: &Path, case_dir: Option<&Path>) -> Result<Dict, Case
     parse_source(file, case_dir)
 }
 
-/// Parses dictionary text held in memory; `display` names it in messages.
+/// Parses dictionary text held in memory; `display` names it in messages. `#include` is
+/// refused there (there is no directory to resolve it from).
 pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
+    // An empty path marks text without a file: `#include` has no directory to resolve from.
     let file = Arc::new(SourceFile::from_text(
-        PathBuf::from(display),
+        PathBuf::new(),
         display.to_string(),
         text.to_string(),
     ));
@@ -787,6 +789,12 @@ impl Ctx {
         } else {
             arg.to_string()
         };
+        if src.file.path.as_os_str().is_empty() {
+            return Err(CaseError::at(
+                loc,
+                format!("cannot include \"{arg}\": the text was not read from a file"),
+            ));
+        }
         let path = Path::new(&expanded);
         let path = if path.is_absolute() {
             path.to_path_buf()
@@ -798,7 +806,8 @@ impl Ctx {
                 .join(path)
         };
         let gz = PathBuf::from(format!("{}.gz", path.display()));
-        if !path.exists() && !gz.exists() {
+        // Only regular files: a device such as /dev/zero would never end.
+        if !path.is_file() && !gz.is_file() {
             if optional {
                 return Ok(());
             }
@@ -1176,6 +1185,13 @@ mod tests {
             d.values[0].as_list().unwrap().get(1).unwrap().as_vector(),
             Some([1.0, 2.0, 3.0])
         );
+    }
+
+    #[test]
+    fn messages_quoting_line_breaks_stay_one_line() {
+        let e = err("#include \"a\nb\"");
+        assert_eq!(e.to_string().lines().count(), 1, "{e}");
+        assert!(e.message.contains("a\\nb"), "{e}");
     }
 
     #[test]
