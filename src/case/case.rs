@@ -272,3 +272,36 @@ fn unused_keywords(dicts: &[Dict]) -> Vec<String> {
     }
     notes
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    #[test]
+    fn a_case_can_be_shared_between_threads() {
+        fn shareable<T: Send + Sync>() {}
+        shareable::<Case>();
+        shareable::<CaseError>();
+    }
+
+    #[test]
+    fn an_ignored_keyword_is_noted_once_per_file() {
+        let d = parse_dict(
+            "a { phi phi.air; type x; }\nb { phi phi.air; type y; }\nc 1;",
+            "0/U.air",
+        )
+        .unwrap();
+        for k in ["a", "b"] {
+            d.get_dict(k).unwrap().get_word("type").unwrap();
+        }
+        let notes = unused_keywords(&[d]);
+        assert_eq!(
+            notes,
+            [
+                "0/U.air:1:5: ignored keyword 'phi' (fsim does not use it, 2 times)",
+                "0/U.air:3:1: ignored keyword 'c' (fsim does not use it)",
+            ]
+        );
+    }
+}
