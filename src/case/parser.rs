@@ -955,7 +955,8 @@ pub fn check_parser_invariants(text: &str) {
                 "line {} outside the text: {e}",
                 e.line
             );
-            let width = lines[e.line - 1].trim_end_matches('\r').chars().count();
+            // A lone carriage return is not a line break: it counts as a column.
+            let width = lines[e.line - 1].chars().count();
             assert!(
                 e.col >= 1 && e.col <= width + 1,
                 "column {} outside line {}: {e}",
@@ -1192,6 +1193,16 @@ mod tests {
         let e = err("#include \"a\nb\"");
         assert_eq!(e.to_string().lines().count(), 1, "{e}");
         assert!(e.message.contains("a\\nb"), "{e}");
+    }
+
+    #[test]
+    fn fuzz_findings_hold_the_contract() {
+        // A lone carriage return is a column, not a line break (found by cargo fuzz).
+        check_parser_invariants("a [c\n\r\r\r\r\r");
+        let e = err("a [c\n\r\r\r");
+        assert_eq!((e.line, e.col), (2, 4), "{e}");
+        // A quoted line break inside an error message (found by cargo fuzz).
+        check_parser_invariants("#include \"\u{fffd}\n}\n#include \"x\"\n");
     }
 
     #[test]
