@@ -103,6 +103,37 @@ fn missing_file() {
 }
 
 #[test]
+fn missing_initial_time_directory_hints_at_0_orig() {
+    let c = TempCase::from_sample("cavity");
+    std::fs::rename(c.dir.join("0"), c.dir.join("0.orig")).unwrap();
+    let e = c.error();
+    assert_eq!(
+        e.to_string(),
+        "0/U: file not found (the case has 0.orig: copy it to 0, as the tutorial's Allrun does)"
+    );
+}
+
+#[test]
+fn time_scheme_errors_point_at_the_setting() {
+    let c = TempCase::from_sample("cavity");
+    std::fs::write(
+        c.dir.join("system/fvSolution"),
+        "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n\
+         fsim\n{\n    timeScheme  leapfrog;\n}\n",
+    )
+    .unwrap();
+    let case = Case::load(&c.dir).unwrap();
+    assert_eq!(case.time_scheme.as_deref(), Some("leapfrog"));
+    let e = case.time_scheme_error("unknown fsim timeScheme 'leapfrog'");
+    check(
+        &e,
+        "system/fvSolution",
+        (4, 17),
+        "unknown fsim timeScheme 'leapfrog'",
+    );
+}
+
+#[test]
 fn missing_case_directory() {
     let dir = std::env::temp_dir().join("fsim-case-errors-no-such-case");
     let e = Case::load(&dir).unwrap_err();

@@ -18,6 +18,8 @@ pub struct Case {
     /// The case directory as given.
     pub dir: PathBuf,
     pub control: ControlDict,
+    /// `system/controlDict` as parsed (its `functions` are kept for the function objects).
+    pub control_dict: Dict,
     pub mesh: BlockMesh,
     pub transport: Transport,
     /// Gravity from `constant/g` (zero when the file is absent), m/s².
@@ -74,7 +76,6 @@ impl Case {
         if let Some(f) = control_dict.lookup("functions").and_then(|e| e.as_dict()) {
             f.mark_all_used();
         }
-        read_dicts.push(control_dict);
 
         let mesh_dict = read("system/blockMeshDict")?;
         let mesh = BlockMesh::from_dict(&mesh_dict)?;
@@ -140,10 +141,13 @@ impl Case {
             None => None,
         };
 
+        read_dicts.insert(0, control_dict);
         warnings.extend(unused_keywords(&read_dicts));
+        let control_dict = read_dicts.remove(0);
         Ok(Case {
             dir: dir.to_path_buf(),
             control,
+            control_dict,
             mesh,
             transport,
             gravity,
@@ -226,6 +230,22 @@ impl Case {
             },
             self.coupling.model.name(),
         )
+    }
+
+    /// An error located at the `fsim { timeScheme …; }` value of `system/fvSolution`, for the
+    /// solver's own check of the scheme's name.
+    pub fn time_scheme_error(&self, message: impl Into<String>) -> CaseError {
+        let at = self
+            .fv_solution
+            .as_ref()
+            .and_then(|s| s.peek("fsim"))
+            .and_then(|e| e.as_dict())
+            .and_then(|f| f.peek("timeScheme"))
+            .map(|e| e.value_loc().clone());
+        match at {
+            Some(loc) => CaseError::at(&loc, message),
+            None => CaseError::in_file("system/fvSolution", message),
+        }
     }
 
     /// Whether the case has particles to couple.

@@ -142,8 +142,22 @@ impl Fields {
         warnings: &mut Vec<String>,
     ) -> Result<(Fields, FieldDicts), CaseError> {
         let dir = case_dir.join(time);
-        let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir))?;
-        let p_dict = Dict::read(&dir.join("p"), Some(case_dir))?;
+        // OpenFOAM tutorials ship `0.orig`, copied to `0` by their Allrun scripts.
+        let hint = |e: CaseError| {
+            let orig = case_dir.join(format!("{time}.orig"));
+            if !dir.exists() && orig.is_dir() {
+                let mut e = e;
+                e.message = format!(
+                    "{} (the case has {time}.orig: copy it to {time}, as the tutorial's Allrun does)",
+                    e.message
+                );
+                e
+            } else {
+                e
+            }
+        };
+        let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir)).map_err(hint)?;
+        let p_dict = Dict::read(&dir.join("p"), Some(case_dir)).map_err(hint)?;
         let cells = mesh.grid.cell_count();
         let u = internal(&u_dict, cells, "a vector (x y z)", Item::as_vector)?;
         let p = internal(&p_dict, cells, "a number", Item::as_scalar)?;
