@@ -67,6 +67,40 @@ fn channel_with_walls_and_mean_velocity_force() {
 }
 
 #[test]
+fn constraint_patches_may_be_left_to_set_constraint_types() {
+    // OpenFOAM's caseDicts/setConstraintTypes gives cyclic, empty and symmetry patches their
+    // own condition; fsim does the same when a field includes it.
+    let dir =
+        std::env::temp_dir().join(format!("fsim-case-load-constraints-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    for sub in ["system", "constant", "0"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+    }
+    let cavity = sample("cavity");
+    for f in [
+        "system/controlDict",
+        "system/blockMeshDict",
+        "constant/transportProperties",
+    ] {
+        std::fs::copy(cavity.join(f), dir.join(f)).unwrap();
+    }
+    let field = |value: &str, wall: &str| {
+        format!(
+            "internalField uniform {value};\nboundaryField\n{{\n    movingWall {{ {wall} }}\n    \
+             fixedWalls {{ {wall} }}\n    #includeEtc \"caseDicts/setConstraintTypes\"\n}}\n"
+        )
+    };
+    std::fs::write(dir.join("0/U"), field("(0 0 0)", "type noSlip;")).unwrap();
+    std::fs::write(dir.join("0/p"), field("0", "type zeroGradient;")).unwrap();
+    let case = Case::load(&dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    let case = case.unwrap_or_else(|e| panic!("{}", e.report()));
+    let empty = case.mesh.patch_index("frontAndBack").unwrap();
+    assert_eq!(case.fields.u_bc[empty], VelocityBc::Empty);
+    assert_eq!(case.fields.p_bc[empty], PressureBc::Empty);
+}
+
+#[test]
 fn lid_driven_cavity() {
     let c = load("cavity");
     assert_eq!(c.mesh.grid.n, [20, 20, 1]);
