@@ -131,7 +131,8 @@ impl ControlDict {
         let write_control = match choice(
             d,
             "writeControl",
-            &["timeStep", "runTime", "adjustableRunTime"],
+            // `adjustable` is OpenFOAM's short alias of `adjustableRunTime`.
+            &["timeStep", "runTime", "adjustableRunTime", "adjustable"],
             Some(0),
         )? {
             0 => WriteControl::TimeStep,
@@ -276,6 +277,13 @@ mod tests {
         assert_eq!(c.time_precision, 6);
         assert_eq!(c.max_co, 1.0);
         assert_eq!(notes.len(), 1);
+        let d = parse_dict(
+            "endTime 1; deltaT 0.01; writeControl adjustable; writeInterval 0.1;",
+            "system/controlDict",
+        )
+        .unwrap();
+        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        assert_eq!(c.write_control, WriteControl::AdjustableRunTime);
         let d = parse_dict(
             "endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;",
             "system/controlDict",
