@@ -33,6 +33,7 @@ use nom::IResult;
 
 use super::dictionary::{Dict, Directive, Entry, EntryBody, Key};
 use super::error::CaseError;
+use super::expression::{evaluate, Number};
 use super::source::{Location, SourceFile};
 use super::value::{Dimensions, Item, Value};
 
@@ -419,8 +420,11 @@ impl Ctx {
                 None => Err(src.err(i, "expected '#}' to close the code block opened here")),
             },
             '#' => match directive_name(&i[1..]) {
+                Ok((rest, name)) if matches!(name, "calc" | "eval") => {
+                    self.calculation(src, rest, name, &loc)
+                }
                 Ok((rest, name)) if rest.starts_with('{') => {
-                    // `#eval{ 20*pi() }`: an expression kept as text, never evaluated.
+                    // `#name{ … }`: an expression kept as text, never evaluated.
                     let Some(end) = balanced_brace_end(rest) else {
                         return Err(
                             src.err(rest, "expected '}' to close the expression opened here")
@@ -455,6 +459,87 @@ impl Ctx {
                 }
             }
         }
+    }
+
+    /// `#calc "…"` or `#eval{ … }` (or `#eval "…"`): the number it computes when its
+    /// arithmetic is within [`evaluate`]'s subset and its `$var`s are numbers; otherwise the
+    /// directive and its text, kept unevaluated.
+    fn calculation<'a>(
+        &mut self,
+        src: &Src,
+        after_name: &'a str,
+        name: &str,
+        loc: &Location,
+    ) -> Result<(&'a str, Vec<Item>), CaseError> {
+        let directive = Item::new(Value::Directive(name.to_string()), loc.clone());
+        let (rest, body) = if name == "eval" && after_name.starts_with('{') {
+            let Some(end) = balanced_brace_end(after_name) else {
+                return Err(src.err(
+                    after_name,
+                    "expected '}' to close the expression opened here",
+                ));
+            };
+            (&after_name[end + 1..], after_name[1..end].to_string())
+        } else {
+            let text = self.skip(src, after_name)?;
+            match quoted(text) {
+                Some((rest, body)) => (rest, body),
+                // Not the form fsim evaluates: the tokens that follow are read as usual.
+                None => return Ok((after_name, vec![directive])),
+            }
+        };
+        let value = self
+            .substitute(&body)
+            .and_then(|text| evaluate(&text, name == "calc"));
+        Ok(match value {
+            Some(Number::Int(n)) => (rest, vec![Item::new(Value::Label(n), loc.clone())]),
+            Some(Number::Real(x)) => (rest, vec![Item::new(Value::Scalar(x), loc.clone())]),
+            None => {
+                let code = Item::new(Value::Code(body), src.loc(after_name));
+                (rest, vec![directive, code])
+            }
+        })
+    }
+
+    /// `text` with each `$var` (or `${var}`) replaced by the number it names, or `None` when
+    /// one is undefined or not a single number.
+    fn substitute(&self, text: &str) -> Option<String> {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(at) = rest.find('$') {
+            out.push_str(&rest[..at]);
+            let after = &rest[at + 1..];
+            let (tail, name) = match after.strip_prefix('{') {
+                Some(braced) => {
+                    let end = braced.find('}')?;
+                    (&braced[end + 1..], braced[..end].trim())
+                }
+                None => {
+                    // In arithmetic, `/` divides: it does not separate scopes here.
+                    let (tail, name) = take_while1::<_, _, nom::error::Error<&str>>(|c: char| {
+                        c.is_alphanumeric() || matches!(c, '_' | '.' | ':')
+                    })(after)
+                    .ok()?;
+                    (tail, name)
+                }
+            };
+            let entry = self.resolve(name)?;
+            let number = match entry.as_tokens()? {
+                [item] => match item.value {
+                    Value::Label(n) => n.to_string(),
+                    Value::Scalar(x) => format!("{x:?}"),
+                    _ => return None,
+                },
+                _ => return None,
+            };
+            // Parenthesised so that `-$a` and `2*$a` keep their meaning for negative values.
+            out.push('(');
+            out.push_str(&number);
+            out.push(')');
+            rest = tail;
+        }
+        out.push_str(rest);
+        Some(out)
     }
 
     /// A count-prefixed list `N(…)` or uniform list `N{v}` after the count, if one follows.
@@ -1203,6 +1288,30 @@ mod tests {
         assert_eq!((e.line, e.col), (2, 4), "{e}");
         // A quoted line break inside an error message (found by cargo fuzz).
         check_parser_invariants("#include \"\u{fffd}\n}\n#include \"x\"\n");
+    }
+
+    #[test]
+    fn calc_and_eval_give_numbers_when_they_can() {
+        let d = parse(
+            "L 10; n 7; r 2.0;\nhalf #calc \"$L/2\";\ncells #calc \"$n/2\";\n\
+             y #eval{ $r*sin(degToRad(30)) };\nz #eval \"${n}/2\";\n\
+             v ( 0 #calc \"-$L\" 0 );\nw #calc \"vector(1, 2, 3)\";\nu #eval{ $nothing + 1 };",
+        );
+        assert_eq!(d.get_label("half").unwrap(), 5);
+        assert_eq!(d.get_label("cells").unwrap(), 3);
+        assert!((d.get_scalar("y").unwrap() - 1.0).abs() < 1e-12);
+        assert_eq!(d.get_scalar("z").unwrap(), 3.5);
+        assert_eq!(d.get_vector("v").unwrap(), [0.0, -10.0, 0.0]);
+        // Outside the subset: kept, and a typed read says fsim does not evaluate it.
+        let e = d.get_scalar("w").unwrap_err();
+        assert!(
+            e.message.contains("'#calc' (fsim does not evaluate it)"),
+            "{e}"
+        );
+        assert!(d.get_scalar("u").is_err());
+        // The result sits where the directive was written.
+        let half = &d.get_tokens("half").unwrap()[0];
+        assert_eq!(half.loc.line_col(), (2, 6));
     }
 
     #[test]
