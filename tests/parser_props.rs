@@ -57,6 +57,10 @@ const SPICE: &[&str] = &[
     "-",
     ".",
     "uniform",
+    "#calc \"2*$a/3\"",
+    "#eval{ sin(pi()/$b) }",
+    "a 2;",
+    "b -1e300;",
 ];
 
 #[derive(Clone, Debug)]
