@@ -127,3 +127,42 @@ fn lid_driven_cavity() {
     );
     assert!(!line.contains('\n'));
 }
+
+#[test]
+fn an_included_file_header_does_not_become_a_patch() {
+    // `boundaryField { #include "include/walls" }` where the included file has a FoamFile
+    // header of its own, as OpenFOAM tutorials often have.
+    let dir = std::env::temp_dir().join(format!("fsim-case-load-include-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    copy(&sample("cavity"), &dir);
+    std::fs::create_dir_all(dir.join("0/include")).unwrap();
+    std::fs::write(
+        dir.join("0/include/walls"),
+        "FoamFile { version 2.0; format ascii; class dictionary; object walls; }\n\
+         fixedWalls { type noSlip; }\n",
+    )
+    .unwrap();
+    let u = std::fs::read_to_string(dir.join("0/U")).unwrap();
+    let u = u.replace(
+        "    fixedWalls\n    {\n        type            noSlip;\n    }\n",
+        "    #include \"include/walls\"\n",
+    );
+    std::fs::write(dir.join("0/U"), u).unwrap();
+    let case = Case::load(&dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    let case = case.unwrap_or_else(|e| panic!("{}", e.report()));
+    let walls = case.mesh.patch_index("fixedWalls").unwrap();
+    assert_eq!(case.fields.u_bc[walls], VelocityBc::NoSlip);
+}
+
+fn copy(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.path().is_dir() {
+            copy(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}

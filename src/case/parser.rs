@@ -909,9 +909,14 @@ impl Ctx {
         }
         let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
         let inner = Src { file: &file };
+        let had_header = self.current().contains("FoamFile");
         self.include_depth += 1;
         let result = self.body(&inner, &file.text, None);
         self.include_depth -= 1;
+        // An included file's own header is not an entry of the dictionary it lands in.
+        if self.stack.len() > 1 && !had_header {
+            self.current().remove("FoamFile");
+        }
         result.map(|_| ())
     }
 }
