@@ -119,3 +119,74 @@ fn every_installed_openfoam_tutorial_dictionary_parses() {
         failures.len()
     );
 }
+
+/// OpenFOAM's own DPMFoam tutorial loads as an fsim case, read in place.
+#[test]
+fn dpmfoam_goldschmidt_tutorial_loads_as_a_case() {
+    use fsim::case::{BoxFace, Case, CouplingModel, PatchType, PressureBc, VelocityBc};
+    let dir = Path::new(EXAMPLES).join("lagrangian/DPMFoam/Goldschmidt");
+    if !dir.is_dir() {
+        println!("note: {} is absent; skipped", dir.display());
+        return;
+    }
+    let case = Case::load(&dir).unwrap_or_else(|e| panic!("{}", e.report()));
+    // blockMeshDict: scale 0.001, x from -7.5 to 7.5, y from -75 to 75, z from 0 to 450,
+    // cells (2 30 90).
+    let g = &case.mesh.grid;
+    assert_eq!(g.n, [2, 30, 90]);
+    let want_h = [0.0075, 0.005, 0.005];
+    let want_origin = [-0.0075, -0.075, 0.0];
+    for a in 0..3 {
+        assert!((g.h[a] - want_h[a]).abs() < 1e-15, "h {:?}", g.h);
+        assert!(
+            (g.origin[a] - want_origin[a]).abs() < 1e-15,
+            "origin {:?}",
+            g.origin
+        );
+    }
+    assert_eq!(case.mesh.patch_on(BoxFace::ZMin).name, "bottom");
+    assert_eq!(case.mesh.patch_on(BoxFace::XMax).kind, PatchType::Symmetry);
+    assert_eq!(
+        (
+            case.transport.phase.as_str(),
+            case.transport.rho,
+            case.transport.nu
+        ),
+        ("air", 1.2, 1e-5)
+    );
+    assert_eq!(case.gravity, [0.0, 0.0, -9.81]);
+    // kinematicCloudProperties is present and couplingProperties absent: drag law.
+    assert_eq!(case.coupling.model, CouplingModel::DragLaw);
+    assert!(case.cloud_properties.is_some());
+    let bottom = case.mesh.patch_index("bottom").unwrap();
+    assert_eq!(
+        case.fields.u_bc[bottom],
+        VelocityBc::InterstitialInletVelocity {
+            inlet_velocity: [0.0, 0.0, 1.875],
+            alpha: "alpha.air".to_string()
+        }
+    );
+    assert_eq!(case.fields.p_bc[bottom], PressureBc::FixedFluxPressure);
+    println!("{}", case.summary());
+}
+
+/// OpenFOAM's icoFoam cavity tutorial loads as an fsim case, read in place.
+#[test]
+fn icofoam_cavity_tutorial_loads_as_a_case() {
+    use fsim::case::{BoxFace, Case, PatchType, VelocityBc};
+    let dir = Path::new(EXAMPLES).join("incompressible/icoFoam/cavity/cavity");
+    if !dir.is_dir() {
+        println!("note: {} is absent; skipped", dir.display());
+        return;
+    }
+    let case = Case::load(&dir).unwrap_or_else(|e| panic!("{}", e.report()));
+    assert_eq!(case.mesh.grid.n, [20, 20, 1]);
+    assert_eq!(case.transport.phase, "");
+    assert_eq!((case.transport.rho, case.transport.nu), (1.0, 0.01));
+    assert_eq!(case.mesh.patch_on(BoxFace::ZMax).kind, PatchType::Empty);
+    let lid = case.mesh.patch_index("movingWall").unwrap();
+    assert_eq!(
+        case.fields.u_bc[lid],
+        VelocityBc::FixedValue([1.0, 0.0, 0.0])
+    );
+}

@@ -225,10 +225,16 @@ impl BlockMesh {
                         let cells = self.grid.n[f.axis()];
                         let axis = ["x", "y", "z"][f.axis()];
                         if cells != 1 {
+                            let why = if p.name == "defaultFaces" {
+                                "faces not listed in any patch go to 'defaultFaces' of type \
+                                 empty (as in blockMesh), so "
+                            } else {
+                                ""
+                            };
                             return Err(CaseError::at(
                                 &p.loc,
                                 format!(
-                                    "expected 1 cell in {axis} under the empty patch '{}' \
+                                    "{why}expected 1 cell in {axis} under the empty patch '{}' \
                                      (face {f}), found {cells} cells",
                                     p.name
                                 ),

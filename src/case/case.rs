@@ -18,6 +18,8 @@ pub struct Case {
     /// The case directory as given.
     pub dir: PathBuf,
     pub control: ControlDict,
+    /// `system/controlDict` as parsed (its `functions` are kept for the function objects).
+    pub control_dict: Dict,
     pub mesh: BlockMesh,
     pub transport: Transport,
     /// Gravity from `constant/g` (zero when the file is absent), m/s².
@@ -74,7 +76,6 @@ impl Case {
         if let Some(f) = control_dict.lookup("functions").and_then(|e| e.as_dict()) {
             f.mark_all_used();
         }
-        read_dicts.push(control_dict);
 
         let mesh_dict = read("system/blockMeshDict")?;
         let mesh = BlockMesh::from_dict(&mesh_dict)?;
@@ -140,10 +141,13 @@ impl Case {
             None => None,
         };
 
+        read_dicts.insert(0, control_dict);
         warnings.extend(unused_keywords(&read_dicts));
+        let control_dict = read_dicts.remove(0);
         Ok(Case {
             dir: dir.to_path_buf(),
             control,
+            control_dict,
             mesh,
             transport,
             gravity,
@@ -203,22 +207,22 @@ impl Case {
             format!(" {}", self.transport.phase)
         };
         format!(
-            "grid {}x{}x{} = {} cells, h = ({:e} {:e} {:e}) m; patches: {}; fluid{phase}: \
-             rho = {} kg/m3, nu = {:e} m2/s; t = {} .. {} s, deltaT = {:e} s{}; write {write}; \
+            "grid {}x{}x{} = {} cells, h = ({} {} {}) m; patches: {}; fluid{phase}: \
+             rho = {} kg/m3, nu = {} m2/s; t = {} .. {} s, deltaT = {} s{}; write {write}; \
              coupling {}",
             g.n[0],
             g.n[1],
             g.n[2],
             g.cell_count(),
-            g.h[0],
-            g.h[1],
-            g.h[2],
+            short(g.h[0]),
+            short(g.h[1]),
+            short(g.h[2]),
             faces.join(", "),
-            self.transport.rho,
-            self.transport.nu,
-            self.control.start_time,
-            self.control.end_time,
-            self.control.delta_t,
+            short(self.transport.rho),
+            short(self.transport.nu),
+            short(self.control.start_time),
+            short(self.control.end_time),
+            short(self.control.delta_t),
             if self.control.adjust_time_step {
                 format!(" (adjustable, maxCo {})", self.control.max_co)
             } else {
@@ -228,10 +232,31 @@ impl Case {
         )
     }
 
+    /// An error located at the `fsim { timeScheme …; }` value of `system/fvSolution`, for the
+    /// solver's own check of the scheme's name.
+    pub fn time_scheme_error(&self, message: impl Into<String>) -> CaseError {
+        let at = self
+            .fv_solution
+            .as_ref()
+            .and_then(|s| s.peek("fsim"))
+            .and_then(|e| e.as_dict())
+            .and_then(|f| f.peek("timeScheme"))
+            .map(|e| e.value_loc().clone());
+        match at {
+            Some(loc) => CaseError::at(&loc, message),
+            None => CaseError::in_file("system/fvSolution", message),
+        }
+    }
+
     /// Whether the case has particles to couple.
     pub fn has_particles(&self) -> bool {
         self.coupling.model != CouplingModel::None
     }
+}
+
+/// A number with 6 significant digits, as OpenFOAM prints it.
+fn short(x: f64) -> String {
+    time_name(x, 6)
 }
 
 /// One note per ignored keyword and file, at its first place, with the number of times seen
@@ -266,4 +291,37 @@ fn unused_keywords(dicts: &[Dict]) -> Vec<String> {
         }
     }
     notes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    #[test]
+    fn a_case_can_be_shared_between_threads() {
+        fn shareable<T: Send + Sync>() {}
+        shareable::<Case>();
+        shareable::<CaseError>();
+    }
+
+    #[test]
+    fn an_ignored_keyword_is_noted_once_per_file() {
+        let d = parse_dict(
+            "a { phi phi.air; type x; }\nb { phi phi.air; type y; }\nc 1;",
+            "0/U.air",
+        )
+        .unwrap();
+        for k in ["a", "b"] {
+            d.get_dict(k).unwrap().get_word("type").unwrap();
+        }
+        let notes = unused_keywords(&[d]);
+        assert_eq!(
+            notes,
+            [
+                "0/U.air:1:5: ignored keyword 'phi' (fsim does not use it, 2 times)",
+                "0/U.air:3:1: ignored keyword 'c' (fsim does not use it)",
+            ]
+        );
+    }
 }

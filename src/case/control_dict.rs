@@ -131,7 +131,8 @@ impl ControlDict {
         let write_control = match choice(
             d,
             "writeControl",
-            &["timeStep", "runTime", "adjustableRunTime"],
+            // `adjustable` is OpenFOAM's short alias of `adjustableRunTime`.
+            &["timeStep", "runTime", "adjustableRunTime", "adjustable"],
             Some(0),
         )? {
             0 => WriteControl::TimeStep,
@@ -180,18 +181,22 @@ impl ControlDict {
                 format!("expected 1 to 17 digits for 'timePrecision', found {time_precision}"),
             ));
         }
-        for key in [
+        let output: Vec<&str> = [
             "writeFormat",
             "writePrecision",
             "writeCompression",
             "timeFormat",
-        ] {
-            if d.lookup(key).is_some() {
-                notes.push(format!(
-                    "{}: '{key}' is ignored: fsim writes VTK files (binary, full precision)",
-                    d.file()
-                ));
-            }
+        ]
+        .into_iter()
+        .filter(|key| d.lookup(key).is_some())
+        .collect();
+        if !output.is_empty() {
+            notes.push(format!(
+                "{}: {} ignored: fsim writes binary VTK at full precision and names time \
+                 directories in OpenFOAM's general format",
+                d.file(),
+                output.join(", ")
+            ));
         }
         // Every controlDict names its OpenFOAM solver; fsim is the solver here.
         d.lookup("application");
@@ -272,6 +277,13 @@ mod tests {
         assert_eq!(c.time_precision, 6);
         assert_eq!(c.max_co, 1.0);
         assert_eq!(notes.len(), 1);
+        let d = parse_dict(
+            "endTime 1; deltaT 0.01; writeControl adjustable; writeInterval 0.1;",
+            "system/controlDict",
+        )
+        .unwrap();
+        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        assert_eq!(c.write_control, WriteControl::AdjustableRunTime);
         let d = parse_dict(
             "endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;",
             "system/controlDict",

@@ -455,6 +455,9 @@ pub fn single_token<'a>(e: &'a Entry, what: &str) -> Result<&'a Item, CaseError>
             &e.key_loc,
             format!("expected {what} for '{keyword}', found nothing before ';'"),
         )),
+        // An unevaluated `#calc "…"` or `#codeStream { … }`: the caller's type check then
+        // says that fsim does not evaluate it, pointing at the directive.
+        [item, ..] if matches!(item.value, Value::Directive(_)) => Ok(item),
         [item] => Ok(item),
         [_, extra, ..] => Err(CaseError::at(
             &extra.loc,

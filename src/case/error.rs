@@ -31,7 +31,7 @@ impl CaseError {
             file: Some(loc.file.display.clone()),
             line,
             col,
-            message: message.into(),
+            message: one_line(message.into()),
             source_line: Some(loc.file.line_text(line).to_string()),
         }
     }
@@ -42,7 +42,7 @@ impl CaseError {
             file: Some(file.into()),
             line: 0,
             col: 0,
-            message: message.into(),
+            message: one_line(message.into()),
             source_line: None,
         }
     }
@@ -53,7 +53,7 @@ impl CaseError {
             file: None,
             line: 0,
             col: 0,
-            message: message.into(),
+            message: one_line(message.into()),
             source_line: None,
         }
     }
@@ -91,6 +91,15 @@ impl CaseError {
             Some(excerpt) => format!("{self}\n{excerpt}"),
             None => self.to_string(),
         }
+    }
+}
+
+/// Messages quote user text (a string with a line break, say); Display must stay one line.
+fn one_line(message: String) -> String {
+    if message.contains(['\n', '\r']) {
+        message.replace('\n', "\\n").replace('\r', "\\r")
+    } else {
+        message
     }
 }
 

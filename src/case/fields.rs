@@ -142,20 +142,40 @@ impl Fields {
         warnings: &mut Vec<String>,
     ) -> Result<(Fields, FieldDicts), CaseError> {
         let dir = case_dir.join(time);
-        let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir))?;
-        let p_dict = Dict::read(&dir.join("p"), Some(case_dir))?;
+        // OpenFOAM tutorials ship `0.orig`, copied to `0` by their Allrun scripts.
+        let hint = |e: CaseError| {
+            let orig = case_dir.join(format!("{time}.orig"));
+            if !dir.exists() && orig.is_dir() {
+                let mut e = e;
+                e.message = format!(
+                    "{} (the case has {time}.orig: copy it to {time}, as the tutorial's Allrun does)",
+                    e.message
+                );
+                e
+            } else {
+                e
+            }
+        };
+        let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir)).map_err(hint)?;
+        let p_dict = Dict::read(&dir.join("p"), Some(case_dir)).map_err(hint)?;
         let cells = mesh.grid.cell_count();
         let u = internal(&u_dict, cells, "a vector (x y z)", Item::as_vector)?;
         let p = internal(&p_dict, cells, "a number", Item::as_scalar)?;
         let u_bc = conditions(&u_dict, mesh, warnings)?
             .into_iter()
             .zip(&mesh.patches)
-            .map(|(d, patch)| velocity_bc(d, patch))
+            .map(|(d, patch)| match d {
+                Some(d) => velocity_bc(d, patch),
+                None => Ok(implied_velocity(patch.kind)),
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let p_bc = conditions(&p_dict, mesh, warnings)?
             .into_iter()
             .zip(&mesh.patches)
-            .map(|(d, patch)| pressure_bc(d, patch))
+            .map(|(d, patch)| match d {
+                Some(d) => pressure_bc(d, patch),
+                None => Ok(implied_pressure(patch.kind)),
+            })
             .collect::<Result<Vec<_>, _>>()?;
         for d in [&u_dict, &p_dict] {
             // The dimensions are fixed by the field's kind.
@@ -315,12 +335,18 @@ fn group_of(patch: &Patch) -> Option<&'static str> {
 /// The `boundaryField` dictionary of each patch: exact name first, then the patch's group
 /// (`wall`, `cyclic`, `empty`, …), then the quoted patterns, last first (OpenFOAM's order).
 /// A keyword naming no patch is an error; a pattern or group that matches none is noted.
+/// `None` stands for a constraint patch (cyclic, empty, symmetry) left to
+/// `#includeEtc "caseDicts/setConstraintTypes"`, which gives each its own type.
 fn conditions<'a>(
     d: &'a Dict,
     mesh: &BlockMesh,
     warnings: &mut Vec<String>,
-) -> Result<Vec<&'a Dict>, CaseError> {
+) -> Result<Vec<Option<&'a Dict>>, CaseError> {
     let bf = d.get_dict("boundaryField")?;
+    let constraint_types = bf
+        .directives
+        .iter()
+        .any(|x| x.name == "includeEtc" && x.argument.ends_with("caseDicts/setConstraintTypes"));
     let entries = bf.entries();
     let mut matched = vec![false; entries.len()];
     let mut out = Vec::with_capacity(mesh.patches.len());
@@ -339,6 +365,10 @@ fn conditions<'a>(
                 .rposition(|e| e.key.pattern_matches(&patch.name))
         };
         let Some(k) = exact.or_else(group).or_else(pattern) else {
+            if constraint_types && patch.kind.is_constraint() {
+                out.push(None);
+                continue;
+            }
             return Err(CaseError::at(
                 &bf.loc,
                 format!(
@@ -352,7 +382,7 @@ fn conditions<'a>(
         let entry = &entries[k];
         entry.mark_used();
         match &entry.body {
-            EntryBody::Dict(cd) => out.push(cd),
+            EntryBody::Dict(cd) => out.push(Some(cd)),
             EntryBody::Tokens(_) => {
                 return Err(CaseError::at(
                     &entry.key_loc,
@@ -484,6 +514,25 @@ fn pressure_bc(d: &Dict, patch: &Patch) -> Result<PressureBc, CaseError> {
     };
     quiet_bookkeeping(d);
     Ok(bc)
+}
+
+/// The condition a constraint patch type implies.
+fn implied_velocity(kind: PatchType) -> VelocityBc {
+    match kind {
+        PatchType::Cyclic => VelocityBc::Cyclic,
+        PatchType::Empty => VelocityBc::Empty,
+        PatchType::Symmetry => VelocityBc::Symmetry,
+        _ => VelocityBc::SymmetryPlane,
+    }
+}
+
+fn implied_pressure(kind: PatchType) -> PressureBc {
+    match kind {
+        PatchType::Cyclic => PressureBc::Cyclic,
+        PatchType::Empty => PressureBc::Empty,
+        PatchType::Symmetry => PressureBc::Symmetry,
+        _ => PressureBc::SymmetryPlane,
+    }
 }
 
 /// Entries OpenFOAM writes for its own bookkeeping in boundary conditions (the current patch

@@ -43,10 +43,13 @@ pub fn read_fv_options(d: &Dict, velocity: &str) -> Result<Vec<MeanVelocityForce
         if !source.get_bool_or("active", true)? {
             continue;
         }
-        // Older versions keep the settings in `<type>Coeffs`.
-        let coeffs = source
-            .opt_dict("meanVelocityForceCoeffs")?
-            .unwrap_or(source);
+        // Older versions keep the settings in `<type>Coeffs` (or `<name>Coeffs`).
+        let coeffs = match source.opt_dict("meanVelocityForceCoeffs")? {
+            Some(c) => c,
+            None => source
+                .opt_dict(&format!("{}Coeffs", entry.keyword()))?
+                .unwrap_or(source),
+        };
         choice(coeffs, "selectionMode", &["all"], None)?;
         let fields = coeffs.get_tokens("fields")?;
         let names: Vec<String> = match fields {
@@ -100,6 +103,12 @@ mod tests {
         let s = read_fv_options(&d, "U.air").unwrap();
         assert_eq!(s[0].ubar, [1.0, 0.0, 0.0]);
         assert_eq!((s[1].ubar, s[1].relaxation), ([0.0, 2.0, 0.0], 0.5));
+        let d = parse_dict(
+            "drive { type meanVelocityForce; driveCoeffs { selectionMode all; fields (U); Ubar (3 0 0); } }",
+            "system/fvOptions",
+        )
+        .unwrap();
+        assert_eq!(read_fv_options(&d, "U").unwrap()[0].ubar, [3.0, 0.0, 0.0]);
         let d = parse_dict("s { type scalarSemiImplicitSource; }", "system/fvOptions").unwrap();
         let e = read_fv_options(&d, "U").unwrap_err();
         assert!(e.message.contains("scalarSemiImplicitSource"));

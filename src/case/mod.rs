@@ -12,6 +12,7 @@ pub mod control_dict;
 pub mod coupling;
 pub mod dictionary;
 pub mod error;
+pub mod expression;
 pub mod fields;
 pub mod fv_options;
 pub mod parser;

@@ -33,6 +33,7 @@ use nom::IResult;
 
 use super::dictionary::{Dict, Directive, Entry, EntryBody, Key};
 use super::error::CaseError;
+use super::expression::{evaluate, Number};
 use super::source::{Location, SourceFile};
 use super::value::{Dimensions, Item, Value};
 
@@ -52,10 +53,12 @@ pub fn read_dict_file(path: &Path, case_dir: Option<&Path>) -> Result<Dict, Case
     parse_source(file, case_dir)
 }
 
-/// Parses dictionary text held in memory; `display` names it in messages.
+/// Parses dictionary text held in memory; `display` names it in messages. `#include` is
+/// refused there (there is no directory to resolve it from).
 pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
+    // An empty path marks text without a file: `#include` has no directory to resolve from.
     let file = Arc::new(SourceFile::from_text(
-        PathBuf::from(display),
+        PathBuf::new(),
         display.to_string(),
         text.to_string(),
     ));
@@ -330,10 +333,10 @@ impl Ctx {
         key_loc: Location,
     ) -> Result<&'a str, CaseError> {
         let i = self.skip(src, i)?;
-        if i.starts_with('{') {
+        if let Some(inner) = i.strip_prefix('{') {
             let open = src.loc(i);
             let name = scoped_name(&self.current().name, key.as_str());
-            let (rest, dict) = self.sub_dict(src, &i[1..], name, key_loc.clone(), &open)?;
+            let (rest, dict) = self.sub_dict(src, inner, name, key_loc.clone(), &open)?;
             self.current()
                 .insert(Entry::new(key, key_loc, EntryBody::Dict(dict)));
             return Ok(rest);
@@ -417,8 +420,11 @@ impl Ctx {
                 None => Err(src.err(i, "expected '#}' to close the code block opened here")),
             },
             '#' => match directive_name(&i[1..]) {
+                Ok((rest, name)) if matches!(name, "calc" | "eval") => {
+                    self.calculation(src, rest, name, &loc)
+                }
                 Ok((rest, name)) if rest.starts_with('{') => {
-                    // `#eval{ 20*pi() }`: an expression kept as text, never evaluated.
+                    // `#name{ … }`: an expression kept as text, never evaluated.
                     let Some(end) = balanced_brace_end(rest) else {
                         return Err(
                             src.err(rest, "expected '}' to close the expression opened here")
@@ -453,6 +459,87 @@ impl Ctx {
                 }
             }
         }
+    }
+
+    /// `#calc "…"` or `#eval{ … }` (or `#eval "…"`): the number it computes when its
+    /// arithmetic is within [`evaluate`]'s subset and its `$var`s are numbers; otherwise the
+    /// directive and its text, kept unevaluated.
+    fn calculation<'a>(
+        &mut self,
+        src: &Src,
+        after_name: &'a str,
+        name: &str,
+        loc: &Location,
+    ) -> Result<(&'a str, Vec<Item>), CaseError> {
+        let directive = Item::new(Value::Directive(name.to_string()), loc.clone());
+        let (rest, body) = if name == "eval" && after_name.starts_with('{') {
+            let Some(end) = balanced_brace_end(after_name) else {
+                return Err(src.err(
+                    after_name,
+                    "expected '}' to close the expression opened here",
+                ));
+            };
+            (&after_name[end + 1..], after_name[1..end].to_string())
+        } else {
+            let text = self.skip(src, after_name)?;
+            match quoted(text) {
+                Some((rest, body)) => (rest, body),
+                // Not the form fsim evaluates: the tokens that follow are read as usual.
+                None => return Ok((after_name, vec![directive])),
+            }
+        };
+        let value = self
+            .substitute(&body)
+            .and_then(|text| evaluate(&text, name == "calc"));
+        Ok(match value {
+            Some(Number::Int(n)) => (rest, vec![Item::new(Value::Label(n), loc.clone())]),
+            Some(Number::Real(x)) => (rest, vec![Item::new(Value::Scalar(x), loc.clone())]),
+            None => {
+                let code = Item::new(Value::Code(body), src.loc(after_name));
+                (rest, vec![directive, code])
+            }
+        })
+    }
+
+    /// `text` with each `$var` (or `${var}`) replaced by the number it names, or `None` when
+    /// one is undefined or not a single number.
+    fn substitute(&self, text: &str) -> Option<String> {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(at) = rest.find('$') {
+            out.push_str(&rest[..at]);
+            let after = &rest[at + 1..];
+            let (tail, name) = match after.strip_prefix('{') {
+                Some(braced) => {
+                    let end = braced.find('}')?;
+                    (&braced[end + 1..], braced[..end].trim())
+                }
+                None => {
+                    // In arithmetic, `/` divides: it does not separate scopes here.
+                    let (tail, name) = take_while1::<_, _, nom::error::Error<&str>>(|c: char| {
+                        c.is_alphanumeric() || matches!(c, '_' | '.' | ':')
+                    })(after)
+                    .ok()?;
+                    (tail, name)
+                }
+            };
+            let entry = self.resolve(name)?;
+            let number = match entry.as_tokens()? {
+                [item] => match item.value {
+                    Value::Label(n) => n.to_string(),
+                    Value::Scalar(x) => format!("{x:?}"),
+                    _ => return None,
+                },
+                _ => return None,
+            };
+            // Parenthesised so that `-$a` and `2*$a` keep their meaning for negative values.
+            out.push('(');
+            out.push_str(&number);
+            out.push(')');
+            rest = tail;
+        }
+        out.push_str(rest);
+        Some(out)
     }
 
     /// A count-prefixed list `N(…)` or uniform list `N{v}` after the count, if one follows.
@@ -608,7 +695,7 @@ impl Ctx {
             ));
         };
         let entries: Vec<Entry> = d.entries().to_vec();
-        let size = entries.iter().map(|e| entry_size(e)).sum();
+        let size = entries.iter().map(entry_size).sum();
         self.charge(src, i, size)?;
         for e in entries {
             self.current().insert(e);
@@ -758,7 +845,6 @@ impl Ctx {
         let i = self.skip(src, i)?;
         if i.starts_with('"') {
             return quoted(i)
-                .map(|(rest, s)| (rest, s))
                 .ok_or_else(|| src.err(i, "expected '\"' to close the string opened here"));
         }
         match word(i) {
@@ -788,6 +874,12 @@ impl Ctx {
         } else {
             arg.to_string()
         };
+        if src.file.path.as_os_str().is_empty() {
+            return Err(CaseError::at(
+                loc,
+                format!("cannot include \"{arg}\": the text was not read from a file"),
+            ));
+        }
         let path = Path::new(&expanded);
         let path = if path.is_absolute() {
             path.to_path_buf()
@@ -799,7 +891,8 @@ impl Ctx {
                 .join(path)
         };
         let gz = PathBuf::from(format!("{}.gz", path.display()));
-        if !path.exists() && !gz.exists() {
+        // Only regular files: a device such as /dev/zero would never end.
+        if !path.is_file() && !gz.is_file() {
             if optional {
                 return Ok(());
             }
@@ -816,9 +909,14 @@ impl Ctx {
         }
         let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
         let inner = Src { file: &file };
+        let had_header = self.current().contains("FoamFile");
         self.include_depth += 1;
         let result = self.body(&inner, &file.text, None);
         self.include_depth -= 1;
+        // An included file's own header is not an entry of the dictionary it lands in.
+        if self.stack.len() > 1 && !had_header {
+            self.current().remove("FoamFile");
+        }
         result.map(|_| ())
     }
 }
@@ -947,7 +1045,8 @@ pub fn check_parser_invariants(text: &str) {
                 "line {} outside the text: {e}",
                 e.line
             );
-            let width = lines[e.line - 1].trim_end_matches('\r').chars().count();
+            // A lone carriage return is not a line break: it counts as a column.
+            let width = lines[e.line - 1].chars().count();
             assert!(
                 e.col >= 1 && e.col <= width + 1,
                 "column {} outside line {}: {e}",
@@ -1177,6 +1276,47 @@ mod tests {
             d.values[0].as_list().unwrap().get(1).unwrap().as_vector(),
             Some([1.0, 2.0, 3.0])
         );
+    }
+
+    #[test]
+    fn messages_quoting_line_breaks_stay_one_line() {
+        let e = err("#include \"a\nb\"");
+        assert_eq!(e.to_string().lines().count(), 1, "{e}");
+        assert!(e.message.contains("a\\nb"), "{e}");
+    }
+
+    #[test]
+    fn fuzz_findings_hold_the_contract() {
+        // A lone carriage return is a column, not a line break (found by cargo fuzz).
+        check_parser_invariants("a [c\n\r\r\r\r\r");
+        let e = err("a [c\n\r\r\r");
+        assert_eq!((e.line, e.col), (2, 4), "{e}");
+        // A quoted line break inside an error message (found by cargo fuzz).
+        check_parser_invariants("#include \"\u{fffd}\n}\n#include \"x\"\n");
+    }
+
+    #[test]
+    fn calc_and_eval_give_numbers_when_they_can() {
+        let d = parse(
+            "L 10; n 7; r 2.0;\nhalf #calc \"$L/2\";\ncells #calc \"$n/2\";\n\
+             y #eval{ $r*sin(degToRad(30)) };\nz #eval \"${n}/2\";\n\
+             v ( 0 #calc \"-$L\" 0 );\nw #calc \"vector(1, 2, 3)\";\nu #eval{ $nothing + 1 };",
+        );
+        assert_eq!(d.get_label("half").unwrap(), 5);
+        assert_eq!(d.get_label("cells").unwrap(), 3);
+        assert!((d.get_scalar("y").unwrap() - 1.0).abs() < 1e-12);
+        assert_eq!(d.get_scalar("z").unwrap(), 3.5);
+        assert_eq!(d.get_vector("v").unwrap(), [0.0, -10.0, 0.0]);
+        // Outside the subset: kept, and a typed read says fsim does not evaluate it.
+        let e = d.get_scalar("w").unwrap_err();
+        assert!(
+            e.message.contains("'#calc' (fsim does not evaluate it)"),
+            "{e}"
+        );
+        assert!(d.get_scalar("u").is_err());
+        // The result sits where the directive was written.
+        let half = &d.get_tokens("half").unwrap()[0];
+        assert_eq!(half.loc.line_col(), (2, 6));
     }
 
     #[test]
