@@ -4,3 +4,4 @@
 //! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
 
 pub mod grid;
+pub mod particles;

@@ -1,0 +1,1141 @@
+//! The DEM engine: Newton–Euler for every particle (paper eq. 1) with gravity, buoyancy, the
+//! hydrodynamic load set by the coupling, and soft-sphere contacts.
+//!
+//! Integration is velocity Verlet (kick–drift–kick), the scheme of both reference codes
+//! (OpenFOAM's `CollidingCloud` "symplectic leapfrog" and LAMMPS' `fix nve/sphere`):
+//!
+//! ```text
+//! v ← v + Δt/2 · F/m        ω ← ω + Δt/2 · T/I
+//! x ← x + Δt · v
+//! F, T ← contacts(x, v)     (velocity-dependent forces see the half-step velocity)
+//! v ← v + Δt/2 · F/m        ω ← ω + Δt/2 · T/I
+//! ```
+//!
+//! It is second order, symplectic for conservative forces (energy does not drift during free
+//! flight: under constant gravity it is conserved exactly up to rounding) and needs one force
+//! evaluation per step; symplectic Euler has the same cost but is first order in position.
+//! `F = F_contact + F_external + m g (1 − ρ_f/ρ_p)`: gravity with buoyancy.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+
+use super::contact_model::{linear_contact_time, ContactLaw, PairModel, WallModel};
+use super::dem_error::DemError;
+use super::domain_box::{minimum_image, DomainBox, FaceCondition};
+use super::neighbour_list::{
+    wall_distance, wall_mask, wall_normal, ContactHistory, NeighbourList, CHUNK,
+};
+use super::particle_state::ParticleState;
+use super::vec3::{cross, dot, scale, Vec3};
+
+/// Engine settings besides the particles and the box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DemConfig {
+    pub pair_model: PairModel,
+    pub wall_model: WallModel,
+    /// Gravitational acceleration, m/s².
+    pub gravity: Vec3,
+    /// Density of the surrounding fluid for buoyancy, kg/m³ (0 in vacuum).
+    pub fluid_density: f64,
+    /// Verlet skin as a fraction of the largest diameter.
+    pub skin_fraction: f64,
+    /// Largest initial overlap accepted, as a fraction of the (smaller) diameter.
+    pub overlap_tolerance: f64,
+    /// Optional upper bound on the collision sub-step, s (DPMFoam's rule alone gives one
+    /// huge sub-step when everything is at rest).
+    pub max_substep: Option<f64>,
+}
+
+impl DemConfig {
+    pub fn new(pair_model: PairModel, wall_model: WallModel) -> Self {
+        DemConfig {
+            pair_model,
+            wall_model,
+            gravity: [0.0, 0.0, -9.81],
+            fluid_density: 0.0,
+            skin_fraction: 0.1,
+            overlap_tolerance: 1e-3,
+            max_substep: None,
+        }
+    }
+}
+
+/// Every array needed to continue a run bit for bit: particles in their current order (with
+/// the last contact forces, which the next half-kick uses), the positions at the last list
+/// rebuild (the lists are rebuilt from them identically), and the contact springs by id.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DemSnapshot {
+    pub particles: ParticleState,
+    pub reference_position: Vec<Vec3>,
+    pub history: ContactHistory,
+    pub time: f64,
+    pub steps: u64,
+}
+
+/// The DEM engine. Particle indices change at each list rebuild (cell sort); use `id`.
+pub struct Dem {
+    config: DemConfig,
+    domain: DomainBox,
+    particles: ParticleState,
+    pair_law: ContactLaw,
+    wall_law: Option<ContactLaw>,
+    lists: NeighbourList,
+    radius: Vec<f64>,
+    inv_mass: Vec<f64>,
+    inv_inertia: Vec<f64>,
+    cell_size: f64,
+    time: f64,
+    steps: u64,
+    rebuilds: u64,
+    scratch3: Vec<Vec3>,
+    scratch1: Vec<f64>,
+}
+
+fn check(
+    keyword: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &'static str,
+) -> Result<(), DemError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(DemError::BadCoefficient {
+            keyword,
+            value,
+            expected,
+        })
+    }
+}
+
+fn validate_config(c: &DemConfig) -> Result<(), DemError> {
+    match c.pair_model {
+        PairModel::SpringSliderDashpot {
+            youngs_modulus,
+            poissons_ratio,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps,
+            ..
+        } => {
+            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
+            check(
+                "poissonsRatio",
+                poissons_ratio,
+                poissons_ratio > -1.0 && poissons_ratio < 0.5,
+                "in (-1, 0.5)",
+            )?;
+            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
+            check("b", b, b > 0.0, "> 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+        PairModel::LinearSpringDashpot {
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        } => {
+            check("kn", kn, kn > 0.0, "> 0")?;
+            check(
+                "restitution",
+                restitution,
+                restitution > 0.0 && restitution <= 1.0,
+                "in (0, 1]",
+            )?;
+            check("kt", kt, kt >= 0.0, ">= 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "tangentialDampingRatio",
+                tangential_damping_ratio,
+                tangential_damping_ratio >= 0.0,
+                ">= 0",
+            )?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+    }
+    match c.wall_model {
+        WallModel::None => {}
+        WallModel::SpringSliderDashpot {
+            youngs_modulus,
+            poissons_ratio,
+            particle_youngs_modulus,
+            particle_poissons_ratio,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps,
+            ..
+        } => {
+            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
+            check(
+                "poissonsRatio",
+                poissons_ratio,
+                poissons_ratio > -1.0 && poissons_ratio < 0.5,
+                "in (-1, 0.5)",
+            )?;
+            check(
+                "youngsModulus",
+                particle_youngs_modulus,
+                particle_youngs_modulus > 0.0,
+                "> 0 (particle)",
+            )?;
+            check(
+                "poissonsRatio",
+                particle_poissons_ratio,
+                particle_poissons_ratio > -1.0 && particle_poissons_ratio < 0.5,
+                "in (-1, 0.5) (particle)",
+            )?;
+            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
+            check("b", b, b > 0.0, "> 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+        WallModel::LinearSpringDashpot {
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        } => {
+            check("kn", kn, kn > 0.0, "> 0")?;
+            check(
+                "restitution",
+                restitution,
+                restitution > 0.0 && restitution <= 1.0,
+                "in (0, 1]",
+            )?;
+            check("kt", kt, kt >= 0.0, ">= 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "tangentialDampingRatio",
+                tangential_damping_ratio,
+                tangential_damping_ratio >= 0.0,
+                ">= 0",
+            )?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+    }
+    check(
+        "fluidDensity",
+        c.fluid_density,
+        c.fluid_density >= 0.0,
+        ">= 0",
+    )?;
+    check(
+        "skinFraction",
+        c.skin_fraction,
+        c.skin_fraction > 0.0,
+        "> 0",
+    )?;
+    check(
+        "overlapTolerance",
+        c.overlap_tolerance,
+        c.overlap_tolerance >= 0.0,
+        ">= 0",
+    )?;
+    for g in c.gravity {
+        check("g", g, true, "finite")?;
+    }
+    if let Some(h) = c.max_substep {
+        check("maxSubstep", h, h > 0.0, "> 0")?;
+    }
+    Ok(())
+}
+
+fn validate_domain(d: &DomainBox) -> Result<(), DemError> {
+    for a in 0..3 {
+        if !(d.hi[a] > d.lo[a]) || !d.lo[a].is_finite() || !d.hi[a].is_finite() {
+            return Err(DemError::BadDomain { lo: d.lo, hi: d.hi });
+        }
+        let (p0, p1) = (
+            d.faces[2 * a] == FaceCondition::Periodic,
+            d.faces[2 * a + 1] == FaceCondition::Periodic,
+        );
+        if p0 != p1 {
+            return Err(DemError::UnpairedPeriodicFace {
+                face: if p0 { 2 * a } else { 2 * a + 1 },
+            });
+        }
+        for f in [2 * a, 2 * a + 1] {
+            if let FaceCondition::Rebound { e, mu } = d.faces[f] {
+                check("e", e, (0.0..=1.0).contains(&e), "in [0, 1]")?;
+                check("mu", mu, (0.0..=1.0).contains(&mu), "in [0, 1]")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Per-particle checks that need no neighbours, reported with input indices.
+fn validate_particles(
+    p: &ParticleState,
+    domain: &DomainBox,
+    tolerance: f64,
+) -> Result<(), DemError> {
+    if !p.is_consistent() {
+        return Err(DemError::InconsistentArrays);
+    }
+    for i in 0..p.len() {
+        let id = p.id[i];
+        let d = p.diameter[i];
+        if !(d > 0.0 && d.is_finite()) {
+            return Err(DemError::BadDiameter {
+                index: i,
+                id,
+                diameter: d,
+            });
+        }
+        let rho = p.density[i];
+        if !(rho > 0.0 && rho.is_finite()) {
+            return Err(DemError::BadDensity {
+                index: i,
+                id,
+                density: rho,
+            });
+        }
+        let x = p.position[i];
+        if (0..3).any(|a| !(x[a] >= domain.lo[a] && x[a] <= domain.hi[a])) {
+            return Err(DemError::OutsideDomain {
+                index: i,
+                id,
+                position: x,
+            });
+        }
+        for f in 0..6 {
+            if domain.faces[f] == FaceCondition::Wall {
+                let overlap = 0.5 * d - wall_distance(domain, f, x);
+                if overlap > tolerance * d {
+                    return Err(DemError::WallOverlap {
+                        index: i,
+                        id,
+                        face: f,
+                        overlap_over_d: overlap / d,
+                    });
+                }
+            }
+        }
+    }
+    let mut ids: Vec<(u64, usize)> = p.id.iter().copied().zip(0..).collect();
+    ids.sort_unstable();
+    for w in ids.windows(2) {
+        if w[0].0 == w[1].0 {
+            return Err(DemError::DuplicateId {
+                index_a: w[0].1,
+                index_b: w[1].1,
+                id: w[0].0,
+            });
+        }
+    }
+    Ok(())
+}
+
+impl Dem {
+    /// Validates everything, sorts the particles by cell, builds the lists and evaluates the
+    /// initial contact forces.
+    pub fn new(
+        config: DemConfig,
+        domain: DomainBox,
+        particles: ParticleState,
+    ) -> Result<Self, DemError> {
+        validate_config(&config)?;
+        validate_domain(&domain)?;
+        validate_particles(&particles, &domain, config.overlap_tolerance)?;
+        let mut dem = Dem::assemble(config, domain, particles)?;
+        // input index of each sorted particle, for error messages
+        let input_index: Vec<u32> = {
+            dem.lists
+                .sort(&dem.domain, dem.cell_size, &dem.particles.position);
+            dem.lists.order.clone()
+        };
+        dem.apply_order();
+        dem.build_lists();
+        dem.check_overlaps(&input_index)?;
+        dem.compute_contact_forces(0.0);
+        Ok(dem)
+    }
+
+    /// Restarts from a snapshot taken by [`Dem::snapshot`] with the same config and box.
+    pub fn restore(
+        config: DemConfig,
+        domain: DomainBox,
+        snapshot: &DemSnapshot,
+    ) -> Result<Self, DemError> {
+        validate_config(&config)?;
+        validate_domain(&domain)?;
+        if snapshot.reference_position.len() != snapshot.particles.len() {
+            return Err(DemError::InconsistentArrays);
+        }
+        let mut dem = Dem::assemble(config, domain, snapshot.particles.clone())?;
+        // The lists were built from the reference positions, in this very order: rebuild them
+        // from those, so pair order and therefore summation order are identical.
+        let current = std::mem::replace(
+            &mut dem.particles.position,
+            snapshot.reference_position.clone(),
+        );
+        dem.lists
+            .sort(&dem.domain, dem.cell_size, &dem.particles.position);
+        debug_assert!(dem
+            .lists
+            .order
+            .iter()
+            .enumerate()
+            .all(|(k, &o)| k == o as usize));
+        dem.build_lists();
+        dem.particles.position = current;
+        dem.lists
+            .import_history(&dem.particles.id, &snapshot.history);
+        dem.time = snapshot.time;
+        dem.steps = snapshot.steps;
+        Ok(dem)
+    }
+
+    fn assemble(
+        config: DemConfig,
+        domain: DomainBox,
+        particles: ParticleState,
+    ) -> Result<Self, DemError> {
+        validate_particles(&particles, &domain, f64::INFINITY)?;
+        let d_max = particles.diameter.iter().cloned().fold(0.0, f64::max);
+        let skin = config.skin_fraction * d_max.max(f64::MIN_POSITIVE);
+        let cell_size = d_max + skin;
+        let l = domain.length();
+        for a in 0..3 {
+            if domain.is_periodic(a) && l[a] < 2.0 * cell_size {
+                return Err(DemError::PeriodicTooShort {
+                    axis: a,
+                    length: l[a],
+                    needed: 2.0 * cell_size,
+                });
+            }
+        }
+        let pair_law = ContactLaw::from_pair(&config.pair_model);
+        let wall_law = ContactLaw::from_wall(&config.wall_model);
+        let lists = NeighbourList {
+            skin,
+            ..Default::default()
+        };
+        let mut dem = Dem {
+            config,
+            domain,
+            particles,
+            pair_law,
+            wall_law,
+            lists,
+            radius: Vec::new(),
+            inv_mass: Vec::new(),
+            inv_inertia: Vec::new(),
+            cell_size,
+            time: 0.0,
+            steps: 0,
+            rebuilds: 0,
+            scratch3: Vec::new(),
+            scratch1: Vec::new(),
+        };
+        dem.refresh_derived();
+        Ok(dem)
+    }
+
+    fn refresh_derived(&mut self) {
+        let p = &self.particles;
+        let n = p.len();
+        self.radius.clear();
+        self.inv_mass.clear();
+        self.inv_inertia.clear();
+        for i in 0..n {
+            self.radius.push(0.5 * p.diameter[i]);
+            let free = !p.fixed[i];
+            self.inv_mass.push(if free { 1.0 / p.mass(i) } else { 0.0 });
+            self.inv_inertia.push(if free {
+                1.0 / p.moment_of_inertia(i)
+            } else {
+                0.0
+            });
+        }
+    }
+
+    fn apply_order(&mut self) {
+        let order = std::mem::take(&mut self.lists.order);
+        self.particles
+            .permute(&order, &mut self.scratch3, &mut self.scratch1);
+        self.lists.order = order;
+        self.refresh_derived();
+    }
+
+    fn build_lists(&mut self) {
+        let mask = if self.wall_law.is_some() {
+            wall_mask(&self.domain)
+        } else {
+            [false; 6]
+        };
+        self.lists.build(
+            &self.domain,
+            &self.particles.position,
+            &self.radius,
+            &self.particles.fixed,
+            mask,
+        );
+        self.rebuilds += 1;
+    }
+
+    /// Re-sorts and rebuilds the lists, carrying the springs across by id.
+    fn rebuild(&mut self) {
+        let history = self.lists.export_history(&self.particles.id);
+        self.lists
+            .sort(&self.domain, self.cell_size, &self.particles.position);
+        self.apply_order();
+        self.build_lists();
+        self.lists.import_history(&self.particles.id, &history);
+    }
+
+    fn check_overlaps(&self, input_index: &[u32]) -> Result<(), DemError> {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let x = &self.particles.position;
+        for i in 0..self.particles.len() {
+            for k in self.lists.row_start[i] as usize..self.lists.row_start[i + 1] as usize {
+                let j = self.lists.partner[k] as usize;
+                let d = minimum_image(
+                    [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
+                    length,
+                    inv_l,
+                );
+                let overlap = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
+                let d_min = 2.0 * self.radius[i].min(self.radius[j]);
+                if overlap > self.config.overlap_tolerance * d_min {
+                    let (a, b) = (input_index[i] as usize, input_index[j] as usize);
+                    let (a, b, ia, ib) = if a < b { (a, b, i, j) } else { (b, a, j, i) };
+                    return Err(DemError::Overlap {
+                        index_a: a,
+                        id_a: self.particles.id[ia],
+                        index_b: b,
+                        id_b: self.particles.id[ib],
+                        overlap_over_d: overlap / d_min,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    // ----- accessors -----
+
+    pub fn particles(&self) -> &ParticleState {
+        &self.particles
+    }
+
+    /// The hydrodynamic loads, for the coupling to set before [`Dem::advance`]. Index order is
+    /// that of [`Dem::particles`] at this moment.
+    pub fn external_loads_mut(&mut self) -> (&mut [Vec3], &mut [Vec3]) {
+        (
+            &mut self.particles.external_force,
+            &mut self.particles.external_torque,
+        )
+    }
+
+    pub fn config(&self) -> &DemConfig {
+        &self.config
+    }
+
+    pub fn domain(&self) -> &DomainBox {
+        &self.domain
+    }
+
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Number of neighbour-list builds so far (including the initial one).
+    pub fn list_rebuilds(&self) -> u64 {
+        self.rebuilds
+    }
+
+    /// Number of pairs in the neighbour list.
+    pub fn pair_count(&self) -> usize {
+        self.lists.partner.len()
+    }
+
+    /// Bytes held by particle arrays, derived arrays and lists (capacity).
+    pub fn memory_bytes(&self) -> usize {
+        self.particles.memory_bytes()
+            + 8 * (self.radius.capacity() + self.inv_mass.capacity() + self.inv_inertia.capacity())
+            + self.lists.memory_bytes()
+            + 24 * self.scratch3.capacity()
+            + 8 * self.scratch1.capacity()
+    }
+
+    // ----- restart -----
+
+    pub fn snapshot(&self) -> DemSnapshot {
+        DemSnapshot {
+            particles: self.particles.clone(),
+            reference_position: self.lists.reference.clone(),
+            history: self.lists.export_history(&self.particles.id),
+            time: self.time,
+            steps: self.steps,
+        }
+    }
+
+    // ----- time stepping -----
+
+    /// The collision sub-step limit.
+    ///
+    /// Hertzian models follow OpenFOAM's `PairSpringSliderDashpot::nSubCycles` and
+    /// `WallSpringSliderDashpot::nSubCycles`:
+    /// `Δt_c = 5.429675 R (ρ_max / (E* √U))^{2/5} / collisionResolutionSteps`
+    /// (`5.429675 = π^{7/5} (5/4)^{2/5}`), with `R = d_min/4` and
+    /// `U = 2 max_i(|v_i| + |ω_i| d_i/2)` for pairs, `R = d_min/2` and `U = max_i(…)` for walls.
+    /// The linear model uses its exact contact time `t_c = √((π² + a²) M / k_n)` for the lightest
+    /// pair (`M = m_min/2`; wall: `M = m_min`) divided by `collision_resolution_steps`.
+    pub fn collision_time_step(&self) -> f64 {
+        let p = &self.particles;
+        if p.is_empty() {
+            return f64::INFINITY;
+        }
+        let mut d_min = f64::INFINITY;
+        let mut rho_max: f64 = 0.0;
+        let mut u_max: f64 = 0.0;
+        let mut m_min = f64::INFINITY;
+        for i in 0..p.len() {
+            let d = p.diameter[i];
+            d_min = d_min.min(d);
+            rho_max = rho_max.max(p.density[i]);
+            u_max = u_max.max(norm3(p.velocity[i]) + norm3(p.angular_velocity[i]) * d / 2.0);
+            m_min = m_min.min(p.mass(i));
+        }
+        const VSMALL: f64 = 1.0e-300;
+        let hertz = |e_star: f64, r: f64, u: f64, steps: f64| {
+            5.429675 * r * (rho_max / (e_star * u.sqrt() + VSMALL)).powf(0.4) / steps
+        };
+        let mut dt = f64::INFINITY;
+        match (&self.config.pair_model, &self.pair_law) {
+            (
+                PairModel::SpringSliderDashpot {
+                    collision_resolution_steps,
+                    ..
+                },
+                ContactLaw::Hertz { e_star, .. },
+            ) => {
+                dt = dt.min(hertz(
+                    *e_star,
+                    d_min / 4.0,
+                    2.0 * u_max,
+                    *collision_resolution_steps,
+                ));
+            }
+            (
+                PairModel::LinearSpringDashpot {
+                    kn,
+                    restitution,
+                    collision_resolution_steps,
+                    ..
+                },
+                _,
+            ) => {
+                dt = dt.min(
+                    linear_contact_time(*kn, *restitution, 0.5 * m_min)
+                        / collision_resolution_steps,
+                );
+            }
+            _ => unreachable!("law built from the model"),
+        }
+        if self.domain.faces.contains(&FaceCondition::Wall) {
+            match (&self.config.wall_model, &self.wall_law) {
+                (
+                    WallModel::SpringSliderDashpot {
+                        collision_resolution_steps,
+                        ..
+                    },
+                    Some(ContactLaw::Hertz { e_star, .. }),
+                ) => {
+                    dt = dt.min(hertz(
+                        *e_star,
+                        d_min / 2.0,
+                        u_max,
+                        *collision_resolution_steps,
+                    ));
+                }
+                (
+                    WallModel::LinearSpringDashpot {
+                        kn,
+                        restitution,
+                        collision_resolution_steps,
+                        ..
+                    },
+                    _,
+                ) => {
+                    dt = dt.min(
+                        linear_contact_time(*kn, *restitution, m_min) / collision_resolution_steps,
+                    );
+                }
+                _ => {}
+            }
+        }
+        if let Some(h) = self.config.max_substep {
+            dt = dt.min(h);
+        }
+        dt
+    }
+
+    /// Number of collision sub-steps for an outer (fluid) step: `ceil(Δt / Δt_c)`, at least 1.
+    pub fn substep_count(&self, dt_outer: f64) -> usize {
+        let n = (dt_outer / self.collision_time_step()).ceil();
+        if n.is_finite() && n >= 1.0 {
+            n as usize
+        } else {
+            1
+        }
+    }
+
+    /// Advances by one outer step `dt_outer` in equal sub-steps (external loads held fixed);
+    /// returns the number of sub-steps taken.
+    pub fn advance(&mut self, dt_outer: f64) -> usize {
+        let n = self.substep_count(dt_outer);
+        let h = dt_outer / n as f64;
+        for _ in 0..n {
+            self.step(h);
+        }
+        n
+    }
+
+    /// One velocity-Verlet step of size `h`.
+    pub fn step(&mut self, h: f64) {
+        self.kick_drift(h);
+        if self.needs_rebuild() {
+            self.rebuild();
+        }
+        self.compute_contact_forces(h);
+        self.kick(h);
+        self.time += h;
+        self.steps += 1;
+    }
+
+    fn kick(&mut self, h: f64) {
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        let p = &mut self.particles;
+        let (inv_m, inv_i, rho) = (&self.inv_mass, &self.inv_inertia, &p.density);
+        let (fc, fe, tc, te) = (
+            &p.contact_force,
+            &p.external_force,
+            &p.contact_torque,
+            &p.external_torque,
+        );
+        let half = 0.5 * h;
+        p.velocity
+            .par_chunks_mut(CHUNK)
+            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (v, w))| {
+                let base = c * CHUNK;
+                for k in 0..v.len() {
+                    let i = base + k;
+                    if inv_m[i] == 0.0 {
+                        continue;
+                    }
+                    let buoy = 1.0 - rho_f / rho[i];
+                    for a in 0..3 {
+                        v[k][a] += half * ((fc[i][a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
+                        w[k][a] += half * (tc[i][a] + te[i][a]) * inv_i[i];
+                    }
+                }
+            });
+    }
+
+    fn kick_drift(&mut self, h: f64) {
+        self.kick(h);
+        let dom = &self.domain;
+        let (lo, length) = (dom.lo, dom.length());
+        let faces = dom.faces;
+        let p = &mut self.particles;
+        let inv_m = &self.inv_mass;
+        p.position
+            .par_chunks_mut(CHUNK)
+            .zip(p.velocity.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (x, v))| {
+                let base = c * CHUNK;
+                for k in 0..x.len() {
+                    if inv_m[base + k] == 0.0 {
+                        continue;
+                    }
+                    for a in 0..3 {
+                        x[k][a] += h * v[k][a];
+                    }
+                    for a in 0..3 {
+                        match faces[2 * a] {
+                            FaceCondition::Periodic => {
+                                let s = ((x[k][a] - lo[a]) / length[a]).floor();
+                                if s != 0.0 {
+                                    x[k][a] -= s * length[a];
+                                }
+                            }
+                            _ => {
+                                for side in 0..2 {
+                                    if let FaceCondition::Rebound { e, mu } = faces[2 * a + side] {
+                                        let plane =
+                                            if side == 0 { lo[a] } else { lo[a] + length[a] };
+                                        let outside = if side == 0 {
+                                            x[k][a] < plane
+                                        } else {
+                                            x[k][a] > plane
+                                        };
+                                        if outside {
+                                            x[k][a] = 2.0 * plane - x[k][a];
+                                            rebound(&mut v[k], a, side, e, mu);
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            });
+    }
+
+    fn needs_rebuild(&self) -> bool {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let limit = 0.25 * self.lists.skin * self.lists.skin;
+        let x = &self.particles.position;
+        let r = &self.lists.reference;
+        x.par_chunks(CHUNK).zip(r.par_chunks(CHUNK)).any(|(x, r)| {
+            x.iter().zip(r).any(|(a, b)| {
+                let d = minimum_image([a[0] - b[0], a[1] - b[1], a[2] - b[2]], length, inv_l);
+                dot(d, d) > limit
+            })
+        })
+    }
+
+    /// Evaluates every contact at the current positions and velocities into
+    /// `contact_force`/`contact_torque`; `dt` advances the tangential springs.
+    fn compute_contact_forces(&mut self, dt: f64) {
+        let n = self.particles.len();
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let pair_law = self.pair_law;
+        let wall_law = self.wall_law;
+        let wall_history = wall_law.map(|l| l.keeps_history(true)).unwrap_or(false);
+        let lists = &mut self.lists;
+        let p = &self.particles;
+        let (x, v, w) = (&p.position, &p.velocity, &p.angular_velocity);
+        let (radius, inv_m) = (&self.radius, &self.inv_mass);
+        let domain = &self.domain;
+
+        // Pass 1: each pair once, into per-pair buffers (rows of a chunk are contiguous, so the
+        // buffers split into disjoint slices, one per chunk).
+        struct Work<'a> {
+            p0: usize,
+            p1: usize,
+            hist: &'a mut [Vec3],
+            force: &'a mut [Vec3],
+            torque: &'a mut [Vec3],
+            whist: &'a mut [Vec3],
+            wforce: &'a mut [Vec3],
+            wtorque: &'a mut [Vec3],
+        }
+        let row_start = &lists.row_start;
+        let wall_start = &lists.wall_start;
+        let partner = &lists.partner;
+        let wall_face = &lists.wall_face;
+        let mut work = Vec::with_capacity(n.div_ceil(CHUNK));
+        {
+            let (mut hist, mut force, mut torque) = (
+                &mut lists.history[..],
+                &mut lists.pair_force[..],
+                &mut lists.pair_torque[..],
+            );
+            let (mut whist, mut wforce, mut wtorque) = (
+                &mut lists.wall_history[..],
+                &mut lists.wall_force[..],
+                &mut lists.wall_torque[..],
+            );
+            for c in 0..n.div_ceil(CHUNK) {
+                let (p0, p1) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
+                let np = (row_start[p1] - row_start[p0]) as usize;
+                let nw = (wall_start[p1] - wall_start[p0]) as usize;
+                let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
+                let (f0, f1) = std::mem::take(&mut force).split_at_mut(np);
+                let (t0, t1) = std::mem::take(&mut torque).split_at_mut(np);
+                let (wh0, wh1) = std::mem::take(&mut whist).split_at_mut(nw);
+                let (wf0, wf1) = std::mem::take(&mut wforce).split_at_mut(nw);
+                let (wt0, wt1) = std::mem::take(&mut wtorque).split_at_mut(nw);
+                (hist, force, torque, whist, wforce, wtorque) = (h1, f1, t1, wh1, wf1, wt1);
+                work.push(Work {
+                    p0,
+                    p1,
+                    hist: h0,
+                    force: f0,
+                    torque: t0,
+                    whist: wh0,
+                    wforce: wf0,
+                    wtorque: wt0,
+                });
+            }
+        }
+        work.par_iter_mut().for_each(|wk| {
+            let k0 = row_start[wk.p0] as usize;
+            let w0 = wall_start[wk.p0] as usize;
+            for i in wk.p0..wk.p1 {
+                let (xi, vi, wi, ri) = (x[i], v[i], w[i], radius[i]);
+                for k in row_start[i] as usize..row_start[i + 1] as usize {
+                    let j = partner[k] as usize;
+                    let kk = k - k0;
+                    let d = minimum_image(
+                        [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]],
+                        length,
+                        inv_l,
+                    );
+                    let rj = radius[j];
+                    let reach = ri + rj;
+                    let dist2 = dot(d, d);
+                    if dist2 >= reach * reach {
+                        wk.hist[kk] = [0.0; 3];
+                        wk.force[kk] = [0.0; 3];
+                        wk.torque[kk] = [0.0; 3];
+                        continue;
+                    }
+                    let dist = dist2.sqrt();
+                    let nrm = scale(d, 1.0 / dist);
+                    let delta = reach - dist;
+                    let u = [vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]];
+                    let u_n = dot(u, nrm);
+                    let spin = [
+                        ri * wi[0] + rj * w[j][0],
+                        ri * wi[1] + rj * w[j][1],
+                        ri * wi[2] + rj * w[j][2],
+                    ];
+                    let sc = cross(spin, nrm);
+                    let slip = [
+                        u[0] - u_n * nrm[0] - sc[0],
+                        u[1] - u_n * nrm[1] - sc[1],
+                        u[2] - u_n * nrm[2] - sc[2],
+                    ];
+                    let m_eff = 1.0 / (inv_m[i] + inv_m[j]);
+                    let r_eff = ri * rj / reach;
+                    let (f, ft) =
+                        pair_law.force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
+                    wk.force[kk] = f;
+                    wk.torque[kk] = scale(cross(nrm, ft), -1.0);
+                }
+                if let Some(law) = wall_law {
+                    for m in wall_start[i] as usize..wall_start[i + 1] as usize {
+                        let mm = m - w0;
+                        let f = wall_face[m] as usize;
+                        let delta = ri - wall_distance(domain, f, xi);
+                        if delta <= 0.0 {
+                            wk.whist[mm] = [0.0; 3];
+                            wk.wforce[mm] = [0.0; 3];
+                            wk.wtorque[mm] = [0.0; 3];
+                            continue;
+                        }
+                        if !wall_history {
+                            wk.whist[mm] = [0.0; 3];
+                        }
+                        let nrm = wall_normal(f);
+                        let u_n = dot(vi, nrm);
+                        let sc = cross(scale(wi, ri), nrm);
+                        let slip = [
+                            vi[0] - u_n * nrm[0] - sc[0],
+                            vi[1] - u_n * nrm[1] - sc[1],
+                            vi[2] - u_n * nrm[2] - sc[2],
+                        ];
+                        let (fw, ft) = law.force(
+                            nrm,
+                            delta,
+                            ri,
+                            1.0 / inv_m[i],
+                            u_n,
+                            slip,
+                            dt,
+                            &mut wk.whist[mm],
+                        );
+                        wk.wforce[mm] = fw;
+                        wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
+                    }
+                }
+            }
+        });
+        drop(work);
+
+        // Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls.
+        let lists = &self.lists;
+        let p = &mut self.particles;
+        p.contact_force
+            .par_chunks_mut(CHUNK)
+            .zip(p.contact_torque.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (fo, to))| {
+                let base = c * CHUNK;
+                for k in 0..fo.len() {
+                    let i = base + k;
+                    let mut f = [0.0; 3];
+                    let mut t = [0.0; 3];
+                    for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                        let (pf, pt) = (lists.pair_force[q], lists.pair_torque[q]);
+                        for a in 0..3 {
+                            f[a] += pf[a];
+                            t[a] += pt[a];
+                        }
+                    }
+                    for &q in &lists.rev_pair
+                        [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
+                    {
+                        let (pf, pt) =
+                            (lists.pair_force[q as usize], lists.pair_torque[q as usize]);
+                        for a in 0..3 {
+                            f[a] -= pf[a];
+                            t[a] += pt[a];
+                        }
+                    }
+                    let ri = radius[i];
+                    t = scale(t, ri);
+                    for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
+                        for a in 0..3 {
+                            f[a] += lists.wall_force[m][a];
+                            t[a] += lists.wall_torque[m][a];
+                        }
+                    }
+                    fo[k] = f;
+                    to[k] = t;
+                }
+            });
+    }
+
+    // ----- monitors -----
+
+    /// Kinetic energy `(Σ ½ m v², Σ ½ I ω²)`, translational and rotational, J.
+    pub fn kinetic_energy(&self) -> (f64, f64) {
+        let p = &self.particles;
+        (0..p.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let (m, inertia) = (p.mass(i), p.moment_of_inertia(i));
+                (
+                    0.5 * m * dot(p.velocity[i], p.velocity[i]),
+                    0.5 * inertia * dot(p.angular_velocity[i], p.angular_velocity[i]),
+                )
+            })
+            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// Potential energy of gravity with buoyancy, `−Σ m (1 − ρ_f/ρ_p) g·x`, J (meaningless
+    /// along a periodic axis).
+    pub fn potential_energy(&self) -> f64 {
+        let p = &self.particles;
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        (0..p.len())
+            .filter(|&i| !p.fixed[i])
+            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * dot(g, p.position[i]))
+            .sum()
+    }
+
+    /// Mean velocity of the free particles, m/s.
+    pub fn mean_velocity(&self) -> Vec3 {
+        let p = &self.particles;
+        let mut s = [0.0; 3];
+        let mut count = 0usize;
+        for i in 0..p.len() {
+            if !p.fixed[i] {
+                for a in 0..3 {
+                    s[a] += p.velocity[i][a];
+                }
+                count += 1;
+            }
+        }
+        if count == 0 {
+            [0.0; 3]
+        } else {
+            scale(s, 1.0 / count as f64)
+        }
+    }
+
+    /// Largest overlap over the diameter: `δ / min(d_i, d_j)` for pairs, `δ / d` at walls.
+    pub fn max_overlap_ratio(&self) -> f64 {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let x = &self.particles.position;
+        let lists = &self.lists;
+        let radius = &self.radius;
+        let domain = &self.domain;
+        (0..self.particles.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let mut worst: f64 = 0.0;
+                for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                    let j = lists.partner[k] as usize;
+                    let d = minimum_image(
+                        [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
+                        length,
+                        inv_l,
+                    );
+                    let overlap = radius[i] + radius[j] - dot(d, d).sqrt();
+                    worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
+                }
+                for f in 0..6 {
+                    if domain.faces[f] == FaceCondition::Wall {
+                        worst = worst
+                            .max((radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]));
+                    }
+                }
+                worst
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+}
+
+#[inline(always)]
+fn norm3(a: Vec3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// OpenFOAM's rebound rule on face `2a + side`, outward normal `n`:
+/// `U_n = U·n`, `U_t = U − U_n n`; `U ← U − (1+e) U_n n` if `U_n > 0`; `U ← U − μ U_t`.
+#[inline]
+fn rebound(v: &mut Vec3, a: usize, side: usize, e: f64, mu: f64) {
+    let mut n = [0.0; 3];
+    n[a] = if side == 0 { -1.0 } else { 1.0 };
+    let u_n = dot(*v, n);
+    let u_t = [v[0] - u_n * n[0], v[1] - u_n * n[1], v[2] - u_n * n[2]];
+    if u_n > 0.0 {
+        for c in 0..3 {
+            v[c] -= (1.0 + e) * u_n * n[c];
+        }
+    }
+    for c in 0..3 {
+        v[c] -= mu * u_t[c];
+    }
+}
+
+/// Volume of a sphere of diameter `d`.
+pub fn sphere_volume(d: f64) -> f64 {
+    PI * d * d * d / 6.0
+}
