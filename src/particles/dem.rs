@@ -1139,3 +1139,476 @@ fn rebound(v: &mut Vec3, a: usize, side: usize, e: f64, mu: f64) {
 pub fn sphere_volume(d: f64) -> f64 {
     PI * d * d * d / 6.0
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::particles::contact_model::TangentialRule;
+    use crate::particles::random_packing::random_packing;
+    use crate::particles::vec3::norm;
+
+    fn close(a: f64, b: f64, rel: f64) -> bool {
+        (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)
+    }
+
+    fn hertz_pair(rule: TangentialRule) -> PairModel {
+        PairModel::SpringSliderDashpot {
+            youngs_modulus: 1e7,
+            poissons_ratio: 0.35,
+            alpha: 0.12,
+            b: 1.5,
+            mu: 0.3,
+            collision_resolution_steps: 12.0,
+            tangential: rule,
+        }
+    }
+
+    fn two_particles(xa: Vec3, xb: Vec3, da: f64, db: f64) -> ParticleState {
+        let mut p = ParticleState::default();
+        p.push(1, xa, da, 2500.0);
+        p.push(2, xb, db, 1500.0);
+        p
+    }
+
+    fn lenient(pair: PairModel, wall: WallModel) -> DemConfig {
+        let mut c = DemConfig::new(pair, wall);
+        c.gravity = [0.0; 3];
+        c.overlap_tolerance = 1.0;
+        c
+    }
+
+    /// Same forces as DPMFoam for the same pair: OpenFOAM v1912
+    /// `PairSpringSliderDashpot::evaluatePair`, written out by hand:
+    /// E* = E/(2(1−ν²)), G* = E/(2(1+ν)) / (2(2−ν)), R = d_A d_B / (2(d_A + d_B)),
+    /// M = m_A m_B/(m_A + m_B), k_N = 4/3 √R E*, η_N = α √(M k_N) δ^{1/4},
+    /// F_N = r̂ (k_N δ^b − η_N U_AB·r̂) with r̂ = (x_A − x_B)/|x_A − x_B|,
+    /// U_slip = U_AB − (U_AB·r̂) r̂ − (d_A/2 ω_A + d_B/2 ω_B) × r̂, ξ = U_slip Δt (fresh contact),
+    /// k_T = 8 √(R δ) G*, η_T = η_N; if k_T|ξ| > μ|F_N|: F_T = −μ|F_N| Û_slip, else
+    /// F_T = −k_T ξ − η_T U_slip; torque on A = (d_A/2 · −r̂) × F_T, on B = (d_B/2 · r̂) × −F_T.
+    #[test]
+    fn pair_force_matches_dpmfoam_formulas() {
+        let (da, db) = (2e-3, 1.5e-3);
+        let cases: [(f64, Vec3, Vec3, Vec3, f64); 4] = [
+            // (overlap, U_A − U_B, ω_A, ω_B, Δt)
+            (1e-5, [0.0, 0.0, -0.2], [0.0; 3], [0.0; 3], 1e-6),
+            (
+                3e-5,
+                [0.05, -0.01, -0.1],
+                [10.0, 0.0, -3.0],
+                [0.0, 5.0, 1.0],
+                1e-6,
+            ),
+            (2e-5, [0.3, 0.2, 0.05], [0.0; 3], [0.0, 0.0, 40.0], 1e-4),
+            (5e-6, [0.001, 0.0, 0.3], [1.0, 1.0, 0.0], [0.0; 3], 1e-7),
+        ];
+        let (e, nu, alpha, b, mu) = (1e7f64, 0.35f64, 0.12f64, 1.5f64, 0.3f64);
+        let mut slid = 0;
+        let mut stuck = 0;
+        for (delta, u, wa, wb, dt) in cases {
+            let dir = [0.3f64, -0.5, 0.81];
+            let rhat = scale(dir, 1.0 / norm(dir));
+            let sep = 0.5 * (da + db) - delta;
+            let xb = [0.01, 0.01, 0.01];
+            let xa = [
+                xb[0] + sep * rhat[0],
+                xb[1] + sep * rhat[1],
+                xb[2] + sep * rhat[2],
+            ];
+            let mut p = two_particles(xa, xb, da, db);
+            p.velocity[0] = u;
+            p.angular_velocity[0] = wa;
+            p.angular_velocity[1] = wb;
+            let domain = DomainBox::walled([0.0; 3], [0.02; 3]);
+            let mut dem = Dem::new(
+                lenient(hertz_pair(TangentialRule::DpmFoamReset), WallModel::None),
+                domain,
+                p,
+            )
+            .unwrap();
+            dem.compute_contact_forces(dt);
+            let ia = dem.particles.id.iter().position(|&i| i == 1).unwrap();
+            let ib = 1 - ia;
+
+            // hand evaluation
+            let e_star = e / (2.0 * (1.0 - nu * nu));
+            let g_star = e / (2.0 * (1.0 + nu)) / (2.0 * (2.0 - nu));
+            let r = 0.5 * da * db / (da + db);
+            let ma = 2500.0 * PI * da.powi(3) / 6.0;
+            let mb = 1500.0 * PI * db.powi(3) / 6.0;
+            let m = ma * mb / (ma + mb);
+            let kn = 4.0 / 3.0 * r.sqrt() * e_star;
+            let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
+            let un = dot(u, rhat);
+            let fn_mag = kn * delta.powf(b) - eta_n * un;
+            let f_n = scale(rhat, fn_mag);
+            let spin = [
+                da / 2.0 * wa[0] + db / 2.0 * wb[0],
+                da / 2.0 * wa[1] + db / 2.0 * wb[1],
+                da / 2.0 * wa[2] + db / 2.0 * wb[2],
+            ];
+            let c = cross(spin, rhat);
+            let slip = [
+                u[0] - un * rhat[0] - c[0],
+                u[1] - un * rhat[1] - c[1],
+                u[2] - un * rhat[2] - c[2],
+            ];
+            let xi = scale(slip, dt);
+            let kt = 8.0 * (r * delta).sqrt() * g_star;
+            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+                slid += 1;
+                scale(slip, -mu * fn_mag.abs() / norm(slip))
+            } else {
+                stuck += 1;
+                [
+                    -kt * xi[0] - eta_n * slip[0],
+                    -kt * xi[1] - eta_n * slip[1],
+                    -kt * xi[2] - eta_n * slip[2],
+                ]
+            };
+            let f_a = [f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]];
+            let t_a = cross(scale(rhat, -da / 2.0), f_t);
+            let t_b = cross(scale(rhat, db / 2.0), scale(f_t, -1.0));
+            let fa = dem.particles.contact_force[ia];
+            let fb = dem.particles.contact_force[ib];
+            let ta = dem.particles.contact_torque[ia];
+            let tb = dem.particles.contact_torque[ib];
+            let scale_f = norm(f_a);
+            for k in 0..3 {
+                assert!(
+                    (fa[k] - f_a[k]).abs() < 1e-12 * scale_f,
+                    "F_A {fa:?} vs {f_a:?}"
+                );
+                assert!((fb[k] + f_a[k]).abs() < 1e-12 * scale_f, "F_B {fb:?}");
+                assert!(
+                    (ta[k] - t_a[k]).abs() < 1e-12 * scale_f * da + 1e-300,
+                    "T_A {ta:?} vs {t_a:?}"
+                );
+                assert!(
+                    (tb[k] - t_b[k]).abs() < 1e-12 * scale_f * db + 1e-300,
+                    "T_B {tb:?} vs {t_b:?}"
+                );
+            }
+        }
+        assert!(
+            slid > 0 && stuck > 0,
+            "both branches exercised: slid {slid}, stuck {stuck}"
+        );
+    }
+
+    /// OpenFOAM v1912 `WallSpringSliderDashpot::evaluateWall`, by hand:
+    /// 1/E* = (1−ν_p²)/E_p + (1−ν_w²)/E_w, k_N = 4/3 √r E*, G* = 1/(2((2+ν_p−ν_p²)/E_p + (2+ν_w−ν_w²)/E_w)),
+    /// η_N = α √(m k_N) δ^{1/4}, U_slip = U − (U·n)n + ω × (−r n), ξ = U_slip Δt (no history),
+    /// k_T = 8 √(r δ) G*, slide test and torque as for pairs.
+    #[test]
+    fn wall_force_matches_dpmfoam_formulas() {
+        let (ep, np, ew, nw, alpha, b, mu) =
+            (1e7f64, 0.35f64, 2e8f64, 0.3f64, 0.1f64, 1.5f64, 0.25f64);
+        let wall = WallModel::SpringSliderDashpot {
+            youngs_modulus: ew,
+            poissons_ratio: nw,
+            particle_youngs_modulus: ep,
+            particle_poissons_ratio: np,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps: 12.0,
+            tangential: TangentialRule::DpmFoamReset,
+        };
+        let d = 2e-3;
+        for (delta, v, w, dt) in [
+            (2e-5, [0.01, 0.0, -0.3], [0.0, 2.0, 0.0], 1e-6),
+            (1e-5, [0.5, 0.2, -0.1], [0.0; 3], 1e-5),
+        ] {
+            let mut p = ParticleState::default();
+            p.push(9, [0.01, 0.01, d / 2.0 - delta], d, 2500.0);
+            p.velocity[0] = v;
+            p.angular_velocity[0] = w;
+            let mut dem = Dem::new(
+                lenient(hertz_pair(TangentialRule::DpmFoamReset), wall.clone()),
+                DomainBox::walled([0.0; 3], [0.02; 3]),
+                p,
+            )
+            .unwrap();
+            dem.compute_contact_forces(dt);
+            let r = d / 2.0;
+            let m = 2500.0 * PI * d.powi(3) / 6.0;
+            let e_star = 1.0 / ((1.0 - np * np) / ep + (1.0 - nw * nw) / ew);
+            let kn = 4.0 / 3.0 * r.sqrt() * e_star;
+            let g_star = 1.0 / (2.0 * ((2.0 + np - np * np) / ep + (2.0 + nw - nw * nw) / ew));
+            let n = [0.0, 0.0, 1.0];
+            let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
+            let fn_mag = kn * delta.powf(b) - eta_n * dot(v, n);
+            let c = cross(w, scale(n, -r));
+            let slip = [v[0] + c[0], v[1] + c[1], 0.0];
+            let xi = scale(slip, dt);
+            let kt = 8.0 * (r * delta).sqrt() * g_star;
+            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+                scale(slip, -mu * fn_mag.abs() / norm(slip))
+            } else {
+                [
+                    -kt * xi[0] - eta_n * slip[0],
+                    -kt * xi[1] - eta_n * slip[1],
+                    0.0,
+                ]
+            };
+            let f = [f_t[0], f_t[1], fn_mag];
+            let t = cross(scale(n, -r), f_t);
+            let (fo, to) = (
+                dem.particles.contact_force[0],
+                dem.particles.contact_torque[0],
+            );
+            for k in 0..3 {
+                assert!((fo[k] - f[k]).abs() < 1e-12 * norm(f), "{fo:?} vs {f:?}");
+                assert!(
+                    (to[k] - t[k]).abs() < 1e-12 * norm(f) * r,
+                    "{to:?} vs {t:?}"
+                );
+            }
+        }
+    }
+
+    /// DPMFoam's sub-cycle count, by hand (`PairSpringSliderDashpot::nSubCycles`):
+    /// Δt_c = 5.429675 (d_min/4) (ρ_max/(E* √(2 U_max)))^{0.4} / N, n = ceil(Δt/Δt_c).
+    #[test]
+    fn substeps_follow_the_dpmfoam_rule() {
+        let mut p = two_particles([0.005, 0.01, 0.01], [0.015, 0.01, 0.01], 1e-3, 2e-3);
+        p.velocity[0] = [0.3, 0.0, 0.4];
+        p.angular_velocity[1] = [0.0, 100.0, 0.0];
+        let mut dom = DomainBox::walled([0.0; 3], [0.02; 3]);
+        dom.faces = [FaceCondition::Periodic; 6];
+        let dem = Dem::new(
+            lenient(hertz_pair(TangentialRule::CappedSpring), WallModel::None),
+            dom,
+            p,
+        )
+        .unwrap();
+        let e_star = 1e7 / (2.0 * (1.0 - 0.35f64 * 0.35));
+        let u_max = 2.0 * f64::max(0.5, 100.0 * 1e-3);
+        let dtc = 5.429675 * (1e-3 / 4.0) * (2500.0 / (e_star * u_max.sqrt())).powf(0.4) / 12.0;
+        assert!(close(dem.collision_time_step(), dtc, 1e-12));
+        let dt = 1e-4;
+        assert_eq!(dem.substep_count(dt), (dt / dtc).ceil() as usize);
+        assert!(dem.substep_count(dt) > 1);
+    }
+
+    #[test]
+    fn bad_input_names_the_particle_or_keyword() {
+        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+        let mut p = ParticleState::default();
+        for k in 0..4 {
+            p.push(
+                100 + k,
+                [0.002 + 0.002 * k as f64, 0.005, 0.005],
+                1e-3,
+                2500.0,
+            );
+        }
+        let run = |p: &ParticleState, c: &DemConfig| {
+            Dem::new(c.clone(), dom.clone(), p.clone()).err().unwrap()
+        };
+
+        let mut q = p.clone();
+        q.diameter[2] = -1e-3;
+        let e = run(&q, &cfg);
+        assert_eq!(
+            e,
+            DemError::BadDiameter {
+                index: 2,
+                id: 102,
+                diameter: -1e-3
+            }
+        );
+        assert!(e.to_string().contains("particle 2 (id 102)"), "{e}");
+        q.diameter[2] = 0.0;
+        assert!(matches!(
+            run(&q, &cfg),
+            DemError::BadDiameter { index: 2, .. }
+        ));
+
+        let mut q = p.clone();
+        q.position[3] = [0.005, 0.011, 0.005];
+        let e = run(&q, &cfg);
+        assert!(
+            matches!(
+                e,
+                DemError::OutsideDomain {
+                    index: 3,
+                    id: 103,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("outside the domain"));
+
+        let mut q = p.clone();
+        q.position[3] = [0.0062, 0.005, 0.0052]; // 0.8e-3 from particle 2: overlap 0.2 d
+        let e = run(&q, &cfg);
+        match &e {
+            DemError::Overlap {
+                index_a: 2,
+                id_a: 102,
+                index_b: 3,
+                id_b: 103,
+                overlap_over_d,
+            } => {
+                assert!(
+                    (overlap_over_d - (1.0 - 0.2f64.hypot(0.2) / 1.0)).abs() < 1e-9
+                        || *overlap_over_d > 0.0
+                )
+            }
+            other => panic!("expected overlap error, got {other}"),
+        }
+        assert!(
+            e.to_string()
+                .contains("particles 2 (id 102) and 3 (id 103) overlap"),
+            "{e}"
+        );
+
+        let mut q = p.clone();
+        q.position[0][2] = 0.0003;
+        assert!(matches!(
+            run(
+                &q,
+                &DemConfig::new(
+                    PairModel::linear(1e3, 0.5, 0.3),
+                    WallModel::LinearSpringDashpot {
+                        kn: 1e3,
+                        restitution: 0.5,
+                        kt: 0.0,
+                        mu: 0.0,
+                        tangential_damping_ratio: 0.0,
+                        collision_resolution_steps: 20.0
+                    }
+                )
+            ),
+            DemError::WallOverlap {
+                index: 0,
+                id: 100,
+                face: 4,
+                ..
+            }
+        ));
+
+        let mut q = p.clone();
+        q.id[3] = 101;
+        assert_eq!(
+            run(&q, &cfg),
+            DemError::DuplicateId {
+                index_a: 1,
+                index_b: 3,
+                id: 101
+            }
+        );
+
+        let bad = DemConfig::new(PairModel::linear(1e3, 1.5, 0.3), WallModel::None);
+        let e = run(&p, &bad);
+        assert!(e.to_string().contains("`restitution` = 1.5"), "{e}");
+
+        let mut dom2 = dom.clone();
+        dom2.faces[0] = FaceCondition::Periodic;
+        assert_eq!(
+            Dem::new(cfg.clone(), dom2, p.clone()).err().unwrap(),
+            DemError::UnpairedPeriodicFace { face: 0 }
+        );
+    }
+
+    #[test]
+    fn rebound_face_applies_openfoam_rule() {
+        let mut dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+        dom.faces[4] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
+        let mut p = ParticleState::default();
+        p.push(1, [0.005, 0.005, 0.0004], 1e-3, 2500.0);
+        p.velocity[0] = [0.3, 0.0, -1.0];
+        let mut dem = Dem::new(
+            lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None),
+            dom,
+            p,
+        )
+        .unwrap();
+        dem.step(1e-3); // centre goes to z = −0.0006, is mirrored to +0.0006
+        let p = dem.particles();
+        assert!(close(p.position[0][2], 0.0006, 1e-9));
+        // U_n = 1 (outward); U ← U − 1.6·U_n n − 0.2·U_t
+        assert!(close(p.velocity[0][2], 0.6, 1e-12));
+        assert!(close(p.velocity[0][0], 0.24, 1e-12));
+    }
+
+    /// Every overlapping pair (brute-force O(N²) reference, tests only) is in the lists after
+    /// many steps with rebuilds, periodic axes included.
+    #[test]
+    fn lists_contain_every_contact_and_threads_do_not_change_bits() {
+        let mut dom = DomainBox::walled([0.0; 3], [0.008, 0.008, 0.012]);
+        for f in 0..4 {
+            dom.faces[f] = FaceCondition::Periodic;
+        }
+        let centres = random_packing([0.0; 3], [0.008, 0.008, 0.012], 1e-3, 0.3, 7).unwrap();
+        let mut p = ParticleState::default();
+        for (k, x) in centres.iter().enumerate() {
+            p.push(k as u64, *x, 1e-3, 2500.0);
+            p.velocity[k] = [
+                0.1 * ((k % 7) as f64 - 3.0),
+                0.05 * ((k % 5) as f64 - 2.0),
+                -0.1,
+            ];
+        }
+        let wall = WallModel::LinearSpringDashpot {
+            kn: 500.0,
+            restitution: 0.5,
+            kt: 1e2,
+            mu: 0.3,
+            tangential_damping_ratio: 0.5,
+            collision_resolution_steps: 30.0,
+        };
+        let cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), wall);
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
+                let h = dem.collision_time_step();
+                for _ in 0..1500 {
+                    dem.step(h);
+                }
+                dem
+            })
+        };
+        let dem = run(2);
+        assert!(dem.list_rebuilds() > 2, "rebuilds {}", dem.list_rebuilds());
+        let q = dem.particles();
+        let (l, inv) = (dom.length(), dom.inverse_periodic_length());
+        let mut listed = std::collections::HashSet::new();
+        for i in 0..q.len() {
+            for k in dem.lists.row_start[i] as usize..dem.lists.row_start[i + 1] as usize {
+                listed.insert((i, dem.lists.partner[k] as usize));
+            }
+        }
+        let mut contacts = 0;
+        for i in 0..q.len() {
+            for j in i + 1..q.len() {
+                let d = minimum_image(
+                    [
+                        q.position[i][0] - q.position[j][0],
+                        q.position[i][1] - q.position[j][1],
+                        q.position[i][2] - q.position[j][2],
+                    ],
+                    l,
+                    inv,
+                );
+                if norm(d) < 1e-3 {
+                    contacts += 1;
+                    assert!(
+                        listed.contains(&(i, j)),
+                        "contact {i}-{j} missing from the list"
+                    );
+                }
+            }
+        }
+        assert!(contacts > 10, "contacts {contacts}");
+        let one = run(1);
+        assert_eq!(one.particles(), dem.particles());
+    }
+}
