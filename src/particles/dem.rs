@@ -16,6 +16,9 @@
 //! evaluation per step; symplectic Euler has the same cost but is first order in position.
 //! `F = F_contact + F_external + m g (1 − ρ_f/ρ_p)`: gravity with buoyancy.
 
+// Hot loops are plain indexed loops over contiguous arrays, by design.
+#![allow(clippy::needless_range_loop)]
+
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
@@ -270,7 +273,10 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
 
 fn validate_domain(d: &DomainBox) -> Result<(), DemError> {
     for a in 0..3 {
-        if !(d.hi[a] > d.lo[a]) || !d.lo[a].is_finite() || !d.hi[a].is_finite() {
+        if d.hi[a].partial_cmp(&d.lo[a]) != Some(std::cmp::Ordering::Greater)
+            || !d.lo[a].is_finite()
+            || !d.hi[a].is_finite()
+        {
             return Err(DemError::BadDomain { lo: d.lo, hi: d.hi });
         }
         let (p0, p1) = (

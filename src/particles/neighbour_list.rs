@@ -275,7 +275,7 @@ impl NeighbourList {
 #[inline(always)]
 pub(crate) fn wall_distance(domain: &DomainBox, f: usize, x: Vec3) -> f64 {
     let a = f / 2;
-    if f % 2 == 0 {
+    if f.is_multiple_of(2) {
         x[a] - domain.lo[a]
     } else {
         domain.hi[a] - x[a]
@@ -286,7 +286,7 @@ pub(crate) fn wall_distance(domain: &DomainBox, f: usize, x: Vec3) -> f64 {
 #[inline(always)]
 pub(crate) fn wall_normal(f: usize) -> Vec3 {
     let mut n = [0.0; 3];
-    n[f / 2] = if f % 2 == 0 { 1.0 } else { -1.0 };
+    n[f / 2] = if f.is_multiple_of(2) { 1.0 } else { -1.0 };
     n
 }
 

@@ -87,7 +87,7 @@ pub fn random_packing(
     let mut inner = [0.0; 3];
     for a in 0..3 {
         inner[a] = hi[a] - lo[a] - d;
-        if !(inner[a] >= 0.0) {
+        if inner[a].is_nan() || inner[a] < 0.0 {
             return Err(PackingError::BadInput(format!(
                 "region {lo:?}–{hi:?} is narrower than one diameter {d}"
             )));
