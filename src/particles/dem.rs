@@ -509,14 +509,14 @@ impl Dem {
         self.rebuilds += 1;
     }
 
-    /// Re-sorts and rebuilds the lists, carrying the springs across by id.
+    /// Re-sorts and rebuilds the lists, carrying the springs across through the permutation.
     fn rebuild(&mut self) {
-        let history = self.lists.export_history(&self.particles.id);
+        self.lists.save_history();
         self.lists
             .sort(&self.domain, self.cell_size, &self.particles.position);
         self.apply_order();
         self.build_lists();
-        self.lists.import_history(&self.particles.id, &history);
+        self.lists.restore_saved_history();
     }
 
     fn check_overlaps(&self, input_index: &[u32]) -> Result<(), DemError> {
@@ -732,21 +732,30 @@ impl Dem {
         n
     }
 
-    /// One velocity-Verlet step of size `h`.
+    /// One velocity-Verlet step of size `h`. Three passes over the particles: half-kick +
+    /// drift + displacement check fused; pair forces; gather + half-kick fused (the
+    /// engine is memory-bound, so each pass streams as few arrays as it can).
     pub fn step(&mut self, h: f64) {
-        self.kick_drift(h);
-        if self.needs_rebuild() {
+        if self.kick_drift(h) {
             self.rebuild();
         }
-        self.compute_contact_forces(h);
-        self.kick(h);
+        self.evaluate_contacts(h);
+        self.gather_contacts(Some(h));
         self.time += h;
         self.steps += 1;
     }
 
-    fn kick(&mut self, h: f64) {
+    /// `v += h/2 a`, `ω += h/2 α`, `x += h v`, periodic wrap and rebound faces; returns whether
+    /// some particle has moved more than half the skin since the last list build.
+    fn kick_drift(&mut self, h: f64) -> bool {
         let g = self.config.gravity;
         let rho_f = self.config.fluid_density;
+        let dom = &self.domain;
+        let (lo, length) = (dom.lo, dom.length());
+        let inv_l = dom.inverse_periodic_length();
+        let faces = dom.faces;
+        let limit = 0.25 * self.lists.skin * self.lists.skin;
+        let reference = &self.lists.reference;
         let p = &mut self.particles;
         let (inv_m, inv_i, rho) = (&self.inv_mass, &self.inv_inertia, &p.density);
         let (fc, fe, tc, te) = (
@@ -756,13 +765,15 @@ impl Dem {
             &p.external_torque,
         );
         let half = 0.5 * h;
-        p.velocity
+        p.position
             .par_chunks_mut(CHUNK)
+            .zip(p.velocity.par_chunks_mut(CHUNK))
             .zip(p.angular_velocity.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, (v, w))| {
+            .map(|(c, ((x, v), w))| {
                 let base = c * CHUNK;
-                for k in 0..v.len() {
+                let mut moved = false;
+                for k in 0..x.len() {
                     let i = base + k;
                     if inv_m[i] == 0.0 {
                         continue;
@@ -771,27 +782,6 @@ impl Dem {
                     for a in 0..3 {
                         v[k][a] += half * ((fc[i][a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
                         w[k][a] += half * (tc[i][a] + te[i][a]) * inv_i[i];
-                    }
-                }
-            });
-    }
-
-    fn kick_drift(&mut self, h: f64) {
-        self.kick(h);
-        let dom = &self.domain;
-        let (lo, length) = (dom.lo, dom.length());
-        let faces = dom.faces;
-        let p = &mut self.particles;
-        let inv_m = &self.inv_mass;
-        p.position
-            .par_chunks_mut(CHUNK)
-            .zip(p.velocity.par_chunks_mut(CHUNK))
-            .enumerate()
-            .for_each(|(c, (x, v))| {
-                let base = c * CHUNK;
-                for k in 0..x.len() {
-                    if inv_m[base + k] == 0.0 {
-                        continue;
                     }
                     for a in 0..3 {
                         x[k][a] += h * v[k][a];
@@ -823,26 +813,28 @@ impl Dem {
                             }
                         }
                     }
+                    let r = reference[i];
+                    let d = minimum_image(
+                        [x[k][0] - r[0], x[k][1] - r[1], x[k][2] - r[2]],
+                        length,
+                        inv_l,
+                    );
+                    moved |= dot(d, d) > limit;
                 }
-            });
-    }
-
-    fn needs_rebuild(&self) -> bool {
-        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
-        let limit = 0.25 * self.lists.skin * self.lists.skin;
-        let x = &self.particles.position;
-        let r = &self.lists.reference;
-        x.par_chunks(CHUNK).zip(r.par_chunks(CHUNK)).any(|(x, r)| {
-            x.iter().zip(r).any(|(a, b)| {
-                let d = minimum_image([a[0] - b[0], a[1] - b[1], a[2] - b[2]], length, inv_l);
-                dot(d, d) > limit
+                moved
             })
-        })
+            .reduce(|| false, |a, b| a | b)
     }
 
     /// Evaluates every contact at the current positions and velocities into
     /// `contact_force`/`contact_torque`; `dt` advances the tangential springs.
     fn compute_contact_forces(&mut self, dt: f64) {
+        self.evaluate_contacts(dt);
+        self.gather_contacts(None);
+    }
+
+    /// Pass 1: each listed pair and wall contact once, into the per-contact buffers.
+    fn evaluate_contacts(&mut self, dt: f64) {
         let n = self.particles.len();
         let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
         let pair_law = self.pair_law;
@@ -989,15 +981,25 @@ impl Dem {
             }
         });
         drop(work);
+    }
 
-        // Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls.
+    /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
+    /// `contact_force`/`contact_torque`, then, within a step, takes its second half-kick.
+    fn gather_contacts(&mut self, kick: Option<f64>) {
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        let half = 0.5 * kick.unwrap_or(0.0);
         let lists = &self.lists;
+        let (radius, inv_m, inv_i) = (&self.radius, &self.inv_mass, &self.inv_inertia);
         let p = &mut self.particles;
+        let (fe, te, rho) = (&p.external_force, &p.external_torque, &p.density);
         p.contact_force
             .par_chunks_mut(CHUNK)
             .zip(p.contact_torque.par_chunks_mut(CHUNK))
+            .zip(p.velocity.par_chunks_mut(CHUNK))
+            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, (fo, to))| {
+            .for_each(|(c, (((fo, to), v), w))| {
                 let base = c * CHUNK;
                 for k in 0..fo.len() {
                     let i = base + k;
@@ -1030,6 +1032,13 @@ impl Dem {
                     }
                     fo[k] = f;
                     to[k] = t;
+                    if kick.is_some() && inv_m[i] != 0.0 {
+                        let buoy = 1.0 - rho_f / rho[i];
+                        for a in 0..3 {
+                            v[k][a] += half * ((f[a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
+                            w[k][a] += half * (t[a] + te[i][a]) * inv_i[i];
+                        }
+                    }
                 }
             });
     }

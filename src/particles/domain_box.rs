@@ -66,10 +66,17 @@ impl DomainBox {
 #[inline(always)]
 pub(crate) fn minimum_image(d: Vec3, length: Vec3, inv_l: Vec3) -> Vec3 {
     [
-        d[0] - length[0] * (d[0] * inv_l[0]).round(),
-        d[1] - length[1] * (d[1] * inv_l[1]).round(),
-        d[2] - length[2] * (d[2] * inv_l[2]).round(),
+        d[0] - length[0] * nearest_integer(d[0] * inv_l[0]),
+        d[1] - length[1] * nearest_integer(d[1] * inv_l[1]),
+        d[2] - length[2] * nearest_integer(d[2] * inv_l[2]),
     ]
+}
+
+/// `s.round()` for the small |s| met here, by a truncating cast: `f64::round` is a libm call
+/// on the baseline x86-64 target and cost 11% of a pair loop in a profile.
+#[inline(always)]
+fn nearest_integer(s: f64) -> f64 {
+    (s + 0.5f64.copysign(s)) as i64 as f64
 }
 
 #[cfg(test)]
@@ -87,5 +94,8 @@ mod tests {
         assert!((d[0] + 0.1).abs() < 1e-15);
         assert_eq!(d[1], 1.9);
         assert_eq!(d[2], -3.9);
+        for s in [-2.5, -1.5, -0.7, -0.5, -0.2, 0.0, 0.3, 0.5, 0.51, 1.49, 2.5] {
+            assert_eq!(nearest_integer(s), f64::round(s), "{s}");
+        }
     }
 }

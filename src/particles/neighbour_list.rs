@@ -46,6 +46,9 @@ pub(crate) struct NeighbourList {
     pub(crate) wall_force: Vec<Vec3>,
     pub(crate) wall_torque: Vec<Vec3>,
     pub(crate) reference: Vec<Vec3>,
+    pub(crate) carry_pairs: Vec<(u32, u32, Vec3)>,
+    pub(crate) carry_walls: Vec<(u32, u8, Vec3)>,
+    pub(crate) inverse: Vec<u32>,
 }
 
 /// Contact history keyed by particle ids, to carry springs across reordering and restarts.
@@ -195,6 +198,60 @@ impl NeighbourList {
         self.reference.extend_from_slice(positions);
     }
 
+    /// Before a re-sort: remembers the non-zero springs by (old) index.
+    pub(crate) fn save_history(&mut self) {
+        self.carry_pairs.clear();
+        self.carry_walls.clear();
+        for i in 0..self.row_start.len().saturating_sub(1) {
+            for k in self.row_start[i] as usize..self.row_start[i + 1] as usize {
+                if self.history[k] != [0.0; 3] {
+                    self.carry_pairs
+                        .push((i as u32, self.partner[k], self.history[k]));
+                }
+            }
+            for w in self.wall_start[i] as usize..self.wall_start[i + 1] as usize {
+                if self.wall_history[w] != [0.0; 3] {
+                    self.carry_walls
+                        .push((i as u32, self.wall_face[w], self.wall_history[w]));
+                }
+            }
+        }
+    }
+
+    /// After `sort` and `build`: puts the saved springs on the new pairs through the
+    /// permutation (new index `k` ← old `order[k]`). Rows are sorted, so each lookup is a
+    /// binary search; no hashing on the rebuild path.
+    pub(crate) fn restore_saved_history(&mut self) {
+        self.inverse.clear();
+        self.inverse.resize(self.order.len(), 0);
+        for (k, &o) in self.order.iter().enumerate() {
+            self.inverse[o as usize] = k as u32;
+        }
+        for &(oi, oj, xi) in &self.carry_pairs {
+            let (ni, nj) = (self.inverse[oi as usize], self.inverse[oj as usize]);
+            let (owner, other, x) = if ni < nj {
+                (ni, nj, xi)
+            } else {
+                (nj, ni, [-xi[0], -xi[1], -xi[2]])
+            };
+            let (s, e) = (
+                self.row_start[owner as usize] as usize,
+                self.row_start[owner as usize + 1] as usize,
+            );
+            if let Ok(k) = self.partner[s..e].binary_search(&other) {
+                self.history[s + k] = x;
+            }
+        }
+        for &(oi, face, xi) in &self.carry_walls {
+            let ni = self.inverse[oi as usize] as usize;
+            for w in self.wall_start[ni] as usize..self.wall_start[ni + 1] as usize {
+                if self.wall_face[w] == face {
+                    self.wall_history[w] = xi;
+                }
+            }
+        }
+    }
+
     /// The non-zero springs, keyed by ids.
     pub(crate) fn export_history(&self, ids: &[u64]) -> ContactHistory {
         let mut h = ContactHistory::default();
@@ -261,6 +318,9 @@ impl NeighbourList {
             + self.rev_pair.capacity()
             + self.wall_start.capacity())
             + self.wall_face.capacity()
+            + 28 * self.carry_pairs.capacity()
+            + 32 * self.carry_walls.capacity()
+            + 4 * self.inverse.capacity()
             + v3 * (self.history.capacity()
                 + self.pair_force.capacity()
                 + self.pair_torque.capacity()
