@@ -852,8 +852,7 @@ impl Dem {
             p0: usize,
             p1: usize,
             hist: &'a mut [Vec3],
-            force: &'a mut [Vec3],
-            torque: &'a mut [Vec3],
+            load: &'a mut [[f64; 6]],
             whist: &'a mut [Vec3],
             wforce: &'a mut [Vec3],
             wtorque: &'a mut [Vec3],
@@ -864,11 +863,7 @@ impl Dem {
         let wall_face = &lists.wall_face;
         let mut work = Vec::with_capacity(n.div_ceil(CHUNK));
         {
-            let (mut hist, mut force, mut torque) = (
-                &mut lists.history[..],
-                &mut lists.pair_force[..],
-                &mut lists.pair_torque[..],
-            );
+            let (mut hist, mut load) = (&mut lists.history[..], &mut lists.pair_load[..]);
             let (mut whist, mut wforce, mut wtorque) = (
                 &mut lists.wall_history[..],
                 &mut lists.wall_force[..],
@@ -879,18 +874,16 @@ impl Dem {
                 let np = (row_start[p1] - row_start[p0]) as usize;
                 let nw = (wall_start[p1] - wall_start[p0]) as usize;
                 let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
-                let (f0, f1) = std::mem::take(&mut force).split_at_mut(np);
-                let (t0, t1) = std::mem::take(&mut torque).split_at_mut(np);
+                let (l0, l1) = std::mem::take(&mut load).split_at_mut(np);
                 let (wh0, wh1) = std::mem::take(&mut whist).split_at_mut(nw);
                 let (wf0, wf1) = std::mem::take(&mut wforce).split_at_mut(nw);
                 let (wt0, wt1) = std::mem::take(&mut wtorque).split_at_mut(nw);
-                (hist, force, torque, whist, wforce, wtorque) = (h1, f1, t1, wh1, wf1, wt1);
+                (hist, load, whist, wforce, wtorque) = (h1, l1, wh1, wf1, wt1);
                 work.push(Work {
                     p0,
                     p1,
                     hist: h0,
-                    force: f0,
-                    torque: t0,
+                    load: l0,
                     whist: wh0,
                     wforce: wf0,
                     wtorque: wt0,
@@ -914,9 +907,13 @@ impl Dem {
                     let reach = ri + rj;
                     let dist2 = dot(d, d);
                     if dist2 >= reach * reach {
-                        wk.hist[kk] = [0.0; 3];
-                        wk.force[kk] = [0.0; 3];
-                        wk.torque[kk] = [0.0; 3];
+                        // most listed pairs stay apart: read before writing saves bandwidth
+                        if wk.load[kk] != [0.0; 6] {
+                            wk.load[kk] = [0.0; 6];
+                        }
+                        if wk.hist[kk] != [0.0; 3] {
+                            wk.hist[kk] = [0.0; 3];
+                        }
                         continue;
                     }
                     let dist = dist2.sqrt();
@@ -939,8 +936,8 @@ impl Dem {
                     let r_eff = ri * rj / reach;
                     let (f, ft) =
                         pair_law.force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
-                    wk.force[kk] = f;
-                    wk.torque[kk] = scale(cross(nrm, ft), -1.0);
+                    let tq = cross(nrm, ft);
+                    wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
                 }
                 if let Some(law) = wall_law {
                     for m in wall_start[i] as usize..wall_start[i + 1] as usize {
@@ -1006,20 +1003,19 @@ impl Dem {
                     let mut f = [0.0; 3];
                     let mut t = [0.0; 3];
                     for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
-                        let (pf, pt) = (lists.pair_force[q], lists.pair_torque[q]);
+                        let l = lists.pair_load[q];
                         for a in 0..3 {
-                            f[a] += pf[a];
-                            t[a] += pt[a];
+                            f[a] += l[a];
+                            t[a] += l[a + 3];
                         }
                     }
                     for &q in &lists.rev_pair
                         [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
                     {
-                        let (pf, pt) =
-                            (lists.pair_force[q as usize], lists.pair_torque[q as usize]);
+                        let l = lists.pair_load[q as usize];
                         for a in 0..3 {
-                            f[a] -= pf[a];
-                            t[a] += pt[a];
+                            f[a] -= l[a];
+                            t[a] += l[a + 3];
                         }
                     }
                     let ri = radius[i];

@@ -4,8 +4,8 @@
 //! * a *half* pair list in compressed rows: particle `i` owns the partners
 //!   `partner[row_start[i]..row_start[i+1]]`, all with index `> i`, so each pair is stored
 //!   and evaluated once;
-//! * per pair: the tangential spring `history` (from the owner's side) and two output
-//!   buffers, the force on the owner and the torque per unit radius `−n × F_t`;
+//! * per pair: the tangential spring `history` (from the owner's side) and an output
+//!   record, the force on the owner and the torque per unit radius `−n × F_t`;
 //! * the reverse rows `rev_pair[rev_start[j]..rev_start[j+1]]`: the pairs in which `j` is the
 //!   partner. A second pass sums, for each particle, its own rows with `+` and its reverse
 //!   rows with `−`, so forces are accumulated without atomics or races and in a fixed order
@@ -36,8 +36,9 @@ pub(crate) struct NeighbourList {
     pub(crate) row_start: Vec<u32>,
     pub(crate) partner: Vec<u32>,
     pub(crate) history: Vec<Vec3>,
-    pub(crate) pair_force: Vec<Vec3>,
-    pub(crate) pair_torque: Vec<Vec3>,
+    /// Per pair: force on the owner (0..3) and torque per unit radius `−n × F_t` (3..6), in
+    /// one record so the gather streams one array.
+    pub(crate) pair_load: Vec<[f64; 6]>,
     pub(crate) rev_start: Vec<u32>,
     pub(crate) rev_pair: Vec<u32>,
     pub(crate) wall_start: Vec<u32>,
@@ -149,10 +150,8 @@ impl NeighbourList {
         let np = self.partner.len();
         self.history.clear();
         self.history.resize(np, [0.0; 3]);
-        self.pair_force.clear();
-        self.pair_force.resize(np, [0.0; 3]);
-        self.pair_torque.clear();
-        self.pair_torque.resize(np, [0.0; 3]);
+        self.pair_load.clear();
+        self.pair_load.resize(np, [0.0; 6]);
 
         // reverse rows by counting sort of partners; pairs enter in ascending pair index
         self.rev_start.clear();
@@ -322,8 +321,7 @@ impl NeighbourList {
             + 32 * self.carry_walls.capacity()
             + 4 * self.inverse.capacity()
             + v3 * (self.history.capacity()
-                + self.pair_force.capacity()
-                + self.pair_torque.capacity()
+                + 2 * self.pair_load.capacity()
                 + self.wall_history.capacity()
                 + self.wall_force.capacity()
                 + self.wall_torque.capacity()
