@@ -272,131 +272,172 @@ impl ContactLaw {
         dt: f64,
         xi: &mut Vec3,
     ) -> (Vec3, Vec3) {
-        match *self {
-            ContactLaw::Hertz {
-                e_star,
-                g_star,
-                alpha,
-                b,
-                mu,
-                rule,
-            } => {
-                let k_n = 4.0 / 3.0 * r_eff.sqrt() * e_star;
-                let sqrt_delta = delta.sqrt();
-                let eta_n = alpha * (m_eff * k_n).sqrt() * sqrt_delta.sqrt();
-                // δ^b with the usual b = 1.5 as δ√δ (bit-identical to powf is not needed).
-                let delta_b = if b == 1.5 {
-                    delta * sqrt_delta
-                } else {
-                    delta.powf(b)
-                };
-                let f_n_mag = k_n * delta_b - eta_n * u_n;
-                let f_n = scale(n, f_n_mag);
-                let mut x = [
-                    xi[0] + slip[0] * dt,
-                    xi[1] + slip[1] * dt,
-                    xi[2] + slip[2] * dt,
-                ];
-                if rule == TangentialRule::CappedSpring {
-                    x = sub(x, scale(n, dot(x, n)));
-                }
-                let x_mag = norm(x);
-                let mut f_t = [0.0; 3];
-                if x_mag > VSMALL {
-                    let k_t = 8.0 * (r_eff * delta).sqrt() * g_star;
-                    let eta_t = eta_n;
-                    let limit = mu * f_n_mag.abs();
-                    match rule {
-                        TangentialRule::DpmFoamReset => {
-                            if k_t * x_mag > limit {
-                                let s = norm(slip);
-                                // û_t; when the contact point is momentarily at rest the spring
-                                // direction is the only one defined.
-                                let dir = if s > VSMALL {
-                                    scale(slip, 1.0 / s)
-                                } else {
-                                    scale(x, 1.0 / x_mag)
-                                };
-                                f_t = scale(dir, -limit);
-                                x = [0.0; 3];
-                            } else {
-                                f_t = [
-                                    -k_t * x[0] - eta_t * slip[0],
-                                    -k_t * x[1] - eta_t * slip[1],
-                                    -k_t * x[2] - eta_t * slip[2],
-                                ];
-                            }
-                        }
-                        TangentialRule::CappedSpring => {
-                            f_t = [
-                                -k_t * x[0] - eta_t * slip[0],
-                                -k_t * x[1] - eta_t * slip[1],
-                                -k_t * x[2] - eta_t * slip[2],
-                            ];
-                            let f_t_mag = norm(f_t);
-                            if f_t_mag > limit {
-                                f_t = scale(f_t, limit / f_t_mag);
-                                // spring such that −k_T ξ − η_T u_t equals the capped force
-                                let inv_k = 1.0 / k_t;
-                                x = [
-                                    -(f_t[0] + eta_t * slip[0]) * inv_k,
-                                    -(f_t[1] + eta_t * slip[1]) * inv_k,
-                                    -(f_t[2] + eta_t * slip[2]) * inv_k,
-                                ];
-                            }
-                        }
-                    }
-                }
-                *xi = x;
-                ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
-            }
-            ContactLaw::Linear {
-                kn,
-                kt,
-                damping,
-                tangential_damping_ratio,
-                mu,
-            } => {
-                let c_n = damping * (kn * m_eff).sqrt();
-                let f_n_mag = kn * delta - c_n * u_n;
-                let c_t = tangential_damping_ratio * c_n;
-                // LAMMPS gran/hooke/history: accumulate, then drop the normal component.
-                let mut x = [
-                    xi[0] + slip[0] * dt,
-                    xi[1] + slip[1] * dt,
-                    xi[2] + slip[2] * dt,
-                ];
-                x = sub(x, scale(n, dot(x, n)));
-                let mut f_t = [
-                    -(kt * x[0] + c_t * slip[0]),
-                    -(kt * x[1] + c_t * slip[1]),
-                    -(kt * x[2] + c_t * slip[2]),
-                ];
-                let f_t_mag = norm(f_t);
-                let limit = mu * f_n_mag.abs();
-                if f_t_mag > limit {
-                    if kt > 0.0 && norm(x) > 0.0 {
-                        let ratio = limit / f_t_mag;
-                        let damp = c_t / kt;
-                        x = [
-                            ratio * (x[0] + damp * slip[0]) - damp * slip[0],
-                            ratio * (x[1] + damp * slip[1]) - damp * slip[1],
-                            ratio * (x[2] + damp * slip[2]) - damp * slip[2],
-                        ];
-                        f_t = scale(f_t, ratio);
-                    } else {
-                        f_t = if f_t_mag > 0.0 {
-                            scale(f_t, limit / f_t_mag)
-                        } else {
-                            [0.0; 3]
-                        };
-                        x = [0.0; 3];
-                    }
-                }
-                *xi = x;
-                let f_n = scale(n, f_n_mag);
-                ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
+        match self {
+            ContactLaw::Hertz { .. } => self.hertz_force(n, delta, r_eff, m_eff, u_n, slip, dt, xi),
+            ContactLaw::Linear { .. } => {
+                self.linear_force(n, delta, r_eff, m_eff, u_n, slip, dt, xi)
             }
         }
+    }
+
+    /// [`ContactLaw::force`] for a law known to be `Hertz` (the pair loop is specialised per law).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn hertz_force(
+        &self,
+        n: Vec3,
+        delta: f64,
+        r_eff: f64,
+        m_eff: f64,
+        u_n: f64,
+        slip: Vec3,
+        dt: f64,
+        xi: &mut Vec3,
+    ) -> (Vec3, Vec3) {
+        let ContactLaw::Hertz {
+            e_star,
+            g_star,
+            alpha,
+            b,
+            mu,
+            rule,
+        } = *self
+        else {
+            unreachable!("hertz_force on a linear law")
+        };
+        let k_n = 4.0 / 3.0 * r_eff.sqrt() * e_star;
+        let sqrt_delta = delta.sqrt();
+        let eta_n = alpha * (m_eff * k_n).sqrt() * sqrt_delta.sqrt();
+        // δ^b with the usual b = 1.5 as δ√δ (bit-identical to powf is not needed).
+        let delta_b = if b == 1.5 {
+            delta * sqrt_delta
+        } else {
+            delta.powf(b)
+        };
+        let f_n_mag = k_n * delta_b - eta_n * u_n;
+        let f_n = scale(n, f_n_mag);
+        let mut x = [
+            xi[0] + slip[0] * dt,
+            xi[1] + slip[1] * dt,
+            xi[2] + slip[2] * dt,
+        ];
+        if rule == TangentialRule::CappedSpring {
+            x = sub(x, scale(n, dot(x, n)));
+        }
+        let x_mag = norm(x);
+        let mut f_t = [0.0; 3];
+        if x_mag > VSMALL {
+            let k_t = 8.0 * (r_eff * delta).sqrt() * g_star;
+            let eta_t = eta_n;
+            let limit = mu * f_n_mag.abs();
+            match rule {
+                TangentialRule::DpmFoamReset => {
+                    if k_t * x_mag > limit {
+                        let s = norm(slip);
+                        // û_t; when the contact point is momentarily at rest the spring
+                        // direction is the only one defined.
+                        let dir = if s > VSMALL {
+                            scale(slip, 1.0 / s)
+                        } else {
+                            scale(x, 1.0 / x_mag)
+                        };
+                        f_t = scale(dir, -limit);
+                        x = [0.0; 3];
+                    } else {
+                        f_t = [
+                            -k_t * x[0] - eta_t * slip[0],
+                            -k_t * x[1] - eta_t * slip[1],
+                            -k_t * x[2] - eta_t * slip[2],
+                        ];
+                    }
+                }
+                TangentialRule::CappedSpring => {
+                    f_t = [
+                        -k_t * x[0] - eta_t * slip[0],
+                        -k_t * x[1] - eta_t * slip[1],
+                        -k_t * x[2] - eta_t * slip[2],
+                    ];
+                    let f_t_mag = norm(f_t);
+                    if f_t_mag > limit {
+                        f_t = scale(f_t, limit / f_t_mag);
+                        // spring such that −k_T ξ − η_T u_t equals the capped force
+                        let inv_k = 1.0 / k_t;
+                        x = [
+                            -(f_t[0] + eta_t * slip[0]) * inv_k,
+                            -(f_t[1] + eta_t * slip[1]) * inv_k,
+                            -(f_t[2] + eta_t * slip[2]) * inv_k,
+                        ];
+                    }
+                }
+            }
+        }
+        *xi = x;
+        ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
+    }
+
+    /// [`ContactLaw::force`] for a law known to be `Linear`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn linear_force(
+        &self,
+        n: Vec3,
+        delta: f64,
+        r_eff: f64,
+        m_eff: f64,
+        u_n: f64,
+        slip: Vec3,
+        dt: f64,
+        xi: &mut Vec3,
+    ) -> (Vec3, Vec3) {
+        let _ = r_eff;
+        let ContactLaw::Linear {
+            kn,
+            kt,
+            damping,
+            tangential_damping_ratio,
+            mu,
+        } = *self
+        else {
+            unreachable!("linear_force on a Hertz law")
+        };
+        let c_n = damping * (kn * m_eff).sqrt();
+        let f_n_mag = kn * delta - c_n * u_n;
+        let c_t = tangential_damping_ratio * c_n;
+        // LAMMPS gran/hooke/history: accumulate, then drop the normal component.
+        let mut x = [
+            xi[0] + slip[0] * dt,
+            xi[1] + slip[1] * dt,
+            xi[2] + slip[2] * dt,
+        ];
+        x = sub(x, scale(n, dot(x, n)));
+        let mut f_t = [
+            -(kt * x[0] + c_t * slip[0]),
+            -(kt * x[1] + c_t * slip[1]),
+            -(kt * x[2] + c_t * slip[2]),
+        ];
+        let f_t_mag = norm(f_t);
+        let limit = mu * f_n_mag.abs();
+        if f_t_mag > limit {
+            if kt > 0.0 && norm(x) > 0.0 {
+                let ratio = limit / f_t_mag;
+                let damp = c_t / kt;
+                x = [
+                    ratio * (x[0] + damp * slip[0]) - damp * slip[0],
+                    ratio * (x[1] + damp * slip[1]) - damp * slip[1],
+                    ratio * (x[2] + damp * slip[2]) - damp * slip[2],
+                ];
+                f_t = scale(f_t, ratio);
+            } else {
+                f_t = if f_t_mag > 0.0 {
+                    scale(f_t, limit / f_t_mag)
+                } else {
+                    [0.0; 3]
+                };
+                x = [0.0; 3];
+            }
+        }
+        *xi = x;
+        let f_n = scale(n, f_n_mag);
+        ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
     }
 }

@@ -833,34 +833,33 @@ impl Dem {
         self.gather_contacts(None);
     }
 
-    /// Pass 1: each listed pair and wall contact once, into the per-contact buffers.
+    /// Pass 1: each listed pair and wall contact once, into the per-contact buffers. The loop
+    /// is specialised per contact law and for boxes without periodic axes.
     fn evaluate_contacts(&mut self, dt: f64) {
         let n = self.particles.len();
-        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
         let pair_law = self.pair_law;
         let wall_law = self.wall_law;
-        let wall_history = wall_law.map(|l| l.keeps_history(true)).unwrap_or(false);
         let lists = &mut self.lists;
         let p = &self.particles;
-        let (x, v, w) = (&p.position, &p.velocity, &p.angular_velocity);
-        let (radius, inv_m) = (&self.radius, &self.inv_mass);
-        let domain = &self.domain;
-
-        // Pass 1: each pair once, into per-pair buffers (rows of a chunk are contiguous, so the
-        // buffers split into disjoint slices, one per chunk).
-        struct Work<'a> {
-            p0: usize,
-            p1: usize,
-            hist: &'a mut [Vec3],
-            load: &'a mut [[f64; 6]],
-            whist: &'a mut [Vec3],
-            wforce: &'a mut [Vec3],
-            wtorque: &'a mut [Vec3],
-        }
-        let row_start = &lists.row_start;
-        let wall_start = &lists.wall_start;
-        let partner = &lists.partner;
-        let wall_face = &lists.wall_face;
+        let ctx = ContactContext {
+            x: &p.position,
+            v: &p.velocity,
+            w: &p.angular_velocity,
+            radius: &self.radius,
+            inv_m: &self.inv_mass,
+            row_start: &lists.row_start,
+            partner: &lists.partner,
+            wall_start: &lists.wall_start,
+            wall_face: &lists.wall_face,
+            domain: &self.domain,
+            length: self.domain.length(),
+            inv_l: self.domain.inverse_periodic_length(),
+            wall_law,
+            wall_history: wall_law.map(|l| l.keeps_history(true)).unwrap_or(false),
+            dt,
+        };
+        // Rows of a chunk are contiguous, so the buffers split into disjoint slices, one per
+        // chunk (a Vec of ~N/512 slice handles per step).
         let mut work = Vec::with_capacity(n.div_ceil(CHUNK));
         {
             let (mut hist, mut load) = (&mut lists.history[..], &mut lists.pair_load[..]);
@@ -871,15 +870,15 @@ impl Dem {
             );
             for c in 0..n.div_ceil(CHUNK) {
                 let (p0, p1) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
-                let np = (row_start[p1] - row_start[p0]) as usize;
-                let nw = (wall_start[p1] - wall_start[p0]) as usize;
+                let np = (ctx.row_start[p1] - ctx.row_start[p0]) as usize;
+                let nw = (ctx.wall_start[p1] - ctx.wall_start[p0]) as usize;
                 let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
                 let (l0, l1) = std::mem::take(&mut load).split_at_mut(np);
                 let (wh0, wh1) = std::mem::take(&mut whist).split_at_mut(nw);
                 let (wf0, wf1) = std::mem::take(&mut wforce).split_at_mut(nw);
                 let (wt0, wt1) = std::mem::take(&mut wtorque).split_at_mut(nw);
                 (hist, load, whist, wforce, wtorque) = (h1, l1, wh1, wf1, wt1);
-                work.push(Work {
+                work.push(ContactWork {
                     p0,
                     p1,
                     hist: h0,
@@ -890,94 +889,30 @@ impl Dem {
                 });
             }
         }
-        work.par_iter_mut().for_each(|wk| {
-            let k0 = row_start[wk.p0] as usize;
-            let w0 = wall_start[wk.p0] as usize;
-            for i in wk.p0..wk.p1 {
-                let (xi, vi, wi, ri) = (x[i], v[i], w[i], radius[i]);
-                for k in row_start[i] as usize..row_start[i + 1] as usize {
-                    let j = partner[k] as usize;
-                    let kk = k - k0;
-                    let d = minimum_image(
-                        [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]],
-                        length,
-                        inv_l,
-                    );
-                    let rj = radius[j];
-                    let reach = ri + rj;
-                    let dist2 = dot(d, d);
-                    if dist2 >= reach * reach {
-                        // most listed pairs stay apart: read before writing saves bandwidth
-                        if wk.load[kk] != [0.0; 6] {
-                            wk.load[kk] = [0.0; 6];
-                        }
-                        if wk.hist[kk] != [0.0; 3] {
-                            wk.hist[kk] = [0.0; 3];
-                        }
-                        continue;
-                    }
-                    let dist = dist2.sqrt();
-                    let nrm = scale(d, 1.0 / dist);
-                    let delta = reach - dist;
-                    let u = [vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]];
-                    let u_n = dot(u, nrm);
-                    let spin = [
-                        ri * wi[0] + rj * w[j][0],
-                        ri * wi[1] + rj * w[j][1],
-                        ri * wi[2] + rj * w[j][2],
-                    ];
-                    let sc = cross(spin, nrm);
-                    let slip = [
-                        u[0] - u_n * nrm[0] - sc[0],
-                        u[1] - u_n * nrm[1] - sc[1],
-                        u[2] - u_n * nrm[2] - sc[2],
-                    ];
-                    let m_eff = 1.0 / (inv_m[i] + inv_m[j]);
-                    let r_eff = ri * rj / reach;
-                    let (f, ft) =
-                        pair_law.force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
-                    let tq = cross(nrm, ft);
-                    wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
-                }
-                if let Some(law) = wall_law {
-                    for m in wall_start[i] as usize..wall_start[i + 1] as usize {
-                        let mm = m - w0;
-                        let f = wall_face[m] as usize;
-                        let delta = ri - wall_distance(domain, f, xi);
-                        if delta <= 0.0 {
-                            wk.whist[mm] = [0.0; 3];
-                            wk.wforce[mm] = [0.0; 3];
-                            wk.wtorque[mm] = [0.0; 3];
-                            continue;
-                        }
-                        if !wall_history {
-                            wk.whist[mm] = [0.0; 3];
-                        }
-                        let nrm = wall_normal(f);
-                        let u_n = dot(vi, nrm);
-                        let sc = cross(scale(wi, ri), nrm);
-                        let slip = [
-                            vi[0] - u_n * nrm[0] - sc[0],
-                            vi[1] - u_n * nrm[1] - sc[1],
-                            vi[2] - u_n * nrm[2] - sc[2],
-                        ];
-                        let (fw, ft) = law.force(
-                            nrm,
-                            delta,
-                            ri,
-                            1.0 / inv_m[i],
-                            u_n,
-                            slip,
-                            dt,
-                            &mut wk.whist[mm],
-                        );
-                        wk.wforce[mm] = fw;
-                        wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
-                    }
-                }
-            }
-        });
-        drop(work);
+        let periodic = ctx.inv_l != [0.0; 3];
+        let ctx = &ctx;
+        match (periodic, pair_law) {
+            (true, ContactLaw::Linear { .. }) => work.par_iter_mut().for_each(|wk| {
+                evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.linear_force(n, d, r, m, u, s, dt, xi)
+                })
+            }),
+            (false, ContactLaw::Linear { .. }) => work.par_iter_mut().for_each(|wk| {
+                evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.linear_force(n, d, r, m, u, s, dt, xi)
+                })
+            }),
+            (true, ContactLaw::Hertz { .. }) => work.par_iter_mut().for_each(|wk| {
+                evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
+                })
+            }),
+            (false, ContactLaw::Hertz { .. }) => work.par_iter_mut().for_each(|wk| {
+                evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
+                })
+            }),
+        }
     }
 
     /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
@@ -1120,6 +1055,129 @@ impl Dem {
                 worst
             })
             .reduce(|| 0.0, f64::max)
+    }
+}
+
+/// Read-only inputs of the pair pass.
+struct ContactContext<'a> {
+    x: &'a [Vec3],
+    v: &'a [Vec3],
+    w: &'a [Vec3],
+    radius: &'a [f64],
+    inv_m: &'a [f64],
+    row_start: &'a [u32],
+    partner: &'a [u32],
+    wall_start: &'a [u32],
+    wall_face: &'a [u8],
+    domain: &'a DomainBox,
+    length: Vec3,
+    inv_l: Vec3,
+    wall_law: Option<ContactLaw>,
+    wall_history: bool,
+    dt: f64,
+}
+
+/// The per-contact buffers of one chunk of particles `p0..p1`.
+struct ContactWork<'a> {
+    p0: usize,
+    p1: usize,
+    hist: &'a mut [Vec3],
+    load: &'a mut [[f64; 6]],
+    whist: &'a mut [Vec3],
+    wforce: &'a mut [Vec3],
+    wtorque: &'a mut [Vec3],
+}
+
+/// Pair and wall contacts of one chunk. `PERIODIC = false` skips the minimum image.
+#[inline(always)]
+fn evaluate_chunk<const PERIODIC: bool, L>(wk: &mut ContactWork, c: &ContactContext, pair_force: &L)
+where
+    L: Fn(Vec3, f64, f64, f64, f64, Vec3, f64, &mut Vec3) -> (Vec3, Vec3),
+{
+    let (x, v, w, radius, inv_m) = (c.x, c.v, c.w, c.radius, c.inv_m);
+    let k0 = c.row_start[wk.p0] as usize;
+    let w0 = c.wall_start[wk.p0] as usize;
+    let dt = c.dt;
+    for i in wk.p0..wk.p1 {
+        let (xi, vi, wi, ri) = (x[i], v[i], w[i], radius[i]);
+        for k in c.row_start[i] as usize..c.row_start[i + 1] as usize {
+            let j = c.partner[k] as usize;
+            let kk = k - k0;
+            let mut d = [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]];
+            if PERIODIC {
+                d = minimum_image(d, c.length, c.inv_l);
+            }
+            let rj = radius[j];
+            let reach = ri + rj;
+            let dist2 = dot(d, d);
+            if dist2 >= reach * reach {
+                // most listed pairs stay apart: read before writing saves bandwidth
+                if wk.load[kk] != [0.0; 6] {
+                    wk.load[kk] = [0.0; 6];
+                }
+                if wk.hist[kk] != [0.0; 3] {
+                    wk.hist[kk] = [0.0; 3];
+                }
+                continue;
+            }
+            let dist = dist2.sqrt();
+            let nrm = scale(d, 1.0 / dist);
+            let delta = reach - dist;
+            let u = [vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]];
+            let u_n = dot(u, nrm);
+            let spin = [
+                ri * wi[0] + rj * w[j][0],
+                ri * wi[1] + rj * w[j][1],
+                ri * wi[2] + rj * w[j][2],
+            ];
+            let sc = cross(spin, nrm);
+            let slip = [
+                u[0] - u_n * nrm[0] - sc[0],
+                u[1] - u_n * nrm[1] - sc[1],
+                u[2] - u_n * nrm[2] - sc[2],
+            ];
+            let m_eff = 1.0 / (inv_m[i] + inv_m[j]);
+            let r_eff = ri * rj / reach;
+            let (f, ft) = pair_force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
+            let tq = cross(nrm, ft);
+            wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
+        }
+        if let Some(law) = c.wall_law {
+            for m in c.wall_start[i] as usize..c.wall_start[i + 1] as usize {
+                let mm = m - w0;
+                let f = c.wall_face[m] as usize;
+                let delta = ri - wall_distance(c.domain, f, xi);
+                if delta <= 0.0 {
+                    wk.whist[mm] = [0.0; 3];
+                    wk.wforce[mm] = [0.0; 3];
+                    wk.wtorque[mm] = [0.0; 3];
+                    continue;
+                }
+                if !c.wall_history {
+                    wk.whist[mm] = [0.0; 3];
+                }
+                let nrm = wall_normal(f);
+                let u_n = dot(vi, nrm);
+                let sc = cross(scale(wi, ri), nrm);
+                let slip = [
+                    vi[0] - u_n * nrm[0] - sc[0],
+                    vi[1] - u_n * nrm[1] - sc[1],
+                    vi[2] - u_n * nrm[2] - sc[2],
+                ];
+                let (fw, ft) = law.force(
+                    nrm,
+                    delta,
+                    ri,
+                    1.0 / inv_m[i],
+                    u_n,
+                    slip,
+                    dt,
+                    &mut wk.whist[mm],
+                );
+                wk.wforce[mm] = fw;
+                wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
+            }
+        }
     }
 }
 
