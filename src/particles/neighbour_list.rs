@@ -95,6 +95,8 @@ impl NeighbourList {
         let length = domain.length();
         let inv_l = domain.inverse_periodic_length();
         let skin = self.skin;
+        let periodic = inv_l != [0.0; 3];
+        let any_fixed = fixed.iter().any(|&f| f);
         let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
@@ -112,18 +114,20 @@ impl NeighbourList {
                     ];
                     let m = grid.neighbours(cc, &mut nb);
                     let xi = positions[i];
+                    let fixed_i = any_fixed && fixed[i];
                     for &cell in &nb[..m] {
+                        // sorted order: a cell's particles are one index range, so j > i is a
+                        // range start rather than a test per candidate
                         let (s, e) = (cell_start[cell] as usize, cell_start[cell + 1] as usize);
-                        for j in s..e {
-                            if j <= i || (fixed[i] && fixed[j]) {
+                        for j in s.max(i + 1)..e {
+                            if fixed_i && fixed[j] {
                                 continue;
                             }
                             let xj = positions[j];
-                            let d = minimum_image(
-                                [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]],
-                                length,
-                                inv_l,
-                            );
+                            let mut d = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                            if periodic {
+                                d = minimum_image(d, length, inv_l);
+                            }
                             let cut = radius[i] + radius[j] + skin;
                             if dot(d, d) < cut * cut {
                                 list.push(j as u32);
