@@ -13,16 +13,29 @@ pub(crate) struct CellGrid {
 }
 
 impl CellGrid {
-    /// Cells no smaller than `min_size` (the largest `d_i/2 + d_j/2 + skin`).
-    pub(crate) fn new(domain: &DomainBox, min_size: f64) -> Self {
+    /// Cells no smaller than `min_size` (the largest `d_i/2 + d_j/2 + skin`), and no more than
+    /// `max_cells` of them (tiny particles in a huge box would otherwise ask for more cells
+    /// than memory holds; larger cells only cost efficiency, never correctness).
+    pub(crate) fn new(domain: &DomainBox, min_size: f64, max_cells: usize) -> Self {
         let l = domain.length();
+        let mut size = if min_size > 0.0 {
+            min_size
+        } else {
+            l[0].max(l[1]).max(l[2])
+        };
         let mut n = [1usize; 3];
+        loop {
+            for a in 0..3 {
+                n[a] = ((l[a] / size).floor() as usize).clamp(1, 1 << 20);
+            }
+            if n.iter().product::<usize>() <= max_cells.max(1) {
+                break;
+            }
+            size *= 1.25;
+        }
         let mut inv_size = [0.0; 3];
         let mut periodic = [false; 3];
         for a in 0..3 {
-            // Cap the count so that tiny particles in a huge box cannot exhaust memory;
-            // the count only sets efficiency, not correctness (cells stay ≥ min_size).
-            n[a] = ((l[a] / min_size).floor() as usize).clamp(1, 1 << 10);
             inv_size[a] = n[a] as f64 / l[a];
             periodic[a] = domain.is_periodic(a);
         }
@@ -159,7 +172,7 @@ mod tests {
     #[test]
     fn counting_sort_groups_by_cell_and_is_stable() {
         let b = DomainBox::walled([0.0; 3], [4.0, 1.0, 1.0]);
-        let g = CellGrid::new(&b, 1.0);
+        let g = CellGrid::new(&b, 1.0, 1000);
         assert_eq!(g.n, [4, 1, 1]);
         let x = [
             [3.5, 0.5, 0.5],
@@ -175,12 +188,21 @@ mod tests {
     }
 
     #[test]
+    fn cell_count_is_capped() {
+        let b = DomainBox::walled([0.0; 3], [1.0; 3]);
+        let g = CellGrid::new(&b, 1e-6, 1000);
+        assert!(g.cell_count() <= 1000 && g.cell_count() >= 500, "{:?}", g.n);
+        let g = CellGrid::new(&b, 0.0, 1000);
+        assert_eq!(g.n, [1, 1, 1]);
+    }
+
+    #[test]
     fn neighbour_cells_are_distinct_when_periodic_axis_is_short() {
         let mut b = DomainBox::walled([0.0; 3], [2.0, 5.0, 1.0]);
         for f in [0, 1, 4, 5] {
             b.faces[f] = FaceCondition::Periodic;
         }
-        let g = CellGrid::new(&b, 1.0);
+        let g = CellGrid::new(&b, 1.0, 1000);
         assert_eq!(g.n, [2, 5, 1]);
         let mut out = [0; 27];
         let k = g.neighbours([0, 0, 0], &mut out);

@@ -429,7 +429,7 @@ impl Dem {
         validate_particles(&particles, &domain, f64::INFINITY)?;
         let d_max = particles.diameter.iter().cloned().fold(0.0, f64::max);
         let skin = config.skin_fraction * d_max.max(f64::MIN_POSITIVE);
-        let cell_size = d_max + skin;
+        let cell_size = if d_max > 0.0 { d_max + skin } else { 0.0 };
         let l = domain.length();
         for a in 0..3 {
             if domain.is_periodic(a) && l[a] < 2.0 * cell_size {
@@ -1581,6 +1581,21 @@ mod tests {
             Dem::new(cfg.clone(), dom2, p.clone()).err().unwrap(),
             DemError::UnpairedPeriodicFace { face: 0 }
         );
+    }
+
+    #[test]
+    fn an_empty_cloud_steps_and_reports_zeros() {
+        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let mut dem = Dem::new(
+            cfg,
+            DomainBox::walled([0.0; 3], [1.0; 3]),
+            ParticleState::default(),
+        )
+        .unwrap();
+        assert_eq!(dem.advance(1e-3), 1);
+        assert_eq!(dem.kinetic_energy(), (0.0, 0.0));
+        assert_eq!(dem.max_overlap_ratio(), 0.0);
+        assert_eq!(dem.mean_velocity(), [0.0; 3]);
     }
 
     #[test]

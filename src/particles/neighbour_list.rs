@@ -63,7 +63,8 @@ pub struct ContactHistory {
 impl NeighbourList {
     /// Sorts particles by cell: returns nothing, leaves the permutation in `self.order`.
     pub(crate) fn sort(&mut self, domain: &DomainBox, cell_size: f64, positions: &[Vec3]) {
-        self.grid = CellGrid::new(domain, cell_size);
+        // about two cells per particle at most
+        self.grid = CellGrid::new(domain, cell_size, 2 * positions.len() + 64);
         self.grid.counting_sort(
             positions,
             &mut self.cell_of,
