@@ -778,7 +778,12 @@ impl Dem {
                     if inv_m[i] == 0.0 {
                         continue;
                     }
-                    let buoy = 1.0 - rho_f / rho[i];
+                    // no division per particle in vacuum (the usual pure-DEM case)
+                    let buoy = if rho_f == 0.0 {
+                        1.0
+                    } else {
+                        1.0 - rho_f / rho[i]
+                    };
                     for a in 0..3 {
                         v[k][a] += half * ((fc[i][a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
                         w[k][a] += half * (tc[i][a] + te[i][a]) * inv_i[i];
@@ -964,7 +969,12 @@ impl Dem {
                     fo[k] = f;
                     to[k] = t;
                     if kick.is_some() && inv_m[i] != 0.0 {
-                        let buoy = 1.0 - rho_f / rho[i];
+                        // no division per particle in vacuum (the usual pure-DEM case)
+                        let buoy = if rho_f == 0.0 {
+                            1.0
+                        } else {
+                            1.0 - rho_f / rho[i]
+                        };
                         for a in 0..3 {
                             v[k][a] += half * ((f[a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
                             w[k][a] += half * (t[a] + te[i][a]) * inv_i[i];
