@@ -357,8 +357,10 @@ impl ContactLaw {
                         -k_t * x[1] - eta_t * slip[1],
                         -k_t * x[2] - eta_t * slip[2],
                     ];
-                    let f_t_mag = norm(f_t);
-                    if f_t_mag > limit {
+                    // squared test: no square root while the contact sticks
+                    let f_t_sq = dot(f_t, f_t);
+                    if f_t_sq > limit * limit {
+                        let f_t_mag = f_t_sq.sqrt();
                         f_t = scale(f_t, limit / f_t_mag);
                         // spring such that −k_T ξ − η_T u_t equals the capped force
                         let inv_k = 1.0 / k_t;
@@ -415,10 +417,12 @@ impl ContactLaw {
             -(kt * x[1] + c_t * slip[1]),
             -(kt * x[2] + c_t * slip[2]),
         ];
-        let f_t_mag = norm(f_t);
+        let f_t_sq = dot(f_t, f_t);
         let limit = mu * f_n_mag.abs();
-        if f_t_mag > limit {
-            if kt > 0.0 && norm(x) > 0.0 {
+        // squared test: no square root while the contact sticks
+        if f_t_sq > limit * limit {
+            let f_t_mag = f_t_sq.sqrt();
+            if kt > 0.0 && dot(x, x) > 0.0 {
                 let ratio = limit / f_t_mag;
                 let damp = c_t / kt;
                 x = [
