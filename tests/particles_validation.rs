@@ -27,7 +27,12 @@ fn index_of(dem: &Dem, id: u64) -> usize {
 /// Two equal spheres meet head on with relative speed `v`; returns (measured restitution,
 /// measured contact time).
 fn head_on(pair: PairModel, v: f64, h_over_tc: f64, periodic_across: bool) -> (f64, f64) {
-    let mut dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+    // no wall model here: faces rebound (never reached) unless periodic
+    let mut dom = DomainBox::uniform(
+        [0.0; 3],
+        [0.01; 3],
+        FaceCondition::Rebound { e: 1.0, mu: 0.0 },
+    );
     let mut p = ParticleState::default();
     if periodic_across {
         // the spheres meet across the x faces

@@ -271,6 +271,15 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
     Ok(())
 }
 
+fn validate_walls(c: &DemConfig, d: &DomainBox) -> Result<(), DemError> {
+    if c.wall_model == WallModel::None {
+        if let Some(face) = d.faces.iter().position(|f| *f == FaceCondition::Wall) {
+            return Err(DemError::WallWithoutModel { face });
+        }
+    }
+    Ok(())
+}
+
 fn validate_domain(d: &DomainBox) -> Result<(), DemError> {
     for a in 0..3 {
         if d.hi[a].partial_cmp(&d.lo[a]) != Some(std::cmp::Ordering::Greater)
@@ -371,6 +380,7 @@ impl Dem {
     ) -> Result<Self, DemError> {
         validate_config(&config)?;
         validate_domain(&domain)?;
+        validate_walls(&config, &domain)?;
         validate_particles(&particles, &domain, config.overlap_tolerance)?;
         let mut dem = Dem::assemble(config, domain, particles)?;
         // input index of each sorted particle, for error messages
@@ -394,6 +404,7 @@ impl Dem {
     ) -> Result<Self, DemError> {
         validate_config(&config)?;
         validate_domain(&domain)?;
+        validate_walls(&config, &domain)?;
         if snapshot.reference_position.len() != snapshot.particles.len() {
             return Err(DemError::InconsistentArrays);
         }
@@ -1297,7 +1308,7 @@ mod tests {
             p.velocity[0] = u;
             p.angular_velocity[0] = wa;
             p.angular_velocity[1] = wb;
-            let domain = DomainBox::walled([0.0; 3], [0.02; 3]);
+            let domain = DomainBox::uniform([0.0; 3], [0.02; 3], FaceCondition::Periodic);
             let mut dem = Dem::new(
                 lenient(hertz_pair(TangentialRule::DpmFoamReset), WallModel::None),
                 domain,
@@ -1472,7 +1483,15 @@ mod tests {
 
     #[test]
     fn bad_input_names_the_particle_or_keyword() {
-        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let wall = WallModel::LinearSpringDashpot {
+            kn: 1e3,
+            restitution: 0.5,
+            kt: 0.0,
+            mu: 0.0,
+            tangential_damping_ratio: 0.0,
+            collision_resolution_steps: 20.0,
+        };
+        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), wall);
         let dom = DomainBox::walled([0.0; 3], [0.01; 3]);
         let mut p = ParticleState::default();
         for k in 0..4 {
@@ -1532,10 +1551,8 @@ mod tests {
                 id_b: 103,
                 overlap_over_d,
             } => {
-                assert!(
-                    (overlap_over_d - (1.0 - 0.2f64.hypot(0.2) / 1.0)).abs() < 1e-9
-                        || *overlap_over_d > 0.0
-                )
+                // centres 0.2√2 mm apart, d = 1 mm
+                assert!((overlap_over_d - (1.0 - 0.2f64.hypot(0.2))).abs() < 1e-9)
             }
             other => panic!("expected overlap error, got {other}"),
         }
@@ -1547,28 +1564,23 @@ mod tests {
 
         let mut q = p.clone();
         q.position[0][2] = 0.0003;
-        assert!(matches!(
-            run(
-                &q,
-                &DemConfig::new(
-                    PairModel::linear(1e3, 0.5, 0.3),
-                    WallModel::LinearSpringDashpot {
-                        kn: 1e3,
-                        restitution: 0.5,
-                        kt: 0.0,
-                        mu: 0.0,
-                        tangential_damping_ratio: 0.0,
-                        collision_resolution_steps: 20.0
-                    }
-                )
+        let e = run(&q, &cfg);
+        assert!(
+            matches!(
+                e,
+                DemError::WallOverlap {
+                    index: 0,
+                    id: 100,
+                    face: 4,
+                    ..
+                }
             ),
-            DemError::WallOverlap {
-                index: 0,
-                id: 100,
-                face: 4,
-                ..
-            }
-        ));
+            "{e}"
+        );
+        let no_wall_model = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let e = run(&p, &no_wall_model);
+        assert_eq!(e, DemError::WallWithoutModel { face: 0 });
+        assert!(e.to_string().contains("no wall model"), "{e}");
 
         let mut q = p.clone();
         q.id[3] = 101;
@@ -1582,6 +1594,7 @@ mod tests {
         );
 
         let bad = DemConfig::new(PairModel::linear(1e3, 1.5, 0.3), WallModel::None);
+        // the coefficient is reported before the missing wall model
         let e = run(&p, &bad);
         assert!(e.to_string().contains("`restitution` = 1.5"), "{e}");
 
@@ -1598,7 +1611,7 @@ mod tests {
         let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
         let mut dem = Dem::new(
             cfg,
-            DomainBox::walled([0.0; 3], [1.0; 3]),
+            DomainBox::uniform([0.0; 3], [1.0; 3], FaceCondition::Periodic),
             ParticleState::default(),
         )
         .unwrap();
@@ -1610,8 +1623,9 @@ mod tests {
 
     #[test]
     fn rebound_face_applies_openfoam_rule() {
-        let mut dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+        let mut dom = DomainBox::uniform([0.0; 3], [0.01; 3], FaceCondition::Periodic);
         dom.faces[4] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
+        dom.faces[5] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
         let mut p = ParticleState::default();
         p.push(1, [0.005, 0.005, 0.0004], 1e-3, 2500.0);
         p.velocity[0] = [0.3, 0.0, -1.0];

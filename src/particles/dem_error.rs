@@ -54,6 +54,8 @@ pub enum DemError {
         length: f64,
         needed: f64,
     },
+    /// A face is a `Wall` but no wall model is configured: nothing would stop particles.
+    WallWithoutModel { face: usize },
     /// Particle arrays of different lengths.
     InconsistentArrays,
     /// The box is empty or inverted.
@@ -101,6 +103,11 @@ impl fmt::Display for DemError {
             PeriodicTooShort { axis, length, needed } => write!(
                 f,
                 "periodic length {length} along axis {axis} is shorter than twice the largest diameter plus skin ({needed})"
+            ),
+            WallWithoutModel { face } => write!(
+                f,
+                "the {} face is a wall but no wall model is set (choose a wallModel or a rebound patch)",
+                FACE_NAMES[*face]
             ),
             InconsistentArrays => write!(f, "particle arrays have different lengths"),
             BadDomain { lo, hi } => write!(f, "domain box lo {lo:?} hi {hi:?} is empty"),

@@ -29,10 +29,15 @@ pub struct DomainBox {
 impl DomainBox {
     /// A box whose six faces are all walls.
     pub fn walled(lo: Vec3, hi: Vec3) -> Self {
+        Self::uniform(lo, hi, FaceCondition::Wall)
+    }
+
+    /// A box whose six faces share one condition.
+    pub fn uniform(lo: Vec3, hi: Vec3, face: FaceCondition) -> Self {
         DomainBox {
             lo,
             hi,
-            faces: [FaceCondition::Wall; 6],
+            faces: [face; 6],
         }
     }
 
