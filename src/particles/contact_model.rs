@@ -72,7 +72,7 @@ pub enum PairModel {
 /// Particle–wall model for faces with [`super::FaceCondition::Wall`].
 #[derive(Clone, Debug, PartialEq)]
 pub enum WallModel {
-    /// No soft wall contact (walls then need a `Rebound` condition or nothing touches them).
+    /// No soft wall contact; then no face may be a `Wall` (use `Rebound` or `Periodic` faces).
     None,
     /// `wallSpringSliderDashpot`. `youngs_modulus`/`poissons_ratio` are the wall's;
     /// the particle's come from `particle_*`.
