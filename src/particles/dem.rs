@@ -88,6 +88,11 @@ pub struct Dem {
     inv_mass: Vec<f64>,
     inv_inertia: Vec<f64>,
     cell_size: f64,
+    /// Per-particle sums of the pair loads when the pair pass scatters (one thread).
+    acc_force: Vec<Vec3>,
+    acc_torque: Vec<Vec3>,
+    /// Whether the last pair pass scattered into the sums above.
+    scattered: bool,
     time: f64,
     steps: u64,
     rebuilds: u64,
@@ -468,6 +473,9 @@ impl Dem {
             inv_mass: Vec::new(),
             inv_inertia: Vec::new(),
             cell_size,
+            acc_force: Vec::new(),
+            acc_torque: Vec::new(),
+            scattered: false,
             time: 0.0,
             steps: 0,
             rebuilds: 0,
@@ -605,7 +613,9 @@ impl Dem {
         self.particles.memory_bytes()
             + 8 * (self.radius.capacity() + self.inv_mass.capacity() + self.inv_inertia.capacity())
             + self.lists.memory_bytes()
-            + 24 * self.scratch3.capacity()
+            + 24 * (self.scratch3.capacity()
+                + self.acc_force.capacity()
+                + self.acc_torque.capacity())
             + 8 * self.scratch1.capacity()
     }
 
@@ -874,9 +884,24 @@ impl Dem {
             wall_history: wall_law.map(|l| l.keeps_history(true)).unwrap_or(false),
             dt,
         };
-        // Rows of a chunk are contiguous, so the buffers split into disjoint slices, one per
-        // chunk (a Vec of ~N/512 slice handles per step).
-        let mut work = Vec::with_capacity(n.div_ceil(CHUNK));
+        // On one thread the pass scatters each pair load straight into per-particle sums, in
+        // pair order; the gather below then adds, for each particle, its reverse rows before
+        // its own rows, so both paths add the same terms in the same order: bit-identical
+        // results for any thread count. On several threads, rows of a chunk are contiguous,
+        // so the per-pair buffers split into disjoint slices, one per chunk.
+        let serial = rayon::current_num_threads() == 1;
+        self.scattered = serial;
+        let chunk = if serial { n.max(1) } else { CHUNK };
+        let mut scatter = if serial {
+            self.acc_force.clear();
+            self.acc_force.resize(n, [0.0; 3]);
+            self.acc_torque.clear();
+            self.acc_torque.resize(n, [0.0; 3]);
+            Some((&mut self.acc_force[..], &mut self.acc_torque[..]))
+        } else {
+            None
+        };
+        let mut work = Vec::with_capacity(n.div_ceil(chunk));
         {
             let (mut hist, mut load) = (&mut lists.history[..], &mut lists.pair_load[..]);
             let (mut whist, mut wforce, mut wtorque) = (
@@ -884,8 +909,8 @@ impl Dem {
                 &mut lists.wall_force[..],
                 &mut lists.wall_torque[..],
             );
-            for c in 0..n.div_ceil(CHUNK) {
-                let (p0, p1) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
+            for c in 0..n.div_ceil(chunk) {
+                let (p0, p1) = (c * chunk, ((c + 1) * chunk).min(n));
                 let np = (ctx.row_start[p1] - ctx.row_start[p0]) as usize;
                 let nw = (ctx.wall_start[p1] - ctx.wall_start[p0]) as usize;
                 let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
@@ -902,38 +927,46 @@ impl Dem {
                     whist: wh0,
                     wforce: wf0,
                     wtorque: wt0,
+                    scatter: scatter.take(),
                 });
             }
         }
         let periodic = ctx.inv_l != [0.0; 3];
         let ctx = &ctx;
-        match (periodic, pair_law) {
-            (true, ContactLaw::Linear { .. }) => work.par_iter_mut().for_each(|wk| {
+        let run = |wk: &mut ContactWork| match (periodic, pair_law) {
+            (true, ContactLaw::Linear { .. }) => {
                 evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
                     pair_law.linear_force(n, d, r, m, u, s, dt, xi)
                 })
-            }),
-            (false, ContactLaw::Linear { .. }) => work.par_iter_mut().for_each(|wk| {
+            }
+            (false, ContactLaw::Linear { .. }) => {
                 evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
                     pair_law.linear_force(n, d, r, m, u, s, dt, xi)
                 })
-            }),
-            (true, ContactLaw::Hertz { .. }) => work.par_iter_mut().for_each(|wk| {
+            }
+            (true, ContactLaw::Hertz { .. }) => {
                 evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
                     pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
                 })
-            }),
-            (false, ContactLaw::Hertz { .. }) => work.par_iter_mut().for_each(|wk| {
+            }
+            (false, ContactLaw::Hertz { .. }) => {
                 evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
                     pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
                 })
-            }),
+            }
+        };
+        if serial {
+            work.iter_mut().for_each(run);
+        } else {
+            work.par_iter_mut().for_each(run);
         }
     }
 
     /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
     /// `contact_force`/`contact_torque`, then, within a step, takes its second half-kick.
     fn gather_contacts(&mut self, kick: Option<f64>) {
+        let scattered = self.scattered;
+        let (acc_f, acc_t) = (&self.acc_force, &self.acc_torque);
         let g = self.config.gravity;
         let rho_f = self.config.fluid_density;
         let half = 0.5 * kick.unwrap_or(0.0);
@@ -951,24 +984,30 @@ impl Dem {
                 let base = c * CHUNK;
                 for k in 0..fo.len() {
                     let i = base + k;
-                    let mut f = [0.0; 3];
-                    let mut t = [0.0; 3];
-                    for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
-                        let l = lists.pair_load[q];
-                        for a in 0..3 {
-                            f[a] += l[a];
-                            t[a] += l[a + 3];
+                    let (mut f, mut t) = if scattered {
+                        (acc_f[i], acc_t[i])
+                    } else {
+                        let mut f = [0.0; 3];
+                        let mut t = [0.0; 3];
+                        // reverse rows first: the order in which the scattering pass adds them
+                        for &q in &lists.rev_pair
+                            [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
+                        {
+                            let l = lists.pair_load[q as usize];
+                            for a in 0..3 {
+                                f[a] -= l[a];
+                                t[a] += l[a + 3];
+                            }
                         }
-                    }
-                    for &q in &lists.rev_pair
-                        [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
-                    {
-                        let l = lists.pair_load[q as usize];
-                        for a in 0..3 {
-                            f[a] -= l[a];
-                            t[a] += l[a + 3];
+                        for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                            let l = lists.pair_load[q];
+                            for a in 0..3 {
+                                f[a] += l[a];
+                                t[a] += l[a + 3];
+                            }
                         }
-                    }
+                        (f, t)
+                    };
                     let ri = radius[i];
                     t = scale(t, ri);
                     for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
@@ -1107,6 +1146,8 @@ struct ContactWork<'a> {
     whist: &'a mut [Vec3],
     wforce: &'a mut [Vec3],
     wtorque: &'a mut [Vec3],
+    /// Per-particle sums to scatter into (single-chunk, one-thread pass), else `None`.
+    scatter: Option<(&'a mut [Vec3], &'a mut [Vec3])>,
 }
 
 /// Pair and wall contacts of one chunk. `PERIODIC = false` skips the minimum image.
@@ -1133,7 +1174,7 @@ where
             let dist2 = dot(d, d);
             if dist2 >= reach * reach {
                 // most listed pairs stay apart: read before writing saves bandwidth
-                if wk.load[kk] != [0.0; 6] {
+                if wk.scatter.is_none() && wk.load[kk] != [0.0; 6] {
                     wk.load[kk] = [0.0; 6];
                 }
                 if wk.hist[kk] != [0.0; 3] {
@@ -1161,7 +1202,17 @@ where
             let r_eff = ri * rj / reach;
             let (f, ft) = pair_force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
             let tq = cross(nrm, ft);
-            wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
+            match &mut wk.scatter {
+                Some((acc_f, acc_t)) => {
+                    for a in 0..3 {
+                        acc_f[i][a] += f[a];
+                        acc_t[i][a] += -tq[a];
+                        acc_f[j][a] -= f[a];
+                        acc_t[j][a] += -tq[a];
+                    }
+                }
+                None => wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]],
+            }
         }
         if let Some(law) = c.wall_law {
             for m in c.wall_start[i] as usize..c.wall_start[i + 1] as usize {
