@@ -44,5 +44,5 @@ pub use dem_error::DemError;
 pub use domain_box::{DomainBox, FaceCondition};
 pub use neighbour_list::ContactHistory;
 pub use particle_state::ParticleState;
-pub use random_packing::{random_packing, PackingError, SplitMix64};
+pub use random_packing::{random_packing, random_packing_sizes, PackingError, SplitMix64};
 pub use vec3::Vec3;

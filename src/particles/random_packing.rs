@@ -84,79 +84,100 @@ pub fn random_packing(
             "target solid fraction {target} must be in (0, 1)"
         )));
     }
-    let mut inner = [0.0; 3];
-    for a in 0..3 {
-        inner[a] = hi[a] - lo[a] - d;
-        if inner[a].is_nan() || inner[a] < 0.0 {
+    let volume = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    let wanted = (target * volume / sphere_volume(d)).round() as usize;
+    random_packing_sizes(lo, hi, &vec![d; wanted], target, seed)
+}
+
+/// Centres for spheres of the given `diameters` (placed in that order: largest first packs
+/// best) inside the box `[lo, hi]`, with a fixed `seed`. `target` is only quoted back in the
+/// error when RSA stalls before placing them all.
+pub fn random_packing_sizes(
+    lo: Vec3,
+    hi: Vec3,
+    diameters: &[f64],
+    target: f64,
+    seed: u64,
+) -> Result<Vec<Vec3>, PackingError> {
+    let mut d_max: f64 = 0.0;
+    for (k, &d) in diameters.iter().enumerate() {
+        if !(d > 0.0 && d.is_finite()) {
             return Err(PackingError::BadInput(format!(
-                "region {lo:?}–{hi:?} is narrower than one diameter {d}"
+                "diameter {d} of sphere {k} must be positive"
             )));
         }
+        d_max = d_max.max(d);
     }
-    let volume = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-    let v_sphere = sphere_volume(d);
-    let wanted = (target * volume / v_sphere).round() as usize;
-    // cells of side ≥ d over the centres' region [lo + d/2, hi − d/2]
+    let length = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    if diameters.is_empty() {
+        return Ok(Vec::new());
+    }
+    if (0..3).any(|a| length[a].is_nan() || length[a] < d_max) {
+        return Err(PackingError::BadInput(format!(
+            "region {lo:?}–{hi:?} is narrower than the diameter {d_max}"
+        )));
+    }
+    let volume = length[0] * length[1] * length[2];
+    // linked cells of side ≥ d_max over the box: overlaps are within the 27 cells around
     let mut n = [1usize; 3];
     for a in 0..3 {
-        n[a] = ((inner[a] / d).floor() as usize).max(1);
+        n[a] = ((length[a] / d_max).floor() as usize).clamp(1, 1 << 10);
     }
     let cell_len = [
-        inner[0] / n[0] as f64,
-        inner[1] / n[1] as f64,
-        inner[2] / n[2] as f64,
+        length[0] / n[0] as f64,
+        length[1] / n[1] as f64,
+        length[2] / n[2] as f64,
     ];
-    const SLOTS: usize = 8;
-    let ncell = n[0] * n[1] * n[2];
-    let mut slots = vec![u32::MAX; ncell * SLOTS];
-    let mut centres: Vec<Vec3> = Vec::with_capacity(wanted);
-    let mut rng = SplitMix64::new(seed);
-    let mut rejections = 0usize;
     let coord = |x: f64, a: usize| -> usize {
-        (((x - lo[a] - 0.5 * d) / cell_len[a]).floor().max(0.0) as usize).min(n[a] - 1)
+        (((x - lo[a]) / cell_len[a]).floor().max(0.0) as usize).min(n[a] - 1)
     };
-    while centres.len() < wanted {
-        let x = [
-            lo[0] + 0.5 * d + rng.next_f64() * inner[0],
-            lo[1] + 0.5 * d + rng.next_f64() * inner[1],
-            lo[2] + 0.5 * d + rng.next_f64() * inner[2],
-        ];
-        let c = [coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)];
-        let mut free = true;
-        'search: for cz in c[2].saturating_sub(1)..=(c[2] + 1).min(n[2] - 1) {
-            for cy in c[1].saturating_sub(1)..=(c[1] + 1).min(n[1] - 1) {
-                for cx in c[0].saturating_sub(1)..=(c[0] + 1).min(n[0] - 1) {
-                    let cell = cx + n[0] * (cy + n[1] * cz);
-                    for &s in &slots[cell * SLOTS..(cell + 1) * SLOTS] {
-                        if s == u32::MAX {
-                            break;
-                        }
-                        let y = centres[s as usize];
-                        let dd =
-                            (x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2);
-                        if dd < d * d {
-                            free = false;
-                            break 'search;
+    let mut head = vec![u32::MAX; n[0] * n[1] * n[2]];
+    let mut next: Vec<u32> = Vec::with_capacity(diameters.len());
+    let mut centres: Vec<Vec3> = Vec::with_capacity(diameters.len());
+    let mut placed_volume = 0.0;
+    let mut rng = SplitMix64::new(seed);
+    for &d in diameters {
+        let mut rejections = 0usize;
+        loop {
+            let x = [
+                lo[0] + 0.5 * d + rng.next_f64() * (length[0] - d),
+                lo[1] + 0.5 * d + rng.next_f64() * (length[1] - d),
+                lo[2] + 0.5 * d + rng.next_f64() * (length[2] - d),
+            ];
+            let c = [coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)];
+            let mut free = true;
+            'search: for cz in c[2].saturating_sub(1)..=(c[2] + 1).min(n[2] - 1) {
+                for cy in c[1].saturating_sub(1)..=(c[1] + 1).min(n[1] - 1) {
+                    for cx in c[0].saturating_sub(1)..=(c[0] + 1).min(n[0] - 1) {
+                        let mut s = head[cx + n[0] * (cy + n[1] * cz)];
+                        while s != u32::MAX {
+                            let y = centres[s as usize];
+                            let reach = 0.5 * (d + diameters[s as usize]);
+                            let dd = (x[0] - y[0]).powi(2)
+                                + (x[1] - y[1]).powi(2)
+                                + (x[2] - y[2]).powi(2);
+                            if dd < reach * reach {
+                                free = false;
+                                break 'search;
+                            }
+                            s = next[s as usize];
                         }
                     }
                 }
             }
-        }
-        if free {
-            let cell = c[0] + n[0] * (c[1] + n[1] * c[2]);
-            let slot = slots[cell * SLOTS..(cell + 1) * SLOTS]
-                .iter()
-                .position(|&s| s == u32::MAX)
-                .expect("a cell of side ≥ d holds at most 8 centres");
-            slots[cell * SLOTS + slot] = centres.len() as u32;
-            centres.push(x);
-            rejections = 0;
-        } else {
+            if free {
+                let cell = c[0] + n[0] * (c[1] + n[1] * c[2]);
+                next.push(head[cell]);
+                head[cell] = centres.len() as u32;
+                centres.push(x);
+                placed_volume += sphere_volume(d);
+                break;
+            }
             rejections += 1;
             if rejections >= MAX_CONSECUTIVE_REJECTIONS {
                 return Err(PackingError::Unreachable {
                     target,
-                    reached: centres.len() as f64 * v_sphere / volume,
+                    reached: placed_volume / volume,
                     placed: centres.len(),
                 });
             }
@@ -201,6 +222,26 @@ mod tests {
     }
 
     #[test]
+    fn polydisperse_packing_has_no_overlap() {
+        let mut rng = SplitMix64::new(9);
+        let mut d: Vec<f64> = (0..300).map(|_| 0.5 + rng.next_f64()).collect();
+        d.sort_by(|a, b| b.partial_cmp(a).unwrap());
+        let (lo, hi) = ([0.0; 3], [8.0, 8.0, 8.0]);
+        let c = random_packing_sizes(lo, hi, &d, 0.0, 3).unwrap();
+        assert_eq!(c.len(), d.len());
+        // brute-force reference (allowed in tests only)
+        for i in 0..c.len() {
+            for a in 0..3 {
+                assert!(c[i][a] >= lo[a] + 0.5 * d[i] && c[i][a] <= hi[a] - 0.5 * d[i]);
+            }
+            for j in 0..i {
+                let r2: f64 = (0..3).map(|a| (c[i][a] - c[j][a]).powi(2)).sum();
+                assert!(r2.sqrt() >= 0.5 * (d[i] + d[j]), "{i} and {j} overlap");
+            }
+        }
+    }
+
+    #[test]
     fn unreachable_target_reports_the_fraction_reached() {
         let err = random_packing([0.0; 3], [6.0; 3], 1.0, 0.5, 1).unwrap_err();
         match err {
@@ -211,6 +252,10 @@ mod tests {
             }
             e => panic!("unexpected {e}"),
         }
+        assert!(matches!(
+            random_packing([0.0; 3], [0.5, 6.0, 6.0], 1.0, 0.1, 1),
+            Err(PackingError::BadInput(_))
+        ));
         assert!(matches!(
             random_packing([0.0; 3], [6.0; 3], -1.0, 0.1, 1),
             Err(PackingError::BadInput(_))
