@@ -51,6 +51,8 @@ pub struct DemConfig {
 }
 
 impl DemConfig {
+    /// Defaults: gravity `(0, 0, −9.81)` m/s², no fluid, skin 0.1 d_max, initial overlaps up
+    /// to 0.1% of d accepted, no cap on the collision sub-step.
     pub fn new(pair_model: PairModel, wall_model: WallModel) -> Self {
         DemConfig {
             pair_model,
