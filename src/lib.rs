@@ -1,7 +1,7 @@
 //! fsim: particles in a fluid at the particle scale.
 //!
 //! Data flows one way: case files → a validated [`case::Case`] → a simulation (grid, fluid
-//! state, particles, coupling) → the time loop in `run` → writers in [`output`].
+//! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
 
 pub mod case;
 pub mod cli;
@@ -9,6 +9,7 @@ pub mod error;
 pub mod fluid;
 pub mod grid;
 pub mod output;
+pub mod particles;
 pub mod run;
 pub mod simulation;
 pub mod time_control;

@@ -1,0 +1,1839 @@
+//! The DEM engine: Newton–Euler for every particle (paper eq. 1) with gravity, buoyancy, the
+//! hydrodynamic load set by the coupling, and soft-sphere contacts.
+//!
+//! Integration is velocity Verlet (kick–drift–kick), the scheme of both reference codes
+//! (OpenFOAM's `CollidingCloud` "symplectic leapfrog" and LAMMPS' `fix nve/sphere`):
+//!
+//! ```text
+//! v ← v + Δt/2 · F/m        ω ← ω + Δt/2 · T/I
+//! x ← x + Δt · v
+//! F, T ← contacts(x, v)     (velocity-dependent forces see the half-step velocity)
+//! v ← v + Δt/2 · F/m        ω ← ω + Δt/2 · T/I
+//! ```
+//!
+//! It is second order, symplectic for conservative forces (energy does not drift during free
+//! flight: under constant gravity it is conserved exactly up to rounding) and needs one force
+//! evaluation per step; symplectic Euler has the same cost but is first order in position.
+//! `F = F_contact + F_external + m g (1 − ρ_f/ρ_p)`: gravity with buoyancy.
+
+// Hot loops are plain indexed loops over contiguous arrays, by design.
+#![allow(clippy::needless_range_loop)]
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+
+use super::contact_model::{linear_contact_time, ContactLaw, PairModel, WallModel};
+use super::dem_error::DemError;
+use super::domain_box::{minimum_image, DomainBox, FaceCondition};
+use super::neighbour_list::{
+    wall_distance, wall_mask, wall_normal, ContactHistory, NeighbourList, CHUNK,
+};
+use super::particle_state::ParticleState;
+use super::vec3::{cross, dot, scale, Vec3};
+
+/// Engine settings besides the particles and the box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DemConfig {
+    pub pair_model: PairModel,
+    pub wall_model: WallModel,
+    /// Gravitational acceleration, m/s².
+    pub gravity: Vec3,
+    /// Density of the surrounding fluid for buoyancy, kg/m³ (0 in vacuum).
+    pub fluid_density: f64,
+    /// Verlet skin as a fraction of the largest diameter.
+    pub skin_fraction: f64,
+    /// Largest initial overlap accepted, as a fraction of the (smaller) diameter.
+    pub overlap_tolerance: f64,
+    /// Optional upper bound on the collision sub-step, s (DPMFoam's rule alone gives one
+    /// huge sub-step when everything is at rest).
+    pub max_substep: Option<f64>,
+}
+
+impl DemConfig {
+    /// Defaults: gravity `(0, 0, −9.81)` m/s², no fluid, skin 0.1 d_max, initial overlaps up
+    /// to 0.1% of d accepted, no cap on the collision sub-step.
+    pub fn new(pair_model: PairModel, wall_model: WallModel) -> Self {
+        DemConfig {
+            pair_model,
+            wall_model,
+            gravity: [0.0, 0.0, -9.81],
+            fluid_density: 0.0,
+            skin_fraction: 0.1,
+            overlap_tolerance: 1e-3,
+            max_substep: None,
+        }
+    }
+}
+
+/// Every array needed to continue a run bit for bit: particles in their current order (with
+/// the last contact forces, which the next half-kick uses), the positions at the last list
+/// rebuild (the lists are rebuilt from them identically), and the contact springs by id.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DemSnapshot {
+    pub particles: ParticleState,
+    pub reference_position: Vec<Vec3>,
+    pub history: ContactHistory,
+    pub time: f64,
+    pub steps: u64,
+}
+
+/// The DEM engine. Particle indices change at each list rebuild (cell sort); use `id`.
+pub struct Dem {
+    config: DemConfig,
+    domain: DomainBox,
+    particles: ParticleState,
+    pair_law: ContactLaw,
+    wall_law: Option<ContactLaw>,
+    lists: NeighbourList,
+    radius: Vec<f64>,
+    inv_mass: Vec<f64>,
+    inv_inertia: Vec<f64>,
+    cell_size: f64,
+    /// Per-particle sums of the pair loads when the pair pass scatters (one thread).
+    acc_force: Vec<Vec3>,
+    acc_torque: Vec<Vec3>,
+    /// Whether the last pair pass scattered into the sums above.
+    scattered: bool,
+    time: f64,
+    steps: u64,
+    rebuilds: u64,
+    scratch3: Vec<Vec3>,
+    scratch1: Vec<f64>,
+}
+
+fn check(
+    keyword: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &'static str,
+) -> Result<(), DemError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(DemError::BadCoefficient {
+            keyword,
+            value,
+            expected,
+        })
+    }
+}
+
+fn validate_config(c: &DemConfig) -> Result<(), DemError> {
+    match c.pair_model {
+        PairModel::SpringSliderDashpot {
+            youngs_modulus,
+            poissons_ratio,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps,
+            ..
+        } => {
+            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
+            check(
+                "poissonsRatio",
+                poissons_ratio,
+                poissons_ratio > -1.0 && poissons_ratio < 0.5,
+                "in (-1, 0.5)",
+            )?;
+            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
+            check("b", b, b > 0.0, "> 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+        PairModel::LinearSpringDashpot {
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        } => {
+            check("kn", kn, kn > 0.0, "> 0")?;
+            check(
+                "restitution",
+                restitution,
+                restitution > 0.0 && restitution <= 1.0,
+                "in (0, 1]",
+            )?;
+            check("kt", kt, kt >= 0.0, ">= 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "tangentialDampingRatio",
+                tangential_damping_ratio,
+                tangential_damping_ratio >= 0.0,
+                ">= 0",
+            )?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+    }
+    match c.wall_model {
+        WallModel::None => {}
+        WallModel::SpringSliderDashpot {
+            youngs_modulus,
+            poissons_ratio,
+            particle_youngs_modulus,
+            particle_poissons_ratio,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps,
+            ..
+        } => {
+            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
+            check(
+                "poissonsRatio",
+                poissons_ratio,
+                poissons_ratio > -1.0 && poissons_ratio < 0.5,
+                "in (-1, 0.5)",
+            )?;
+            check(
+                "youngsModulus",
+                particle_youngs_modulus,
+                particle_youngs_modulus > 0.0,
+                "> 0 (particle)",
+            )?;
+            check(
+                "poissonsRatio",
+                particle_poissons_ratio,
+                particle_poissons_ratio > -1.0 && particle_poissons_ratio < 0.5,
+                "in (-1, 0.5) (particle)",
+            )?;
+            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
+            check("b", b, b > 0.0, "> 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+        WallModel::LinearSpringDashpot {
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        } => {
+            check("kn", kn, kn > 0.0, "> 0")?;
+            check(
+                "restitution",
+                restitution,
+                restitution > 0.0 && restitution <= 1.0,
+                "in (0, 1]",
+            )?;
+            check("kt", kt, kt >= 0.0, ">= 0")?;
+            check("mu", mu, mu >= 0.0, ">= 0")?;
+            check(
+                "tangentialDampingRatio",
+                tangential_damping_ratio,
+                tangential_damping_ratio >= 0.0,
+                ">= 0",
+            )?;
+            check(
+                "collisionResolutionSteps",
+                collision_resolution_steps,
+                collision_resolution_steps >= 1.0,
+                ">= 1",
+            )?;
+        }
+    }
+    check(
+        "fluidDensity",
+        c.fluid_density,
+        c.fluid_density >= 0.0,
+        ">= 0",
+    )?;
+    check(
+        "skinFraction",
+        c.skin_fraction,
+        c.skin_fraction > 0.0,
+        "> 0",
+    )?;
+    check(
+        "overlapTolerance",
+        c.overlap_tolerance,
+        c.overlap_tolerance >= 0.0,
+        ">= 0",
+    )?;
+    for g in c.gravity {
+        check("g", g, true, "finite")?;
+    }
+    if let Some(h) = c.max_substep {
+        check("maxSubstep", h, h > 0.0, "> 0")?;
+    }
+    Ok(())
+}
+
+fn validate_walls(c: &DemConfig, d: &DomainBox) -> Result<(), DemError> {
+    if c.wall_model == WallModel::None {
+        if let Some(face) = d.faces.iter().position(|f| *f == FaceCondition::Wall) {
+            return Err(DemError::WallWithoutModel { face });
+        }
+    }
+    Ok(())
+}
+
+fn validate_domain(d: &DomainBox) -> Result<(), DemError> {
+    for a in 0..3 {
+        if d.hi[a].partial_cmp(&d.lo[a]) != Some(std::cmp::Ordering::Greater)
+            || !d.lo[a].is_finite()
+            || !d.hi[a].is_finite()
+        {
+            return Err(DemError::BadDomain { lo: d.lo, hi: d.hi });
+        }
+        let (p0, p1) = (
+            d.faces[2 * a] == FaceCondition::Periodic,
+            d.faces[2 * a + 1] == FaceCondition::Periodic,
+        );
+        if p0 != p1 {
+            return Err(DemError::UnpairedPeriodicFace {
+                face: if p0 { 2 * a } else { 2 * a + 1 },
+            });
+        }
+        for f in [2 * a, 2 * a + 1] {
+            if let FaceCondition::Rebound { e, mu } = d.faces[f] {
+                check("e", e, (0.0..=1.0).contains(&e), "in [0, 1]")?;
+                check("mu", mu, (0.0..=1.0).contains(&mu), "in [0, 1]")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Per-particle checks that need no neighbours, reported with input indices.
+fn validate_particles(
+    p: &ParticleState,
+    domain: &DomainBox,
+    tolerance: f64,
+) -> Result<(), DemError> {
+    if !p.is_consistent() {
+        return Err(DemError::InconsistentArrays);
+    }
+    for i in 0..p.len() {
+        let id = p.id[i];
+        let d = p.diameter[i];
+        if !(d > 0.0 && d.is_finite()) {
+            return Err(DemError::BadDiameter {
+                index: i,
+                id,
+                diameter: d,
+            });
+        }
+        let rho = p.density[i];
+        if !(rho > 0.0 && rho.is_finite()) {
+            return Err(DemError::BadDensity {
+                index: i,
+                id,
+                density: rho,
+            });
+        }
+        let x = p.position[i];
+        if (0..3).any(|a| !(x[a] >= domain.lo[a] && x[a] <= domain.hi[a])) {
+            return Err(DemError::OutsideDomain {
+                index: i,
+                id,
+                position: x,
+            });
+        }
+        for f in 0..6 {
+            if domain.faces[f] == FaceCondition::Wall {
+                let overlap = 0.5 * d - wall_distance(domain, f, x);
+                if overlap > tolerance * d {
+                    return Err(DemError::WallOverlap {
+                        index: i,
+                        id,
+                        face: f,
+                        overlap_over_d: overlap / d,
+                    });
+                }
+            }
+        }
+    }
+    let mut ids: Vec<(u64, usize)> = p.id.iter().copied().zip(0..).collect();
+    ids.sort_unstable();
+    for w in ids.windows(2) {
+        if w[0].0 == w[1].0 {
+            return Err(DemError::DuplicateId {
+                index_a: w[0].1,
+                index_b: w[1].1,
+                id: w[0].0,
+            });
+        }
+    }
+    Ok(())
+}
+
+impl Dem {
+    /// Validates everything, sorts the particles by cell, builds the lists and evaluates the
+    /// initial contact forces.
+    pub fn new(
+        config: DemConfig,
+        domain: DomainBox,
+        particles: ParticleState,
+    ) -> Result<Self, DemError> {
+        validate_config(&config)?;
+        validate_domain(&domain)?;
+        validate_walls(&config, &domain)?;
+        validate_particles(&particles, &domain, config.overlap_tolerance)?;
+        let mut dem = Dem::assemble(config, domain, particles)?;
+        // input index of each sorted particle, for error messages
+        let input_index: Vec<u32> = {
+            dem.lists
+                .sort(&dem.domain, dem.cell_size, &dem.particles.position);
+            dem.lists.order.clone()
+        };
+        dem.apply_order();
+        dem.build_lists();
+        dem.check_overlaps(&input_index)?;
+        dem.compute_contact_forces(0.0);
+        Ok(dem)
+    }
+
+    /// Restarts from a snapshot taken by [`Dem::snapshot`] with the same config and box.
+    pub fn restore(
+        config: DemConfig,
+        domain: DomainBox,
+        snapshot: &DemSnapshot,
+    ) -> Result<Self, DemError> {
+        validate_config(&config)?;
+        validate_domain(&domain)?;
+        validate_walls(&config, &domain)?;
+        if snapshot.reference_position.len() != snapshot.particles.len() {
+            return Err(DemError::InconsistentArrays);
+        }
+        let mut dem = Dem::assemble(config, domain, snapshot.particles.clone())?;
+        // The lists were built from the reference positions, in this very order: rebuild them
+        // from those, so pair order and therefore summation order are identical.
+        let mut current = std::mem::replace(
+            &mut dem.particles.position,
+            snapshot.reference_position.clone(),
+        );
+        dem.lists
+            .sort(&dem.domain, dem.cell_size, &dem.particles.position);
+        let identity = dem
+            .lists
+            .order
+            .iter()
+            .enumerate()
+            .all(|(k, &o)| k == o as usize);
+        if !identity {
+            // A snapshot not taken by this engine (or edited): sort it now. The run stays
+            // correct, only the bit-for-bit continuation is lost.
+            current = dem
+                .lists
+                .order
+                .iter()
+                .map(|&o| current[o as usize])
+                .collect();
+            dem.apply_order();
+        }
+        dem.build_lists();
+        dem.particles.position = current;
+        dem.lists
+            .import_history(&dem.particles.id, &snapshot.history);
+        dem.time = snapshot.time;
+        dem.steps = snapshot.steps;
+        Ok(dem)
+    }
+
+    fn assemble(
+        config: DemConfig,
+        domain: DomainBox,
+        particles: ParticleState,
+    ) -> Result<Self, DemError> {
+        validate_particles(&particles, &domain, f64::INFINITY)?;
+        let d_max = particles.diameter.iter().cloned().fold(0.0, f64::max);
+        let skin = config.skin_fraction * d_max.max(f64::MIN_POSITIVE);
+        let cell_size = if d_max > 0.0 { d_max + skin } else { 0.0 };
+        let l = domain.length();
+        for a in 0..3 {
+            if domain.is_periodic(a) && l[a] < 2.0 * cell_size {
+                return Err(DemError::PeriodicTooShort {
+                    axis: a,
+                    length: l[a],
+                    needed: 2.0 * cell_size,
+                });
+            }
+        }
+        let pair_law = ContactLaw::from_pair(&config.pair_model);
+        let wall_law = ContactLaw::from_wall(&config.wall_model);
+        let lists = NeighbourList {
+            skin,
+            ..Default::default()
+        };
+        let mut dem = Dem {
+            config,
+            domain,
+            particles,
+            pair_law,
+            wall_law,
+            lists,
+            radius: Vec::new(),
+            inv_mass: Vec::new(),
+            inv_inertia: Vec::new(),
+            cell_size,
+            acc_force: Vec::new(),
+            acc_torque: Vec::new(),
+            scattered: false,
+            time: 0.0,
+            steps: 0,
+            rebuilds: 0,
+            scratch3: Vec::new(),
+            scratch1: Vec::new(),
+        };
+        dem.refresh_derived();
+        Ok(dem)
+    }
+
+    fn refresh_derived(&mut self) {
+        let p = &self.particles;
+        let n = p.len();
+        self.radius.clear();
+        self.inv_mass.clear();
+        self.inv_inertia.clear();
+        for i in 0..n {
+            self.radius.push(0.5 * p.diameter[i]);
+            let free = !p.fixed[i];
+            self.inv_mass.push(if free { 1.0 / p.mass(i) } else { 0.0 });
+            self.inv_inertia.push(if free {
+                1.0 / p.moment_of_inertia(i)
+            } else {
+                0.0
+            });
+        }
+    }
+
+    fn apply_order(&mut self) {
+        let order = std::mem::take(&mut self.lists.order);
+        self.particles
+            .permute(&order, &mut self.scratch3, &mut self.scratch1);
+        self.lists.order = order;
+        self.refresh_derived();
+    }
+
+    fn build_lists(&mut self) {
+        let mask = if self.wall_law.is_some() {
+            wall_mask(&self.domain)
+        } else {
+            [false; 6]
+        };
+        self.lists.build(
+            &self.domain,
+            &self.particles.position,
+            &self.radius,
+            &self.particles.fixed,
+            mask,
+        );
+        self.rebuilds += 1;
+    }
+
+    /// Re-sorts and rebuilds the lists, carrying the springs across through the permutation.
+    fn rebuild(&mut self) {
+        self.lists.save_history();
+        self.lists
+            .sort(&self.domain, self.cell_size, &self.particles.position);
+        self.apply_order();
+        self.build_lists();
+        self.lists.restore_saved_history();
+    }
+
+    fn check_overlaps(&self, input_index: &[u32]) -> Result<(), DemError> {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let x = &self.particles.position;
+        for i in 0..self.particles.len() {
+            for k in self.lists.row_start[i] as usize..self.lists.row_start[i + 1] as usize {
+                let j = self.lists.partner[k] as usize;
+                let d = minimum_image(
+                    [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
+                    length,
+                    inv_l,
+                );
+                let overlap = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
+                let d_min = 2.0 * self.radius[i].min(self.radius[j]);
+                if overlap > self.config.overlap_tolerance * d_min {
+                    let (a, b) = (input_index[i] as usize, input_index[j] as usize);
+                    let (a, b, ia, ib) = if a < b { (a, b, i, j) } else { (b, a, j, i) };
+                    return Err(DemError::Overlap {
+                        index_a: a,
+                        id_a: self.particles.id[ia],
+                        index_b: b,
+                        id_b: self.particles.id[ib],
+                        overlap_over_d: overlap / d_min,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    // ----- accessors -----
+
+    pub fn particles(&self) -> &ParticleState {
+        &self.particles
+    }
+
+    /// The hydrodynamic loads, for the coupling to set before [`Dem::advance`]. Index order is
+    /// that of [`Dem::particles`] at this moment.
+    pub fn external_loads_mut(&mut self) -> (&mut [Vec3], &mut [Vec3]) {
+        (
+            &mut self.particles.external_force,
+            &mut self.particles.external_torque,
+        )
+    }
+
+    pub fn config(&self) -> &DemConfig {
+        &self.config
+    }
+
+    pub fn domain(&self) -> &DomainBox {
+        &self.domain
+    }
+
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Number of neighbour-list builds so far (including the initial one).
+    pub fn list_rebuilds(&self) -> u64 {
+        self.rebuilds
+    }
+
+    /// Number of pairs in the neighbour list.
+    pub fn pair_count(&self) -> usize {
+        self.lists.partner.len()
+    }
+
+    /// Bytes held by particle arrays, derived arrays and lists (capacity).
+    pub fn memory_bytes(&self) -> usize {
+        self.particles.memory_bytes()
+            + 8 * (self.radius.capacity() + self.inv_mass.capacity() + self.inv_inertia.capacity())
+            + self.lists.memory_bytes()
+            + 24 * (self.scratch3.capacity()
+                + self.acc_force.capacity()
+                + self.acc_torque.capacity())
+            + 8 * self.scratch1.capacity()
+    }
+
+    // ----- restart -----
+
+    pub fn snapshot(&self) -> DemSnapshot {
+        DemSnapshot {
+            particles: self.particles.clone(),
+            reference_position: self.lists.reference.clone(),
+            history: self.lists.export_history(&self.particles.id),
+            time: self.time,
+            steps: self.steps,
+        }
+    }
+
+    // ----- time stepping -----
+
+    /// The collision sub-step limit.
+    ///
+    /// Hertzian models follow OpenFOAM's `PairSpringSliderDashpot::nSubCycles` and
+    /// `WallSpringSliderDashpot::nSubCycles`:
+    /// `Δt_c = 5.429675 R (ρ_max / (E* √U))^{2/5} / collisionResolutionSteps`
+    /// (`5.429675 = π^{7/5} (5/4)^{2/5}`), with `R = d_min/4` and
+    /// `U = 2 max_i(|v_i| + |ω_i| d_i/2)` for pairs, `R = d_min/2` and `U = max_i(…)` for walls.
+    /// The linear model uses its exact contact time `t_c = √((π² + a²) M / k_n)` for the lightest
+    /// pair (`M = m_min/2`; wall: `M = m_min`) divided by `collision_resolution_steps`.
+    pub fn collision_time_step(&self) -> f64 {
+        let p = &self.particles;
+        if p.is_empty() {
+            return f64::INFINITY;
+        }
+        let mut d_min = f64::INFINITY;
+        let mut rho_max: f64 = 0.0;
+        let mut u_max: f64 = 0.0;
+        let mut m_min = f64::INFINITY;
+        for i in 0..p.len() {
+            let d = p.diameter[i];
+            d_min = d_min.min(d);
+            rho_max = rho_max.max(p.density[i]);
+            u_max = u_max.max(norm3(p.velocity[i]) + norm3(p.angular_velocity[i]) * d / 2.0);
+            m_min = m_min.min(p.mass(i));
+        }
+        const VSMALL: f64 = 1.0e-300;
+        let hertz = |e_star: f64, r: f64, u: f64, steps: f64| {
+            5.429675 * r * (rho_max / (e_star * u.sqrt() + VSMALL)).powf(0.4) / steps
+        };
+        let mut dt = f64::INFINITY;
+        match (&self.config.pair_model, &self.pair_law) {
+            (
+                PairModel::SpringSliderDashpot {
+                    collision_resolution_steps,
+                    ..
+                },
+                ContactLaw::Hertz { e_star, .. },
+            ) => {
+                dt = dt.min(hertz(
+                    *e_star,
+                    d_min / 4.0,
+                    2.0 * u_max,
+                    *collision_resolution_steps,
+                ));
+            }
+            (
+                PairModel::LinearSpringDashpot {
+                    kn,
+                    restitution,
+                    collision_resolution_steps,
+                    ..
+                },
+                _,
+            ) => {
+                dt = dt.min(
+                    linear_contact_time(*kn, *restitution, 0.5 * m_min)
+                        / collision_resolution_steps,
+                );
+            }
+            _ => unreachable!("law built from the model"),
+        }
+        if self.domain.faces.contains(&FaceCondition::Wall) {
+            match (&self.config.wall_model, &self.wall_law) {
+                (
+                    WallModel::SpringSliderDashpot {
+                        collision_resolution_steps,
+                        ..
+                    },
+                    Some(ContactLaw::Hertz { e_star, .. }),
+                ) => {
+                    dt = dt.min(hertz(
+                        *e_star,
+                        d_min / 2.0,
+                        u_max,
+                        *collision_resolution_steps,
+                    ));
+                }
+                (
+                    WallModel::LinearSpringDashpot {
+                        kn,
+                        restitution,
+                        collision_resolution_steps,
+                        ..
+                    },
+                    _,
+                ) => {
+                    dt = dt.min(
+                        linear_contact_time(*kn, *restitution, m_min) / collision_resolution_steps,
+                    );
+                }
+                _ => {}
+            }
+        }
+        if let Some(h) = self.config.max_substep {
+            dt = dt.min(h);
+        }
+        dt
+    }
+
+    /// Number of collision sub-steps for an outer (fluid) step: `ceil(Δt / Δt_c)`, at least 1.
+    pub fn substep_count(&self, dt_outer: f64) -> usize {
+        let n = (dt_outer / self.collision_time_step()).ceil();
+        if n.is_finite() && n >= 1.0 {
+            n as usize
+        } else {
+            1
+        }
+    }
+
+    /// Advances by one outer step `dt_outer` in equal sub-steps (external loads held fixed);
+    /// returns the number of sub-steps taken.
+    pub fn advance(&mut self, dt_outer: f64) -> usize {
+        let n = self.substep_count(dt_outer);
+        let h = dt_outer / n as f64;
+        for _ in 0..n {
+            self.step(h);
+        }
+        n
+    }
+
+    /// One velocity-Verlet step of size `h`. Three passes over the particles: half-kick +
+    /// drift + displacement check fused; pair forces; gather + half-kick fused (the
+    /// engine is memory-bound, so each pass streams as few arrays as it can).
+    pub fn step(&mut self, h: f64) {
+        if self.kick_drift(h) {
+            self.rebuild();
+        }
+        self.evaluate_contacts(h);
+        self.gather_contacts(Some(h));
+        self.time += h;
+        self.steps += 1;
+    }
+
+    /// `v += h/2 a`, `ω += h/2 α`, `x += h v`, periodic wrap and rebound faces; returns whether
+    /// some particle has moved more than half the skin since the last list build.
+    fn kick_drift(&mut self, h: f64) -> bool {
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        let dom = &self.domain;
+        let (lo, length) = (dom.lo, dom.length());
+        let inv_l = dom.inverse_periodic_length();
+        let faces = dom.faces;
+        let limit = 0.25 * self.lists.skin * self.lists.skin;
+        let reference = &self.lists.reference;
+        let p = &mut self.particles;
+        let (inv_m, inv_i, rho) = (&self.inv_mass, &self.inv_inertia, &p.density);
+        let (fc, fe, tc, te) = (
+            &p.contact_force,
+            &p.external_force,
+            &p.contact_torque,
+            &p.external_torque,
+        );
+        let half = 0.5 * h;
+        p.position
+            .par_chunks_mut(CHUNK)
+            .zip(p.velocity.par_chunks_mut(CHUNK))
+            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(c, ((x, v), w))| {
+                let base = c * CHUNK;
+                let mut moved = false;
+                for k in 0..x.len() {
+                    let i = base + k;
+                    if inv_m[i] == 0.0 {
+                        continue;
+                    }
+                    // no division per particle in vacuum (the usual pure-DEM case)
+                    let buoy = if rho_f == 0.0 {
+                        1.0
+                    } else {
+                        1.0 - rho_f / rho[i]
+                    };
+                    for a in 0..3 {
+                        v[k][a] += half * ((fc[i][a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
+                        w[k][a] += half * (tc[i][a] + te[i][a]) * inv_i[i];
+                    }
+                    for a in 0..3 {
+                        x[k][a] += h * v[k][a];
+                    }
+                    for a in 0..3 {
+                        match faces[2 * a] {
+                            FaceCondition::Periodic => {
+                                let s = ((x[k][a] - lo[a]) / length[a]).floor();
+                                if s != 0.0 {
+                                    x[k][a] -= s * length[a];
+                                }
+                            }
+                            _ => {
+                                for side in 0..2 {
+                                    if let FaceCondition::Rebound { e, mu } = faces[2 * a + side] {
+                                        let plane =
+                                            if side == 0 { lo[a] } else { lo[a] + length[a] };
+                                        let outside = if side == 0 {
+                                            x[k][a] < plane
+                                        } else {
+                                            x[k][a] > plane
+                                        };
+                                        if outside {
+                                            x[k][a] = 2.0 * plane - x[k][a];
+                                            rebound(&mut v[k], a, side, e, mu);
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    let r = reference[i];
+                    let d = minimum_image(
+                        [x[k][0] - r[0], x[k][1] - r[1], x[k][2] - r[2]],
+                        length,
+                        inv_l,
+                    );
+                    moved |= dot(d, d) > limit;
+                }
+                moved
+            })
+            .reduce(|| false, |a, b| a | b)
+    }
+
+    /// Evaluates every contact at the current positions and velocities into
+    /// `contact_force`/`contact_torque`; `dt` advances the tangential springs.
+    fn compute_contact_forces(&mut self, dt: f64) {
+        self.evaluate_contacts(dt);
+        self.gather_contacts(None);
+    }
+
+    /// Pass 1: each listed pair and wall contact once, into the per-contact buffers. The loop
+    /// is specialised per contact law and for boxes without periodic axes.
+    fn evaluate_contacts(&mut self, dt: f64) {
+        let n = self.particles.len();
+        let pair_law = self.pair_law;
+        let wall_law = self.wall_law;
+        let lists = &mut self.lists;
+        let p = &self.particles;
+        let ctx = ContactContext {
+            x: &p.position,
+            v: &p.velocity,
+            w: &p.angular_velocity,
+            radius: &self.radius,
+            inv_m: &self.inv_mass,
+            row_start: &lists.row_start,
+            partner: &lists.partner,
+            wall_start: &lists.wall_start,
+            wall_face: &lists.wall_face,
+            domain: &self.domain,
+            length: self.domain.length(),
+            inv_l: self.domain.inverse_periodic_length(),
+            wall_law,
+            wall_history: wall_law.map(|l| l.keeps_history(true)).unwrap_or(false),
+            dt,
+        };
+        // On one thread the pass scatters each pair load straight into per-particle sums, in
+        // pair order; the gather below then adds, for each particle, its reverse rows before
+        // its own rows, so both paths add the same terms in the same order: bit-identical
+        // results for any thread count. On several threads, rows of a chunk are contiguous,
+        // so the per-pair buffers split into disjoint slices, one per chunk.
+        let serial = rayon::current_num_threads() == 1;
+        self.scattered = serial;
+        let chunk = if serial { n.max(1) } else { CHUNK };
+        let mut scatter = if serial {
+            self.acc_force.clear();
+            self.acc_force.resize(n, [0.0; 3]);
+            self.acc_torque.clear();
+            self.acc_torque.resize(n, [0.0; 3]);
+            Some((&mut self.acc_force[..], &mut self.acc_torque[..]))
+        } else {
+            None
+        };
+        let mut work = Vec::with_capacity(n.div_ceil(chunk));
+        {
+            let (mut hist, mut load) = (&mut lists.history[..], &mut lists.pair_load[..]);
+            let (mut whist, mut wforce, mut wtorque) = (
+                &mut lists.wall_history[..],
+                &mut lists.wall_force[..],
+                &mut lists.wall_torque[..],
+            );
+            for c in 0..n.div_ceil(chunk) {
+                let (p0, p1) = (c * chunk, ((c + 1) * chunk).min(n));
+                let np = (ctx.row_start[p1] - ctx.row_start[p0]) as usize;
+                let nw = (ctx.wall_start[p1] - ctx.wall_start[p0]) as usize;
+                let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
+                let (l0, l1) = std::mem::take(&mut load).split_at_mut(np);
+                let (wh0, wh1) = std::mem::take(&mut whist).split_at_mut(nw);
+                let (wf0, wf1) = std::mem::take(&mut wforce).split_at_mut(nw);
+                let (wt0, wt1) = std::mem::take(&mut wtorque).split_at_mut(nw);
+                (hist, load, whist, wforce, wtorque) = (h1, l1, wh1, wf1, wt1);
+                work.push(ContactWork {
+                    p0,
+                    p1,
+                    hist: h0,
+                    load: l0,
+                    whist: wh0,
+                    wforce: wf0,
+                    wtorque: wt0,
+                    scatter: scatter.take(),
+                });
+            }
+        }
+        let periodic = ctx.inv_l != [0.0; 3];
+        let ctx = &ctx;
+        let run = |wk: &mut ContactWork| match (periodic, pair_law) {
+            (true, ContactLaw::Linear { .. }) => {
+                evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.linear_force(n, d, r, m, u, s, dt, xi)
+                })
+            }
+            (false, ContactLaw::Linear { .. }) => {
+                evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.linear_force(n, d, r, m, u, s, dt, xi)
+                })
+            }
+            (true, ContactLaw::Hertz { .. }) => {
+                evaluate_chunk::<true, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
+                })
+            }
+            (false, ContactLaw::Hertz { .. }) => {
+                evaluate_chunk::<false, _>(wk, ctx, &|n, d, r, m, u, s, dt, xi| {
+                    pair_law.hertz_force(n, d, r, m, u, s, dt, xi)
+                })
+            }
+        };
+        if serial {
+            work.iter_mut().for_each(run);
+        } else {
+            work.par_iter_mut().for_each(run);
+        }
+    }
+
+    /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
+    /// `contact_force`/`contact_torque`, then, within a step, takes its second half-kick.
+    fn gather_contacts(&mut self, kick: Option<f64>) {
+        let scattered = self.scattered;
+        let (acc_f, acc_t) = (&self.acc_force, &self.acc_torque);
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        let half = 0.5 * kick.unwrap_or(0.0);
+        let lists = &self.lists;
+        let (radius, inv_m, inv_i) = (&self.radius, &self.inv_mass, &self.inv_inertia);
+        let p = &mut self.particles;
+        let (fe, te, rho) = (&p.external_force, &p.external_torque, &p.density);
+        p.contact_force
+            .par_chunks_mut(CHUNK)
+            .zip(p.contact_torque.par_chunks_mut(CHUNK))
+            .zip(p.velocity.par_chunks_mut(CHUNK))
+            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (((fo, to), v), w))| {
+                let base = c * CHUNK;
+                for k in 0..fo.len() {
+                    let i = base + k;
+                    let (mut f, mut t) = if scattered {
+                        (acc_f[i], acc_t[i])
+                    } else {
+                        let mut f = [0.0; 3];
+                        let mut t = [0.0; 3];
+                        // reverse rows first: the order in which the scattering pass adds them
+                        for &q in &lists.rev_pair
+                            [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
+                        {
+                            let l = lists.pair_load[q as usize];
+                            for a in 0..3 {
+                                f[a] -= l[a];
+                                t[a] += l[a + 3];
+                            }
+                        }
+                        for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                            let l = lists.pair_load[q];
+                            for a in 0..3 {
+                                f[a] += l[a];
+                                t[a] += l[a + 3];
+                            }
+                        }
+                        (f, t)
+                    };
+                    let ri = radius[i];
+                    t = scale(t, ri);
+                    for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
+                        for a in 0..3 {
+                            f[a] += lists.wall_force[m][a];
+                            t[a] += lists.wall_torque[m][a];
+                        }
+                    }
+                    fo[k] = f;
+                    to[k] = t;
+                    if kick.is_some() && inv_m[i] != 0.0 {
+                        // no division per particle in vacuum (the usual pure-DEM case)
+                        let buoy = if rho_f == 0.0 {
+                            1.0
+                        } else {
+                            1.0 - rho_f / rho[i]
+                        };
+                        for a in 0..3 {
+                            v[k][a] += half * ((f[a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
+                            w[k][a] += half * (t[a] + te[i][a]) * inv_i[i];
+                        }
+                    }
+                }
+            });
+    }
+
+    // ----- monitors -----
+
+    /// Kinetic energy `(Σ ½ m v², Σ ½ I ω²)`, translational and rotational, J.
+    pub fn kinetic_energy(&self) -> (f64, f64) {
+        let p = &self.particles;
+        (0..p.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let (m, inertia) = (p.mass(i), p.moment_of_inertia(i));
+                (
+                    0.5 * m * dot(p.velocity[i], p.velocity[i]),
+                    0.5 * inertia * dot(p.angular_velocity[i], p.angular_velocity[i]),
+                )
+            })
+            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// Potential energy of gravity with buoyancy, `−Σ m (1 − ρ_f/ρ_p) g·x`, J (meaningless
+    /// along a periodic axis).
+    pub fn potential_energy(&self) -> f64 {
+        let p = &self.particles;
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        (0..p.len())
+            .filter(|&i| !p.fixed[i])
+            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * dot(g, p.position[i]))
+            .sum()
+    }
+
+    /// Mean velocity of the free particles, m/s.
+    pub fn mean_velocity(&self) -> Vec3 {
+        let p = &self.particles;
+        let mut s = [0.0; 3];
+        let mut count = 0usize;
+        for i in 0..p.len() {
+            if !p.fixed[i] {
+                for a in 0..3 {
+                    s[a] += p.velocity[i][a];
+                }
+                count += 1;
+            }
+        }
+        if count == 0 {
+            [0.0; 3]
+        } else {
+            scale(s, 1.0 / count as f64)
+        }
+    }
+
+    /// Largest overlap over the diameter: `δ / min(d_i, d_j)` for pairs, `δ / d` at walls.
+    pub fn max_overlap_ratio(&self) -> f64 {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let x = &self.particles.position;
+        let lists = &self.lists;
+        let radius = &self.radius;
+        let domain = &self.domain;
+        (0..self.particles.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let mut worst: f64 = 0.0;
+                for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                    let j = lists.partner[k] as usize;
+                    let d = minimum_image(
+                        [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
+                        length,
+                        inv_l,
+                    );
+                    let overlap = radius[i] + radius[j] - dot(d, d).sqrt();
+                    worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
+                }
+                for f in 0..6 {
+                    if domain.faces[f] == FaceCondition::Wall {
+                        worst = worst
+                            .max((radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]));
+                    }
+                }
+                worst
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+}
+
+/// Read-only inputs of the pair pass.
+struct ContactContext<'a> {
+    x: &'a [Vec3],
+    v: &'a [Vec3],
+    w: &'a [Vec3],
+    radius: &'a [f64],
+    inv_m: &'a [f64],
+    row_start: &'a [u32],
+    partner: &'a [u32],
+    wall_start: &'a [u32],
+    wall_face: &'a [u8],
+    domain: &'a DomainBox,
+    length: Vec3,
+    inv_l: Vec3,
+    wall_law: Option<ContactLaw>,
+    wall_history: bool,
+    dt: f64,
+}
+
+/// The per-contact buffers of one chunk of particles `p0..p1`.
+struct ContactWork<'a> {
+    p0: usize,
+    p1: usize,
+    hist: &'a mut [Vec3],
+    load: &'a mut [[f64; 6]],
+    whist: &'a mut [Vec3],
+    wforce: &'a mut [Vec3],
+    wtorque: &'a mut [Vec3],
+    /// Per-particle sums to scatter into (single-chunk, one-thread pass), else `None`.
+    scatter: Option<(&'a mut [Vec3], &'a mut [Vec3])>,
+}
+
+/// Pair and wall contacts of one chunk. `PERIODIC = false` skips the minimum image.
+#[inline(always)]
+fn evaluate_chunk<const PERIODIC: bool, L>(wk: &mut ContactWork, c: &ContactContext, pair_force: &L)
+where
+    L: Fn(Vec3, f64, f64, f64, f64, Vec3, f64, &mut Vec3) -> (Vec3, Vec3),
+{
+    let (x, v, w, radius, inv_m) = (c.x, c.v, c.w, c.radius, c.inv_m);
+    let k0 = c.row_start[wk.p0] as usize;
+    let w0 = c.wall_start[wk.p0] as usize;
+    let dt = c.dt;
+    for i in wk.p0..wk.p1 {
+        let (xi, vi, wi, ri) = (x[i], v[i], w[i], radius[i]);
+        for k in c.row_start[i] as usize..c.row_start[i + 1] as usize {
+            let j = c.partner[k] as usize;
+            let kk = k - k0;
+            let mut d = [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]];
+            if PERIODIC {
+                d = minimum_image(d, c.length, c.inv_l);
+            }
+            let rj = radius[j];
+            let reach = ri + rj;
+            let dist2 = dot(d, d);
+            if dist2 >= reach * reach {
+                // most listed pairs stay apart: read before writing saves bandwidth
+                if wk.scatter.is_none() && wk.load[kk] != [0.0; 6] {
+                    wk.load[kk] = [0.0; 6];
+                }
+                if wk.hist[kk] != [0.0; 3] {
+                    wk.hist[kk] = [0.0; 3];
+                }
+                continue;
+            }
+            let dist = dist2.sqrt();
+            let nrm = scale(d, 1.0 / dist);
+            let delta = reach - dist;
+            let u = [vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]];
+            let u_n = dot(u, nrm);
+            let spin = [
+                ri * wi[0] + rj * w[j][0],
+                ri * wi[1] + rj * w[j][1],
+                ri * wi[2] + rj * w[j][2],
+            ];
+            let sc = cross(spin, nrm);
+            let slip = [
+                u[0] - u_n * nrm[0] - sc[0],
+                u[1] - u_n * nrm[1] - sc[1],
+                u[2] - u_n * nrm[2] - sc[2],
+            ];
+            let m_eff = 1.0 / (inv_m[i] + inv_m[j]);
+            let r_eff = ri * rj / reach;
+            let (f, ft) = pair_force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
+            let tq = cross(nrm, ft);
+            match &mut wk.scatter {
+                Some((acc_f, acc_t)) => {
+                    for a in 0..3 {
+                        acc_f[i][a] += f[a];
+                        acc_t[i][a] += -tq[a];
+                        acc_f[j][a] -= f[a];
+                        acc_t[j][a] += -tq[a];
+                    }
+                }
+                None => wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]],
+            }
+        }
+        if let Some(law) = c.wall_law {
+            for m in c.wall_start[i] as usize..c.wall_start[i + 1] as usize {
+                let mm = m - w0;
+                let f = c.wall_face[m] as usize;
+                let delta = ri - wall_distance(c.domain, f, xi);
+                if delta <= 0.0 {
+                    wk.whist[mm] = [0.0; 3];
+                    wk.wforce[mm] = [0.0; 3];
+                    wk.wtorque[mm] = [0.0; 3];
+                    continue;
+                }
+                if !c.wall_history {
+                    wk.whist[mm] = [0.0; 3];
+                }
+                let nrm = wall_normal(f);
+                let u_n = dot(vi, nrm);
+                let sc = cross(scale(wi, ri), nrm);
+                let slip = [
+                    vi[0] - u_n * nrm[0] - sc[0],
+                    vi[1] - u_n * nrm[1] - sc[1],
+                    vi[2] - u_n * nrm[2] - sc[2],
+                ];
+                let (fw, ft) = law.force(
+                    nrm,
+                    delta,
+                    ri,
+                    1.0 / inv_m[i],
+                    u_n,
+                    slip,
+                    dt,
+                    &mut wk.whist[mm],
+                );
+                wk.wforce[mm] = fw;
+                wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn norm3(a: Vec3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// OpenFOAM's rebound rule on face `2a + side`, outward normal `n`:
+/// `U_n = U·n`, `U_t = U − U_n n`; `U ← U − (1+e) U_n n` if `U_n > 0`; `U ← U − μ U_t`.
+#[inline]
+fn rebound(v: &mut Vec3, a: usize, side: usize, e: f64, mu: f64) {
+    let mut n = [0.0; 3];
+    n[a] = if side == 0 { -1.0 } else { 1.0 };
+    let u_n = dot(*v, n);
+    let u_t = [v[0] - u_n * n[0], v[1] - u_n * n[1], v[2] - u_n * n[2]];
+    if u_n > 0.0 {
+        for c in 0..3 {
+            v[c] -= (1.0 + e) * u_n * n[c];
+        }
+    }
+    for c in 0..3 {
+        v[c] -= mu * u_t[c];
+    }
+}
+
+/// Volume of a sphere of diameter `d`.
+pub fn sphere_volume(d: f64) -> f64 {
+    PI * d * d * d / 6.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::particles::contact_model::TangentialRule;
+    use crate::particles::random_packing::random_packing;
+    use crate::particles::vec3::norm;
+
+    fn close(a: f64, b: f64, rel: f64) -> bool {
+        (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)
+    }
+
+    fn hertz_pair(rule: TangentialRule) -> PairModel {
+        PairModel::SpringSliderDashpot {
+            youngs_modulus: 1e7,
+            poissons_ratio: 0.35,
+            alpha: 0.12,
+            b: 1.5,
+            mu: 0.3,
+            collision_resolution_steps: 12.0,
+            tangential: rule,
+        }
+    }
+
+    fn two_particles(xa: Vec3, xb: Vec3, da: f64, db: f64) -> ParticleState {
+        let mut p = ParticleState::default();
+        p.push(1, xa, da, 2500.0);
+        p.push(2, xb, db, 1500.0);
+        p
+    }
+
+    fn lenient(pair: PairModel, wall: WallModel) -> DemConfig {
+        let mut c = DemConfig::new(pair, wall);
+        c.gravity = [0.0; 3];
+        c.overlap_tolerance = 1.0;
+        c
+    }
+
+    /// Same forces as DPMFoam for the same pair: OpenFOAM v1912
+    /// `PairSpringSliderDashpot::evaluatePair`, written out by hand:
+    /// E* = E/(2(1−ν²)), G* = E/(2(1+ν)) / (2(2−ν)), R = d_A d_B / (2(d_A + d_B)),
+    /// M = m_A m_B/(m_A + m_B), k_N = 4/3 √R E*, η_N = α √(M k_N) δ^{1/4},
+    /// F_N = r̂ (k_N δ^b − η_N U_AB·r̂) with r̂ = (x_A − x_B)/|x_A − x_B|,
+    /// U_slip = U_AB − (U_AB·r̂) r̂ − (d_A/2 ω_A + d_B/2 ω_B) × r̂, ξ = U_slip Δt (fresh contact),
+    /// k_T = 8 √(R δ) G*, η_T = η_N; if k_T|ξ| > μ|F_N|: F_T = −μ|F_N| Û_slip, else
+    /// F_T = −k_T ξ − η_T U_slip; torque on A = (d_A/2 · −r̂) × F_T, on B = (d_B/2 · r̂) × −F_T.
+    #[test]
+    fn pair_force_matches_dpmfoam_formulas() {
+        let (da, db) = (2e-3, 1.5e-3);
+        let cases: [(f64, Vec3, Vec3, Vec3, f64); 4] = [
+            // (overlap, U_A − U_B, ω_A, ω_B, Δt)
+            (1e-5, [0.0, 0.0, -0.2], [0.0; 3], [0.0; 3], 1e-6),
+            (
+                3e-5,
+                [0.05, -0.01, -0.1],
+                [10.0, 0.0, -3.0],
+                [0.0, 5.0, 1.0],
+                1e-6,
+            ),
+            (2e-5, [0.3, 0.2, 0.05], [0.0; 3], [0.0, 0.0, 40.0], 1e-4),
+            (5e-6, [0.001, 0.0, 0.3], [1.0, 1.0, 0.0], [0.0; 3], 1e-7),
+        ];
+        let (e, nu, alpha, b, mu) = (1e7f64, 0.35f64, 0.12f64, 1.5f64, 0.3f64);
+        let mut slid = 0;
+        let mut stuck = 0;
+        for (delta, u, wa, wb, dt) in cases {
+            let dir = [0.3f64, -0.5, 0.81];
+            let rhat = scale(dir, 1.0 / norm(dir));
+            let sep = 0.5 * (da + db) - delta;
+            let xb = [0.01, 0.01, 0.01];
+            let xa = [
+                xb[0] + sep * rhat[0],
+                xb[1] + sep * rhat[1],
+                xb[2] + sep * rhat[2],
+            ];
+            let mut p = two_particles(xa, xb, da, db);
+            p.velocity[0] = u;
+            p.angular_velocity[0] = wa;
+            p.angular_velocity[1] = wb;
+            let domain = DomainBox::uniform([0.0; 3], [0.02; 3], FaceCondition::Periodic);
+            let mut dem = Dem::new(
+                lenient(hertz_pair(TangentialRule::DpmFoamReset), WallModel::None),
+                domain,
+                p,
+            )
+            .unwrap();
+            dem.compute_contact_forces(dt);
+            let ia = dem.particles.id.iter().position(|&i| i == 1).unwrap();
+            let ib = 1 - ia;
+
+            // hand evaluation
+            let e_star = e / (2.0 * (1.0 - nu * nu));
+            let g_star = e / (2.0 * (1.0 + nu)) / (2.0 * (2.0 - nu));
+            let r = 0.5 * da * db / (da + db);
+            let ma = 2500.0 * PI * da.powi(3) / 6.0;
+            let mb = 1500.0 * PI * db.powi(3) / 6.0;
+            let m = ma * mb / (ma + mb);
+            let kn = 4.0 / 3.0 * r.sqrt() * e_star;
+            let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
+            let un = dot(u, rhat);
+            let fn_mag = kn * delta.powf(b) - eta_n * un;
+            let f_n = scale(rhat, fn_mag);
+            let spin = [
+                da / 2.0 * wa[0] + db / 2.0 * wb[0],
+                da / 2.0 * wa[1] + db / 2.0 * wb[1],
+                da / 2.0 * wa[2] + db / 2.0 * wb[2],
+            ];
+            let c = cross(spin, rhat);
+            let slip = [
+                u[0] - un * rhat[0] - c[0],
+                u[1] - un * rhat[1] - c[1],
+                u[2] - un * rhat[2] - c[2],
+            ];
+            let xi = scale(slip, dt);
+            let kt = 8.0 * (r * delta).sqrt() * g_star;
+            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+                slid += 1;
+                scale(slip, -mu * fn_mag.abs() / norm(slip))
+            } else {
+                stuck += 1;
+                [
+                    -kt * xi[0] - eta_n * slip[0],
+                    -kt * xi[1] - eta_n * slip[1],
+                    -kt * xi[2] - eta_n * slip[2],
+                ]
+            };
+            let f_a = [f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]];
+            let t_a = cross(scale(rhat, -da / 2.0), f_t);
+            let t_b = cross(scale(rhat, db / 2.0), scale(f_t, -1.0));
+            let fa = dem.particles.contact_force[ia];
+            let fb = dem.particles.contact_force[ib];
+            let ta = dem.particles.contact_torque[ia];
+            let tb = dem.particles.contact_torque[ib];
+            let scale_f = norm(f_a);
+            for k in 0..3 {
+                assert!(
+                    (fa[k] - f_a[k]).abs() < 1e-12 * scale_f,
+                    "F_A {fa:?} vs {f_a:?}"
+                );
+                assert!((fb[k] + f_a[k]).abs() < 1e-12 * scale_f, "F_B {fb:?}");
+                assert!(
+                    (ta[k] - t_a[k]).abs() < 1e-12 * scale_f * da + 1e-300,
+                    "T_A {ta:?} vs {t_a:?}"
+                );
+                assert!(
+                    (tb[k] - t_b[k]).abs() < 1e-12 * scale_f * db + 1e-300,
+                    "T_B {tb:?} vs {t_b:?}"
+                );
+            }
+        }
+        assert!(
+            slid > 0 && stuck > 0,
+            "both branches exercised: slid {slid}, stuck {stuck}"
+        );
+    }
+
+    /// OpenFOAM v1912 `WallSpringSliderDashpot::evaluateWall`, by hand:
+    /// 1/E* = (1−ν_p²)/E_p + (1−ν_w²)/E_w, k_N = 4/3 √r E*, G* = 1/(2((2+ν_p−ν_p²)/E_p + (2+ν_w−ν_w²)/E_w)),
+    /// η_N = α √(m k_N) δ^{1/4}, U_slip = U − (U·n)n + ω × (−r n), ξ = U_slip Δt (no history),
+    /// k_T = 8 √(r δ) G*, slide test and torque as for pairs.
+    #[test]
+    fn wall_force_matches_dpmfoam_formulas() {
+        let (ep, np, ew, nw, alpha, b, mu) =
+            (1e7f64, 0.35f64, 2e8f64, 0.3f64, 0.1f64, 1.5f64, 0.25f64);
+        let wall = WallModel::SpringSliderDashpot {
+            youngs_modulus: ew,
+            poissons_ratio: nw,
+            particle_youngs_modulus: ep,
+            particle_poissons_ratio: np,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps: 12.0,
+            tangential: TangentialRule::DpmFoamReset,
+        };
+        let d = 2e-3;
+        for (delta, v, w, dt) in [
+            (2e-5, [0.01, 0.0, -0.3], [0.0, 2.0, 0.0], 1e-6),
+            (1e-5, [0.5, 0.2, -0.1], [0.0; 3], 1e-5),
+        ] {
+            let mut p = ParticleState::default();
+            p.push(9, [0.01, 0.01, d / 2.0 - delta], d, 2500.0);
+            p.velocity[0] = v;
+            p.angular_velocity[0] = w;
+            let mut dem = Dem::new(
+                lenient(hertz_pair(TangentialRule::DpmFoamReset), wall.clone()),
+                DomainBox::walled([0.0; 3], [0.02; 3]),
+                p,
+            )
+            .unwrap();
+            dem.compute_contact_forces(dt);
+            let r = d / 2.0;
+            let m = 2500.0 * PI * d.powi(3) / 6.0;
+            let e_star = 1.0 / ((1.0 - np * np) / ep + (1.0 - nw * nw) / ew);
+            let kn = 4.0 / 3.0 * r.sqrt() * e_star;
+            let g_star = 1.0 / (2.0 * ((2.0 + np - np * np) / ep + (2.0 + nw - nw * nw) / ew));
+            let n = [0.0, 0.0, 1.0];
+            let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
+            let fn_mag = kn * delta.powf(b) - eta_n * dot(v, n);
+            let c = cross(w, scale(n, -r));
+            let slip = [v[0] + c[0], v[1] + c[1], 0.0];
+            let xi = scale(slip, dt);
+            let kt = 8.0 * (r * delta).sqrt() * g_star;
+            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+                scale(slip, -mu * fn_mag.abs() / norm(slip))
+            } else {
+                [
+                    -kt * xi[0] - eta_n * slip[0],
+                    -kt * xi[1] - eta_n * slip[1],
+                    0.0,
+                ]
+            };
+            let f = [f_t[0], f_t[1], fn_mag];
+            let t = cross(scale(n, -r), f_t);
+            let (fo, to) = (
+                dem.particles.contact_force[0],
+                dem.particles.contact_torque[0],
+            );
+            for k in 0..3 {
+                assert!((fo[k] - f[k]).abs() < 1e-12 * norm(f), "{fo:?} vs {f:?}");
+                assert!(
+                    (to[k] - t[k]).abs() < 1e-12 * norm(f) * r,
+                    "{to:?} vs {t:?}"
+                );
+            }
+        }
+    }
+
+    /// DPMFoam's sub-cycle count, by hand (`PairSpringSliderDashpot::nSubCycles`):
+    /// Δt_c = 5.429675 (d_min/4) (ρ_max/(E* √(2 U_max)))^{0.4} / N, n = ceil(Δt/Δt_c).
+    #[test]
+    fn substeps_follow_the_dpmfoam_rule() {
+        let mut p = two_particles([0.005, 0.01, 0.01], [0.015, 0.01, 0.01], 1e-3, 2e-3);
+        p.velocity[0] = [0.3, 0.0, 0.4];
+        p.angular_velocity[1] = [0.0, 100.0, 0.0];
+        let mut dom = DomainBox::walled([0.0; 3], [0.02; 3]);
+        dom.faces = [FaceCondition::Periodic; 6];
+        let dem = Dem::new(
+            lenient(hertz_pair(TangentialRule::CappedSpring), WallModel::None),
+            dom,
+            p,
+        )
+        .unwrap();
+        let e_star = 1e7 / (2.0 * (1.0 - 0.35f64 * 0.35));
+        let u_max = 2.0 * f64::max(0.5, 100.0 * 1e-3);
+        let dtc = 5.429675 * (1e-3 / 4.0) * (2500.0 / (e_star * u_max.sqrt())).powf(0.4) / 12.0;
+        assert!(close(dem.collision_time_step(), dtc, 1e-12));
+        let dt = 1e-4;
+        assert_eq!(dem.substep_count(dt), (dt / dtc).ceil() as usize);
+        assert!(dem.substep_count(dt) > 1);
+    }
+
+    #[test]
+    fn bad_input_names_the_particle_or_keyword() {
+        let wall = WallModel::LinearSpringDashpot {
+            kn: 1e3,
+            restitution: 0.5,
+            kt: 0.0,
+            mu: 0.0,
+            tangential_damping_ratio: 0.0,
+            collision_resolution_steps: 20.0,
+        };
+        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), wall);
+        let dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+        let mut p = ParticleState::default();
+        for k in 0..4 {
+            p.push(
+                100 + k,
+                [0.002 + 0.002 * k as f64, 0.005, 0.005],
+                1e-3,
+                2500.0,
+            );
+        }
+        let run = |p: &ParticleState, c: &DemConfig| {
+            Dem::new(c.clone(), dom.clone(), p.clone()).err().unwrap()
+        };
+
+        let mut q = p.clone();
+        q.diameter[2] = -1e-3;
+        let e = run(&q, &cfg);
+        assert_eq!(
+            e,
+            DemError::BadDiameter {
+                index: 2,
+                id: 102,
+                diameter: -1e-3
+            }
+        );
+        assert!(e.to_string().contains("particle 2 (id 102)"), "{e}");
+        q.diameter[2] = 0.0;
+        assert!(matches!(
+            run(&q, &cfg),
+            DemError::BadDiameter { index: 2, .. }
+        ));
+
+        let mut q = p.clone();
+        q.position[3] = [0.005, 0.011, 0.005];
+        let e = run(&q, &cfg);
+        assert!(
+            matches!(
+                e,
+                DemError::OutsideDomain {
+                    index: 3,
+                    id: 103,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("outside the domain"));
+
+        let mut q = p.clone();
+        q.position[3] = [0.0062, 0.005, 0.0052]; // 0.8e-3 from particle 2: overlap 0.2 d
+        let e = run(&q, &cfg);
+        match &e {
+            DemError::Overlap {
+                index_a: 2,
+                id_a: 102,
+                index_b: 3,
+                id_b: 103,
+                overlap_over_d,
+            } => {
+                // centres 0.2√2 mm apart, d = 1 mm
+                assert!((overlap_over_d - (1.0 - 0.2f64.hypot(0.2))).abs() < 1e-9)
+            }
+            other => panic!("expected overlap error, got {other}"),
+        }
+        assert!(
+            e.to_string()
+                .contains("particles 2 (id 102) and 3 (id 103) overlap"),
+            "{e}"
+        );
+
+        let mut q = p.clone();
+        q.position[0][2] = 0.0003;
+        let e = run(&q, &cfg);
+        assert!(
+            matches!(
+                e,
+                DemError::WallOverlap {
+                    index: 0,
+                    id: 100,
+                    face: 4,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let no_wall_model = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let e = run(&p, &no_wall_model);
+        assert_eq!(e, DemError::WallWithoutModel { face: 0 });
+        assert!(e.to_string().contains("no wall model"), "{e}");
+
+        let mut q = p.clone();
+        q.id[3] = 101;
+        assert_eq!(
+            run(&q, &cfg),
+            DemError::DuplicateId {
+                index_a: 1,
+                index_b: 3,
+                id: 101
+            }
+        );
+
+        let bad = DemConfig::new(PairModel::linear(1e3, 1.5, 0.3), WallModel::None);
+        // the coefficient is reported before the missing wall model
+        let e = run(&p, &bad);
+        assert!(e.to_string().contains("`restitution` = 1.5"), "{e}");
+
+        let mut dom2 = dom.clone();
+        dom2.faces[0] = FaceCondition::Periodic;
+        assert_eq!(
+            Dem::new(cfg.clone(), dom2, p.clone()).err().unwrap(),
+            DemError::UnpairedPeriodicFace { face: 0 }
+        );
+    }
+
+    /// A snapshot whose particles are not in cell order (edited, or written by another tool)
+    /// is sorted on restore and gives the same contact forces.
+    #[test]
+    fn restore_sorts_a_shuffled_snapshot() {
+        let centres = random_packing([0.0; 3], [0.006; 3], 1e-3, 0.3, 5).unwrap();
+        let mut p = ParticleState::default();
+        for (k, x) in centres.iter().enumerate() {
+            p.push(k as u64, *x, 1e-3, 2500.0);
+            p.velocity[k] = [0.0, 0.0, -0.2];
+        }
+        let wall = WallModel::LinearSpringDashpot {
+            kn: 500.0,
+            restitution: 0.5,
+            kt: 1e2,
+            mu: 0.3,
+            tangential_damping_ratio: 0.5,
+            collision_resolution_steps: 30.0,
+        };
+        let cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), wall);
+        let dom = DomainBox::walled([0.0; 3], [0.006; 3]);
+        let mut dem = Dem::new(cfg.clone(), dom.clone(), p).unwrap();
+        let h = dem.collision_time_step();
+        for _ in 0..3000 {
+            dem.step(h);
+        }
+        let mut snap = dem.snapshot();
+        let n = snap.particles.len();
+        let reversed: Vec<u32> = (0..n as u32).rev().collect();
+        let (mut s3, mut s1) = (Vec::new(), Vec::new());
+        snap.particles.permute(&reversed, &mut s3, &mut s1);
+        snap.reference_position.reverse();
+        let mut again = Dem::restore(cfg, dom, &snap).unwrap();
+        again.compute_contact_forces(0.0);
+        dem.compute_contact_forces(0.0);
+        let force_of = |d: &Dem, id: u64| {
+            let i = d.particles.id.iter().position(|&x| x == id).unwrap();
+            d.particles.contact_force[i]
+        };
+        let mut touching = 0;
+        for id in 0..n as u64 {
+            let (a, b) = (force_of(&dem, id), force_of(&again, id));
+            let scale_f = norm(a).max(1e-12);
+            for k in 0..3 {
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-9 * scale_f,
+                    "id {id}: {a:?} vs {b:?}"
+                );
+            }
+            touching += (norm(a) > 0.0) as usize;
+        }
+        assert!(touching > n / 4, "{touching} of {n} particles touch");
+    }
+
+    #[test]
+    fn an_empty_cloud_steps_and_reports_zeros() {
+        let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        let mut dem = Dem::new(
+            cfg,
+            DomainBox::uniform([0.0; 3], [1.0; 3], FaceCondition::Periodic),
+            ParticleState::default(),
+        )
+        .unwrap();
+        assert_eq!(dem.advance(1e-3), 1);
+        assert_eq!(dem.kinetic_energy(), (0.0, 0.0));
+        assert_eq!(dem.max_overlap_ratio(), 0.0);
+        assert_eq!(dem.mean_velocity(), [0.0; 3]);
+    }
+
+    #[test]
+    fn rebound_face_applies_openfoam_rule() {
+        let mut dom = DomainBox::uniform([0.0; 3], [0.01; 3], FaceCondition::Periodic);
+        dom.faces[4] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
+        dom.faces[5] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
+        let mut p = ParticleState::default();
+        p.push(1, [0.005, 0.005, 0.0004], 1e-3, 2500.0);
+        p.velocity[0] = [0.3, 0.0, -1.0];
+        let mut dem = Dem::new(
+            lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None),
+            dom,
+            p,
+        )
+        .unwrap();
+        dem.step(1e-3); // centre goes to z = −0.0006, is mirrored to +0.0006
+        let p = dem.particles();
+        assert!(close(p.position[0][2], 0.0006, 1e-9));
+        // U_n = 1 (outward); U ← U − 1.6·U_n n − 0.2·U_t
+        assert!(close(p.velocity[0][2], 0.6, 1e-12));
+        assert!(close(p.velocity[0][0], 0.24, 1e-12));
+    }
+
+    /// Every overlapping pair (brute-force O(N²) reference, tests only) is in the lists after
+    /// many steps with rebuilds, periodic axes included.
+    #[test]
+    fn lists_contain_every_contact_and_threads_do_not_change_bits() {
+        let mut dom = DomainBox::walled([0.0; 3], [0.008, 0.008, 0.012]);
+        for f in 0..4 {
+            dom.faces[f] = FaceCondition::Periodic;
+        }
+        let centres = random_packing([0.0; 3], [0.008, 0.008, 0.012], 1e-3, 0.3, 7).unwrap();
+        let mut p = ParticleState::default();
+        for (k, x) in centres.iter().enumerate() {
+            p.push(k as u64, *x, 1e-3, 2500.0);
+            p.velocity[k] = [
+                0.1 * ((k % 7) as f64 - 3.0),
+                0.05 * ((k % 5) as f64 - 2.0),
+                -0.1,
+            ];
+        }
+        let wall = WallModel::LinearSpringDashpot {
+            kn: 500.0,
+            restitution: 0.5,
+            kt: 1e2,
+            mu: 0.3,
+            tangential_damping_ratio: 0.5,
+            collision_resolution_steps: 30.0,
+        };
+        let cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), wall);
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
+                let h = dem.collision_time_step();
+                for _ in 0..1500 {
+                    dem.step(h);
+                }
+                dem
+            })
+        };
+        let dem = run(2);
+        assert!(dem.list_rebuilds() > 2, "rebuilds {}", dem.list_rebuilds());
+        let q = dem.particles();
+        let (l, inv) = (dom.length(), dom.inverse_periodic_length());
+        let mut listed = std::collections::HashSet::new();
+        for i in 0..q.len() {
+            for k in dem.lists.row_start[i] as usize..dem.lists.row_start[i + 1] as usize {
+                listed.insert((i, dem.lists.partner[k] as usize));
+            }
+        }
+        let mut contacts = 0;
+        for i in 0..q.len() {
+            for j in i + 1..q.len() {
+                let d = minimum_image(
+                    [
+                        q.position[i][0] - q.position[j][0],
+                        q.position[i][1] - q.position[j][1],
+                        q.position[i][2] - q.position[j][2],
+                    ],
+                    l,
+                    inv,
+                );
+                if norm(d) < 1e-3 {
+                    contacts += 1;
+                    assert!(
+                        listed.contains(&(i, j)),
+                        "contact {i}-{j} missing from the list"
+                    );
+                }
+            }
+        }
+        assert!(contacts > 10, "contacts {contacts}");
+        let one = run(1);
+        assert_eq!(one.particles(), dem.particles());
+    }
+}
