@@ -267,12 +267,30 @@ fn uniform_or_not(entry: &Entry) -> Result<(&'static str, &Item), CaseError> {
     let (kind, rest) = match first.as_word() {
         Some("uniform") => ("uniform", &tokens[1..]),
         // The list's type (`List<vector>`) is optional before the list.
-        Some("nonuniform") => match &tokens[1..] {
-            [ty, rest @ ..] if ty.as_word().is_some_and(|w| w.starts_with("List<")) => {
-                ("nonuniform", rest)
+        Some("nonuniform") => {
+            let rest = match &tokens[1..] {
+                [ty, rest @ ..] if ty.as_word().is_some_and(|w| w.starts_with("List<")) => rest,
+                rest => rest,
+            };
+            // A count written apart from its list on the same line (`3 (1 2 3)`): the parser
+            // reads it as a number, so check it against the list here.
+            match rest {
+                [count, list] if count.as_label().is_some() && list.as_list().is_some() => {
+                    let n = list.as_list().map_or(0, |l| l.len());
+                    if count.as_label() != Some(n as i64) {
+                        return Err(CaseError::at(
+                            &count.loc,
+                            format!(
+                                "expected {} elements as the count says, found a list of {n}",
+                                count.as_label().unwrap_or(0)
+                            ),
+                        ));
+                    }
+                    ("nonuniform", &rest[1..])
+                }
+                _ => ("nonuniform", rest),
             }
-            rest => ("nonuniform", rest),
-        },
+        }
         _ => {
             return Err(CaseError::at(
                 &first.loc,
@@ -557,6 +575,16 @@ mod tests {
         );
         let e = internal(&d, 4, "a number", Item::as_scalar).unwrap_err();
         assert!(e.message.contains("expected 4 values"), "{e}");
+        let d =
+            crate::case::parse_dict("internalField nonuniform List<scalar> 2 (1 2);", "p").unwrap();
+        assert_eq!(
+            internal(&d, 2, "a number", Item::as_scalar).unwrap(),
+            InternalField::Nonuniform(vec![1.0, 2.0])
+        );
+        let d =
+            crate::case::parse_dict("internalField nonuniform List<scalar> 3 (1 2);", "p").unwrap();
+        let e = internal(&d, 2, "a number", Item::as_scalar).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 39), "{e}");
         let d = crate::case::parse_dict("internalField uniform (1 2 x);", "U").unwrap();
         let e = internal(&d, 4, "a vector", Item::as_vector).unwrap_err();
         assert_eq!((e.line, e.col), (1, 23));
