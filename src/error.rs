@@ -53,6 +53,15 @@ impl fmt::Display for FsimError {
 
 impl std::error::Error for FsimError {}
 
+impl From<crate::case::CaseError> for FsimError {
+    fn from(e: crate::case::CaseError) -> Self {
+        FsimError::Input {
+            reason: e.to_string(),
+            excerpt: e.excerpt(),
+        }
+    }
+}
+
 impl From<std::io::Error> for FsimError {
     fn from(e: std::io::Error) -> Self {
         FsimError::run(format!("I/O error: {e}"))

@@ -55,10 +55,7 @@ pub fn run(options: &Options) -> Result<(), FsimError> {
 
 /// Reads and validates every file of the case, listing the keywords fsim ignores.
 fn load_case(options: &Options) -> Result<Case, FsimError> {
-    let case = Case::load(&options.case).map_err(|e| FsimError::Input {
-        reason: e.to_string(),
-        excerpt: e.excerpt(),
-    })?;
+    let case = Case::load(&options.case)?;
     for warning in &case.warnings {
         eprintln!("fsimFoam: note: {warning}");
     }

@@ -52,9 +52,8 @@ impl Simulation {
         let scheme = match &case.time_scheme {
             None => TimeScheme::default(),
             Some(name) => TimeScheme::from_name(name).ok_or_else(|| {
-                FsimError::input(format!(
-                    "system/fvSolution: unknown fsim timeScheme '{name}'; expected one of \
-                     Euler, RK2, RK3, RK3CN"
+                case.time_scheme_error(format!(
+                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN"
                 ))
             })?,
         };
