@@ -161,3 +161,19 @@ fn leaving_the_stability_region_stops_and_keeps_the_last_good_time() {
         "a partial directory was left"
     );
 }
+
+#[test]
+fn unknown_time_scheme() {
+    assert_bad_input(
+        "scheme",
+        |c| {
+            fs::write(
+                c.join("system/fvSolution"),
+                "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n\
+                 fsim\n{\n    timeScheme backward;\n}\n",
+            )
+            .unwrap()
+        },
+        &["system/fvSolution:4:", "backward", "RK3"],
+    );
+}
