@@ -171,6 +171,55 @@ fn channel_with_inlet_and_outlet_develops_the_parabola_and_its_pressure_drop() {
     assert!(div < 1e-10, "divergence {div:e}");
 }
 
+#[test]
+fn fluid_at_rest_under_gravity_stays_at_rest_with_hydrostatic_pressure() {
+    // Closed box, gravity along −y: the projection must balance g exactly, leaving p = g·x.
+    let n = [6, 10, 4];
+    let h = [0.1, 0.05, 0.2];
+    let grid = Grid::new(n, h, [0.0; 3]);
+    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+    let bc = BoundaryConditions {
+        faces: std::array::from_fn(|_| wall.clone()),
+    };
+    let g = [0.0, -9.81, 0.0];
+    for scheme in [TimeScheme::Euler, TimeScheme::RK3, TimeScheme::RK3CN] {
+        let mut s = FluidSolver::new(
+            grid.clone(),
+            bc.clone(),
+            FluidSettings {
+                nu: 1e-3,
+                scheme,
+                body_force: g,
+            },
+        )
+        .unwrap();
+        for _ in 0..20 {
+            s.step(1e-3);
+        }
+        let speed = s.diagnostics(1e-3).max_speed;
+        let p = s.pressure();
+        let mut slope_err: f64 = 0.0;
+        for k in 0..n[2] {
+            for j in 1..n[1] {
+                for i in 0..n[0] {
+                    let dp = (p[grid.cell_index(i, j, k)] - p[grid.cell_index(i, j - 1, k)]) / h[1];
+                    slope_err = worst(slope_err, (dp - g[1]).abs());
+                }
+            }
+        }
+        eprintln!(
+            "{} at rest under gravity: max speed {:.1e}, hydrostatic slope error {slope_err:.1e}",
+            scheme.name(),
+            speed[1]
+        );
+        assert!(
+            speed.iter().all(|&v| v < 1e-12),
+            "{scheme:?}: speeds {speed:?}"
+        );
+        assert!(slope_err < 1e-10, "{scheme:?}: slope error {slope_err}");
+    }
+}
+
 /// Larger of two errors, NaN if either is (`f64::max` would drop a NaN).
 fn worst(a: f64, b: f64) -> f64 {
     if a.is_nan() || b.is_nan() {

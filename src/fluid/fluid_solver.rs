@@ -132,6 +132,7 @@ impl FluidSolver {
         };
         fill_velocity_ghosts(&s.layout, &s.bc, &mut s.u);
         s.set_scheme(s.settings.scheme)?;
+        s.initialise_pressure();
         Ok(s)
     }
 
@@ -302,7 +303,7 @@ impl FluidSolver {
     }
 
     /// Makes the current velocity discretely divergence-free (one projection with unit
-    /// weight); the pressure is reset to zero.
+    /// weight), then sets the pressure consistent with it (see [`Self::initialise_pressure`]).
     pub fn project(&mut self) {
         extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
         fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
@@ -325,7 +326,48 @@ impl FluidSolver {
             &self.corrected_ranges,
         );
         fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-        self.p.iter_mut().for_each(|x| *x = 0.0);
+        self.initialise_pressure();
+    }
+
+    /// Sets the pressure to the one the current velocity and forces imply: `∇²p = ∇·F` with
+    /// `F = −∇·(uu) + ν∇²u + f` (zero normal `F` where the velocity is fixed), i.e. the pressure
+    /// an explicit step would produce. The semi-implicit scheme corrects pressure increments,
+    /// so starting from this pressure keeps a force balanced by pressure (fluid at rest under
+    /// gravity) balanced from the first step. Called by [`Self::new`] and [`Self::project`].
+    pub fn initialise_pressure(&mut self) {
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        for qc in self.q.iter_mut() {
+            qc.iter_mut().for_each(|x| *x = 0.0);
+        }
+        let terms = MomentumTerms {
+            layout: &self.layout,
+            h: self.grid.h,
+            nu: self.settings.nu,
+            force,
+            source: self.source.as_ref(),
+            ranges: &self.momentum_ranges,
+        };
+        accumulate_tendency(&mut self.q, &self.u, &terms, 0.0, 1.0);
+        // The divergence reads the high boundary face, which a periodic direction shares
+        // with the low one.
+        for d in 0..3 {
+            if matches!(self.bc.face(d, 0), FaceCondition::Periodic) {
+                copy_plane(&self.layout, &mut self.q[d], d, self.layout.n[d] + 1, 1);
+            }
+        }
+        divergence_rhs(
+            &mut self.p,
+            &self.q,
+            &self.layout,
+            self.grid.h,
+            &self.bc,
+            1.0,
+        );
+        self.poisson.solve(&mut self.p);
     }
 
     /// Advances by `dt` with the configured scheme.
@@ -417,8 +459,9 @@ impl FluidSolver {
 
     /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
     /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
-    /// 2. `(I − β Δt ν∇²) u* = r`, solved exactly per component; then the hook;
-    /// 3. `∇²p = ∇·u* / τ`, `u = u* − τ∇p` with `τ = (α + β) Δt`.
+    /// 2. `(I − β Δt ν∇²) u* = r − τ∇p`, solved exactly per component; then the hook;
+    /// 3. `∇²φ = ∇·u* / τ`, `u = u* − τ∇φ`, `p ← p + φ`, with `τ = (α + β) Δt`
+    ///    (incremental pressure correction: the pressure is part of the state).
     fn step_semi_implicit(
         &mut self,
         dt: f64,
@@ -453,6 +496,7 @@ impl FluidSolver {
                 &terms,
                 (gamma, zeta, alpha),
                 dt,
+                &self.p,
             );
             implicit.solve(alpha * dt * self.settings.nu);
             store_momentum_box(
@@ -470,17 +514,23 @@ impl FluidSolver {
                 velocity: &mut self.u,
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
-            self.poisson.solve(&mut self.p);
+            // Pressure increment φ: ∇²φ = ∇·u*/τ, u = u* − τ∇φ, p ← p + φ.
+            let phi = &mut implicit.increment;
+            divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, tau);
+            self.poisson.solve(phi);
             subtract_gradient(
                 &mut self.u,
-                &self.p,
+                phi,
                 tau,
                 &self.layout,
                 h,
                 &self.bc,
                 &self.corrected_ranges,
             );
+            self.p
+                .par_iter_mut()
+                .zip(&phi[..])
+                .for_each(|(p, f)| *p += f);
         }
         self.time = t0 + dt;
         if self.drive.is_some() {
@@ -749,6 +799,18 @@ impl FluidSolver {
             + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
+    }
+}
+
+/// `a[dst] = a[src]` over the padded plane normal to `d`.
+fn copy_plane(layout: &PaddedLayout, a: &mut [f64], d: usize, dst: usize, src: usize) {
+    let (d1, d2) = ((d + 1) % 3, (d + 2) % 3);
+    let s = layout.stride;
+    for b in 0..layout.dims[d2] {
+        for c in 0..layout.dims[d1] {
+            let base = c * s[d1] + b * s[d2];
+            a[base + dst * s[d]] = a[base + src * s[d]];
+        }
     }
 }
 

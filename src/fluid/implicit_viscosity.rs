@@ -25,6 +25,8 @@ pub(crate) struct ImplicitViscosity {
     /// `c`: `2 u_wall` for a tangential component, `u_wall` for the normal one.
     boundary: [[[f64; 2]; 3]; 3],
     h: [f64; 3],
+    /// Pressure increment of the incremental projection, cell-centred.
+    pub increment: Vec<f64>,
 }
 
 impl ImplicitViscosity {
@@ -95,6 +97,7 @@ impl ImplicitViscosity {
             work,
             boundary,
             h: grid.h,
+            increment: vec![0.0; grid.cell_count()],
         })
     }
 
@@ -135,6 +138,7 @@ impl ImplicitViscosity {
 
     pub fn bytes(&self) -> usize {
         self.work.iter().map(|w| 8 * w.len()).sum::<usize>()
+            + 8 * self.increment.len()
             + self
                 .solvers
                 .iter()

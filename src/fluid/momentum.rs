@@ -239,9 +239,12 @@ fn accumulate_plane(
 /// Right-hand side of a semi-implicit stage (Spalart, Moser & Rogers 1991) for every
 /// component, into `rhs[c]` laid out as the box of its momentum faces (x fastest):
 ///
-/// `rhs = u + Δt (γ N(u) + ζ N_old + α ν ∇²u)`, `N = −∇·(uu) + f`,
+/// `rhs = u + Δt (γ N(u) + ζ N_old + α ν ∇²u) − τ ∇p_old`, `N = −∇·(uu) + f`,
 ///
 /// and `q[c] ← N(u)` for the next stage (`N_old` is read from `q` first; `ζ = 0` skips it).
+/// The current pressure's gradient (weight `τ = (α + β) Δt`) is in the predictor so that the
+/// projection only corrects an increment: a force balanced by pressure (fluid at rest under
+/// gravity) then stays balanced exactly, although the implicit diffusion smooths `u*`.
 pub(crate) fn semi_implicit_rhs(
     rhs: &mut [Vec<f64>; 3],
     q: &mut [Vec<f64>; 3],
@@ -249,8 +252,13 @@ pub(crate) fn semi_implicit_rhs(
     t: &MomentumTerms,
     (gamma, zeta, alpha): (f64, f64, f64),
     dt: f64,
+    pressure: &[f64],
 ) {
     let layout = t.layout;
+    let n = layout.n;
+    let tau = 2.0 * alpha * dt;
+    // Unpadded offset of the cell row (·, j, k), padded j, k.
+    let row_of = |j: usize, k: usize| n[0] * ((j - 1) + n[1] * (k - 1));
     let plane = layout.plane_len();
     let d0 = layout.dims[0];
     for c in 0..3 {
@@ -262,6 +270,7 @@ pub(crate) fn semi_implicit_rhs(
         let (nu, force) = (t.nu, t.force[c]);
         let source = t.source.map(|s| &s[c][..]);
         let (k0, k1) = r[2];
+        let g = tau / t.h[c];
         rhs[c]
             .par_chunks_mut(m0 * m1)
             .zip(q[c][k0 * plane..(k1 + 1) * plane].par_chunks_mut(plane))
@@ -274,12 +283,32 @@ pub(crate) fn semi_implicit_rhs(
                     let src = source.map(|s| &s[k * plane + row..][..m0]);
                     let o = &mut out[jj * m0..(jj + 1) * m0];
                     let qrow = &mut qp[row..row + m0];
+                    // Pressure on both sides of face i: cells i−1 and i along c, wrapping at
+                    // the first face of a periodic direction (outlets are not allowed here).
+                    let hi_row = row_of(j, k);
+                    let lo_row = match c {
+                        1 => row_of(if j >= 2 { j - 1 } else { n[1] }, k),
+                        2 => row_of(j, if k >= 2 { k - 1 } else { n[2] }),
+                        _ => hi_row,
+                    };
+                    let grad = |i: usize| -> f64 {
+                        let pi = r[0].0 + i; // padded x index
+                        let hi = pressure[hi_row + pi - 1];
+                        let lo = if c != 0 {
+                            pressure[lo_row + pi - 1]
+                        } else if pi >= 2 {
+                            pressure[hi_row + pi - 2]
+                        } else {
+                            pressure[hi_row + n[0] - 1]
+                        };
+                        hi - lo
+                    };
                     for i in 0..m0 {
                         let (adv, lap) = st.terms(i);
                         let n = -adv + force + src.map_or(0.0, |s| s[i]);
                         let old = if zeta == 0.0 { 0.0 } else { zeta * qrow[i] };
                         qrow[i] = n;
-                        o[i] = st.q0[i] + dt * (gamma * n + old + alpha * nu * lap);
+                        o[i] = st.q0[i] + dt * (gamma * n + old + alpha * nu * lap) - g * grad(i);
                     }
                 }
             });
