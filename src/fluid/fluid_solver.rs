@@ -11,6 +11,7 @@ use super::momentum::{
 use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
+use super::staggered_transfer::{cells_from_faces, faces_from_cells};
 use super::time_scheme::{TimeScheme, SMR_STAGES};
 use crate::grid::Grid;
 use rayon::prelude::*;
@@ -254,46 +255,11 @@ impl FluidSolver {
     }
 
     /// Sets the velocity from cell-centred values (unpadded x-fastest, as a case's
-    /// `internalField`): each face takes the mean of its two cells (the one cell on the box
-    /// boundary, unless periodic), then the conditions fix the boundary faces. Call
+    /// `internalField`), interpolated to the faces to fourth order where the grid allows
+    /// (see `staggered_transfer`); then the conditions fix the boundary faces. Call
     /// [`Self::project`] afterwards.
     pub fn set_cell_velocity(&mut self, cells: &[[f64; 3]]) {
-        assert_eq!(cells.len(), self.grid.cell_count());
-        let n = self.grid.n;
-        for c in 0..3 {
-            let periodic = matches!(self.bc.face(c, 0), FaceCondition::Periodic);
-            let cell_along = |idx: [usize; 3], m: isize| -> f64 {
-                let mut idx = idx;
-                let m = if m < 0 {
-                    if periodic {
-                        n[c] as isize - 1
-                    } else {
-                        0
-                    }
-                } else if m >= n[c] as isize {
-                    if periodic {
-                        0
-                    } else {
-                        n[c] as isize - 1
-                    }
-                } else {
-                    m
-                };
-                idx[c] = m as usize;
-                cells[self.grid.cell_index(idx[0], idx[1], idx[2])][c]
-            };
-            for k in 1..=n[2] + usize::from(c == 2) {
-                for j in 1..=n[1] + usize::from(c == 1) {
-                    for i in 1..=n[0] + usize::from(c == 0) {
-                        let mut idx = [i - 1, j - 1, k - 1];
-                        let s = idx[c] as isize; // face between cells s−1 and s
-                        idx[c] = 0;
-                        let v = 0.5 * (cell_along(idx, s - 1) + cell_along(idx, s));
-                        self.u[c][self.layout.index(i, j, k)] = v;
-                    }
-                }
-            }
-        }
+        faces_from_cells(&self.grid, &self.bc, &self.layout, cells, &mut self.u);
         for d in 0..3 {
             if matches!(self.bc.face(d, 0), FaceCondition::Empty) {
                 self.u[d].iter_mut().for_each(|x| *x = 0.0);
@@ -722,26 +688,10 @@ impl FluidSolver {
         (factor * dt_old).min(max_dt).min(self.stability_bound())
     }
 
-    /// Cell-centred velocity (mean of each component's two faces) into `out`, unpadded
-    /// x-fastest.
+    /// Cell-centred velocity into `out`, unpadded x-fastest, interpolated from the faces to
+    /// fourth order where the grid allows (the two-point mean next to walls).
     pub fn cell_velocity(&self, out: &mut [[f64; 3]]) {
-        let n = self.grid.n;
-        assert_eq!(out.len(), self.grid.cell_count());
-        let l = &self.layout;
-        let s = l.stride;
-        let u = &self.u;
-        out.par_chunks_mut(n[0] * n[1])
-            .enumerate()
-            .for_each(|(k, plane)| {
-                for j in 0..n[1] {
-                    let base = l.index(1, j + 1, k + 1);
-                    for i in 0..n[0] {
-                        let p = base + i;
-                        plane[i + n[0] * j] =
-                            std::array::from_fn(|c| 0.5 * (u[c][p] + u[c][p + s[c]]));
-                    }
-                }
-            });
+        cells_from_faces(&self.grid, &self.bc, &self.layout, &self.u, out);
     }
 
     /// Names of the arrays [`Self::restart_arrays`] returns, in order.

@@ -58,6 +58,7 @@ mod momentum;
 mod padded_layout;
 mod projection;
 mod spectral_poisson;
+mod staggered_transfer;
 mod time_scheme;
 mod variable_poisson;
 
