@@ -99,7 +99,6 @@ fn sweep_records(x: &[[f64; 3]], v: &[[f64; 3]], l: &Lists, f: &mut [[f64; 3]]) 
 }
 
 /// The same on separate component arrays.
-#[allow(clippy::too_many_arguments)]
 fn sweep_components(x: [&[f64]; 3], v: [&[f64]; 3], l: &Lists, f: [&mut [f64]; 3]) {
     let [fx, fy, fz] = f;
     for i in 0..x[0].len() {

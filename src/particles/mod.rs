@@ -8,6 +8,22 @@
 //! [`Dem::external_loads_mut`] and calls [`Dem::advance`], which sub-cycles by DPMFoam's rule.
 //! Particle indices change when the lists are rebuilt (cell sort); `id` names a particle.
 //!
+//! From a DPMFoam `constant/kinematicCloudProperties` (OpenFOAM v1912 keywords):
+//!
+//! | DPMFoam | fsim |
+//! |---|---|
+//! | `constantProperties { rho0; youngsModulus; poissonsRatio; }` | `ParticleState::density`; `PairModel::SpringSliderDashpot { youngs_modulus, poissons_ratio }` and `WallModel::SpringSliderDashpot { particle_youngs_modulus, particle_poissons_ratio }` |
+//! | `pairSpringSliderDashpotCoeffs { alpha; b; mu; collisionResolutionSteps; }` | `PairModel::SpringSliderDashpot { alpha, b, mu, collision_resolution_steps, tangential: TangentialRule::DpmFoamReset }` for DPMFoam's friction |
+//! | `wallSpringSliderDashpotCoeffs { youngsModulus; poissonsRatio; alpha; b; mu; collisionResolutionSteps; }` | `WallModel::SpringSliderDashpot { youngs_modulus, poissons_ratio, … }` (the wall's material) |
+//! | `useEquivalentSize yes`, `cohesionEnergyDensity` ≠ 0 | not supported (a loader should stop) |
+//! | `wall` patch with `collisionModel pairCollision` | `FaceCondition::Wall` |
+//! | `wall` patch with `standardWallInteraction`/`localInteraction` `rebound { e; mu; }` and no collision model | `FaceCondition::Rebound { e, mu }` |
+//! | `cyclic` patch pair | `FaceCondition::Periodic` on both faces |
+//! | `U0` of `manualInjection` | `ParticleState::velocity` |
+//!
+//! The linear model has no DPMFoam counterpart; it follows LAMMPS `gran/hooke/history`
+//! with the restitution coefficient instead of a damping rate.
+//!
 //! ```
 //! use fsim::particles::*;
 //! let mut p = ParticleState::default();

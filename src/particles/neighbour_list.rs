@@ -75,7 +75,6 @@ impl NeighbourList {
 
     /// Builds the pair and wall lists for particles already in cell order (the order of the
     /// last `sort`, whose cell tables are reused).
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn build(
         &mut self,
         domain: &DomainBox,
