@@ -69,12 +69,12 @@ def latest_time_dir(case):
     return max(times, key=float)
 
 
-def run_fsim(binary, n, threads, steps, scratch):
+def run_fsim(binary, n, threads, steps, scratch, scheme):
     import meshio
 
     case = os.path.join(scratch, f"fsim_{n}_{threads}")
     shutil.rmtree(case, ignore_errors=True)
-    end = cases.taylor_green(case, n, steps, DT, nu=NU)
+    end = cases.taylor_green(case, n, steps, DT, nu=NU, scheme=scheme)
     wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch,
                              log=os.path.join(case, "log.fsimFoam"))
     monitor = os.path.join(case, "postProcessing", "fluid", "0", "fluid.dat")
@@ -89,7 +89,7 @@ def run_fsim(binary, n, threads, steps, scratch):
     cells = mesh.cells[0].data
     centres = pts[cells].mean(axis=1)
     err = relative_l2(u, exact_velocity(centres, end))
-    return dict(solver="fsimFoam", n=n, threads=threads, steps=len(step_wall), loop=loop, wall=wall,
+    return dict(solver=f"fsim {scheme}", n=n, threads=threads, steps=len(step_wall), loop=loop, wall=wall,
                 rss=rss, cells=n ** 3, error=err)
 
 
@@ -144,6 +144,8 @@ def main():
     ap.add_argument("--openfoam-sizes", type=int, nargs="*", default=[64])
     ap.add_argument("--no-openfoam", action="store_true")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--schemes", nargs="+", default=["Euler", "RK3"],
+                    help="fsim time schemes to run (Euler: one projection per step)")
     a = ap.parse_args()
 
     binary = fsim_binary()
@@ -151,8 +153,10 @@ def main():
     rows = []
     try:
         for n in a.sizes:
-            for t in a.threads:
-                rows.append(median_run(lambda: run_fsim(binary, n, t, a.steps, scratch), a.repeat))
+            for scheme in a.schemes:
+                for t in a.threads:
+                    rows.append(median_run(
+                        lambda: run_fsim(binary, n, t, a.steps, scratch, scheme), a.repeat))
             if not a.no_openfoam and n in a.openfoam_sizes:
                 r = median_run(lambda: run_icofoam(n, a.steps, scratch), 1)
                 if r:
@@ -163,7 +167,7 @@ def main():
         shutil.rmtree(scratch, ignore_errors=True)
 
     print(f"\nTaylor-Green vortex, nu = {NU}, dt = {DT}, {a.steps} steps "
-          f"(medians of {a.repeat} runs for fsimFoam)")
+          f"(medians of {a.repeat} runs for fsim)")
     print(f"{'solver':10} {'cells':>9} {'thr':>3} {'Mcell-steps/s':>13} {'loop s':>8} {'wall s':>8} "
           f"{'peak MB':>8} {'B/cell':>7} {'L2 error':>10}")
     for r in rows:
@@ -175,8 +179,8 @@ def main():
         if r["solver"] != "icoFoam":
             continue
         for f in rows:
-            if f["solver"] == "fsimFoam" and f["n"] == r["n"]:
-                print(f"ratio fsimFoam ({f['threads']} thr) / icoFoam at {r['n']}^3: "
+            if f["solver"].startswith("fsim") and f["n"] == r["n"]:
+                print(f"ratio {f['solver']} ({f['threads']} thr) / icoFoam at {r['n']}^3: "
                       f"throughput x{f['rate'] / r['rate']:.1f}, "
                       f"error {f['error'] / r['error']:.2f} of icoFoam's")
 

@@ -24,7 +24,7 @@ def write(path, text):
         f.write(text)
 
 
-def taylor_green(case, n, steps, dt, nu=0.01, write_interval=None):
+def taylor_green(case, n, steps, dt, nu=0.01, write_interval=None, scheme=None):
     """A periodic 2 pi box of n^3 cells with the 2-D Taylor-Green vortex, run for `steps` steps."""
     end = steps * dt
     wi = write_interval if write_interval is not None else steps
@@ -81,7 +81,7 @@ solvers
     U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-05; relTol 0; }
 }
 PISO { nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }
-"""))
+""" + (f"fsim {{ timeScheme {scheme}; }}\n" if scheme else "")))
     text = make_taylor_green.field_text(n, n, n)
     write(os.path.join(case, "0/U"), text)
     return end
