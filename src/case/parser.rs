@@ -34,6 +34,7 @@ use nom::IResult;
 use super::dictionary::{Dict, Directive, Entry, EntryBody, Key};
 use super::error::CaseError;
 use super::expression::{evaluate, Number};
+use super::packed;
 use super::source::{Location, SourceFile};
 use super::value::{Dimensions, Item, Value};
 
@@ -399,8 +400,8 @@ impl Ctx {
         let one = |rest, value| Ok((rest, vec![Item::new(value, loc.clone())]));
         match c {
             '(' => {
-                let (rest, items) = self.list(src, i)?;
-                one(rest, Value::List(items))
+                let (rest, list) = self.list(src, i, None)?;
+                one(rest, list)
             }
             '{' => {
                 let name = scoped_name(&self.current().name, "{}");
@@ -565,18 +566,19 @@ impl Ctx {
         }
         let count = count as usize;
         if next.starts_with('(') {
-            let (rest, items) = self.list(src, next)?;
-            let found = element_count(&items);
+            let (rest, list) = self.list(src, next, Some(count))?;
+            let found = match &list {
+                Value::List(items) => element_count(items),
+                Value::Numbers { width, data, .. } => data.len() / width,
+                _ => unreachable!("a list reads as a list"),
+            };
             if found != count {
                 return Err(CaseError::at(
                     count_loc,
                     format!("expected {count} elements as the count says, found a list of {found}"),
                 ));
             }
-            return Ok(Some((
-                rest,
-                vec![Item::new(Value::List(items), count_loc.clone())],
-            )));
+            return Ok(Some((rest, vec![Item::new(list, count_loc.clone())])));
         }
         // `N{value}`: one token between the braces.
         let inner = self.skip(src, &next[1..])?;
@@ -598,8 +600,22 @@ impl Ctx {
         )))
     }
 
-    /// `( token* )`.
-    fn list<'a>(&mut self, src: &Src, i: &'a str) -> Result<(&'a str, Vec<Item>), CaseError> {
+    /// `( token* )`: packed when it holds numbers only ([`packed::scan`]; `count` is the
+    /// count written before it), else a [`Value::List`].
+    fn list<'a>(
+        &mut self,
+        src: &Src,
+        i: &'a str,
+        count: Option<usize>,
+    ) -> Result<(&'a str, Value), CaseError> {
+        if let Some(p) = packed::scan(i, count) {
+            let value = Value::Numbers {
+                width: p.width,
+                data: p.data,
+                labels: p.labels,
+            };
+            return Ok((&i[p.end..], value));
+        }
         let open = src.loc(i);
         self.enter(src, i)?;
         let mut items = Vec::new();
@@ -609,7 +625,7 @@ impl Ctx {
             match i.chars().next() {
                 Some(')') => {
                     self.depth -= 1;
-                    return Ok((&i[1..], items));
+                    return Ok((&i[1..], Value::List(items)));
                 }
                 None | Some(';') | Some('}') => {
                     let found = i
@@ -815,7 +831,10 @@ impl Ctx {
                 let mut names = Vec::new();
                 for item in &items {
                     match &item.value {
-                        Value::List(list) => names.extend(list.iter().map(|x| x.to_string())),
+                        Value::List(_) | Value::Numbers { .. } => {
+                            let list = item.as_list().expect("a list");
+                            names.extend(list.iter().map(|x| x.to_string()))
+                        }
                         Value::Word(w) | Value::Str(w) => names.push(w.clone()),
                         _ => names.push(item.to_string()),
                     }
@@ -1006,6 +1025,7 @@ fn count_items(items: &[Item]) -> usize {
         .iter()
         .map(|item| match &item.value {
             Value::List(inner) => 1 + count_items(inner),
+            Value::Numbers { data, .. } => 1 + data.len(),
             Value::Dict(d) => 1 + d.entries().iter().map(entry_size).sum::<usize>(),
             _ => 1,
         })

@@ -123,8 +123,20 @@ impl SourceFile {
 #[derive(Clone, Debug)]
 pub struct Location {
     pub file: Arc<SourceFile>,
-    /// Byte offset into the file's text.
+    /// Byte offset into the file's text; for an element of a packed number list, the list's.
     pub offset: usize,
+    /// Which element of the packed list at `offset` this is, when it is one.
+    pub element: Option<Element>,
+}
+
+/// An element of a packed number list ([`super::Value::Numbers`]): its position is found
+/// again by rescanning the list, so that the list needs one [`Location`] only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Element {
+    /// The element: a number, or a `( … )` tuple.
+    pub index: usize,
+    /// The number inside that tuple.
+    pub component: Option<usize>,
 }
 
 impl Location {
@@ -132,12 +144,41 @@ impl Location {
         Location {
             file: file.clone(),
             offset,
+            element: None,
+        }
+    }
+
+    /// Where element `i` of the list this location starts is: a packed list's element, or
+    /// the number `i` of such an element.
+    pub fn child(&self, i: usize) -> Location {
+        let element = match self.element {
+            None => Element {
+                index: i,
+                component: None,
+            },
+            Some(Element { index, .. }) => Element {
+                index,
+                component: Some(i),
+            },
+        };
+        Location {
+            file: self.file.clone(),
+            offset: self.offset,
+            element: Some(element),
+        }
+    }
+
+    /// The byte offset this location names, rescanning a packed list for an element.
+    pub fn resolved_offset(&self) -> usize {
+        match self.element {
+            None => self.offset,
+            Some(e) => super::packed::element_offset(&self.file.text, self.offset, e),
         }
     }
 
     /// 1-based line and column.
     pub fn line_col(&self) -> (usize, usize) {
-        self.file.line_col(self.offset)
+        self.file.line_col(self.resolved_offset())
     }
 
     /// `file:line:col`, for messages that point at a second place.
