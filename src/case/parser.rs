@@ -74,20 +74,36 @@ fn parse_source(file: Arc<SourceFile>, case_dir: Option<&Path>) -> Result<Dict, 
         include_depth: 0,
         macro_tokens: 0,
     };
-    let src = Src { file: &file };
-    let rest = ctx.body(&src, &file.text, None)?;
+    let text = file.text();
+    let src = Src {
+        file: &file,
+        text: &text,
+    };
+    let rest = ctx.body(&src, &text, None)?;
     debug_assert!(rest.is_empty());
+    release_if_large(&file, text.len());
     Ok(ctx.stack.pop().expect("top-level dictionary"))
+}
+
+/// Files at least this long let their text go once parsed (a message reads them again).
+const RELEASE_BYTES: usize = 1 << 20;
+
+fn release_if_large(file: &SourceFile, len: usize) {
+    if len >= RELEASE_BYTES {
+        file.release_text();
+    }
 }
 
 /// The file being read.
 struct Src<'a> {
     file: &'a Arc<SourceFile>,
+    /// Its text, held for the whole read.
+    text: &'a str,
 }
 
 impl Src<'_> {
     fn loc(&self, rest: &str) -> Location {
-        Location::new(self.file, self.file.text.len() - rest.len())
+        Location::new(self.file, self.text.len() - rest.len())
     }
 
     fn err(&self, rest: &str, message: impl Into<String>) -> CaseError {
@@ -560,7 +576,7 @@ impl Ctx {
             && (gap.is_empty()
                 || (gap.trim().is_empty()
                     && gap.contains('\n')
-                    && first_on_line(&src.file.text, count_loc.offset)));
+                    && first_on_line(src.text, count_loc.offset)));
         if count < 0 || !(list_follows || next.starts_with('{')) {
             return Ok(None);
         }
@@ -927,11 +943,18 @@ impl Ctx {
             ));
         }
         let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
-        let inner = Src { file: &file };
+        let text = file.text();
+        let inner = Src {
+            file: &file,
+            text: &text,
+        };
         let had_header = self.current().contains("FoamFile");
         self.include_depth += 1;
-        let result = self.body(&inner, &file.text, None);
+        let result = self.body(&inner, &text, None);
         self.include_depth -= 1;
+        if result.is_ok() {
+            release_if_large(&file, text.len());
+        }
         // An included file's own header is not an entry of the dictionary it lands in.
         if self.stack.len() > 1 && !had_header {
             self.current().remove("FoamFile");
