@@ -623,4 +623,42 @@ mod tests {
         let e = internal(&d, 4, "a vector", Item::as_vector, vector_row).unwrap_err();
         assert_eq!((e.line, e.col), (1, 23));
     }
+
+    #[test]
+    fn errors_inside_long_fields_point_at_the_element() {
+        // A word at element 1000 of a scalar field.
+        let mut text = String::from("internalField nonuniform List<scalar>\n2000\n(\n");
+        for i in 0..2000 {
+            text.push_str(if i == 1000 { "abc\n" } else { "0.5\n" });
+        }
+        text.push_str(");\n");
+        let d = crate::case::parse_dict(&text, "p").unwrap();
+        let e = internal(&d, 2000, "a number", Item::as_scalar, scalar_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1004, 1), "{e}");
+        assert!(e.message.contains("found the word 'abc'"), "{e}");
+        // A packed list of the wrong width: the first row that does not fit, found again.
+        let mut text = String::from("internalField nonuniform List<vector> 3((0 0 0) (1 1 1)\n");
+        text.push_str("  (2 2));\n");
+        let d = crate::case::parse_dict(&text, "U").unwrap();
+        let e = internal(&d, 3, "a vector", Item::as_vector, vector_row).unwrap_err();
+        assert_eq!((e.line, e.col), (2, 3), "{e}");
+        let d = crate::case::parse_dict("internalField nonuniform 3(1 2\n 3);", "U").unwrap();
+        let e = internal(&d, 3, "a vector", Item::as_vector, vector_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 28), "{e}");
+        assert!(e.message.contains("found the integer 1"), "{e}");
+        let d =
+            crate::case::parse_dict("internalField nonuniform 2((1 2 3)\n (4 5 6));", "p").unwrap();
+        let e = internal(&d, 2, "a number", Item::as_scalar, scalar_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 28), "{e}");
+        // Packed and right: the values in order.
+        let d = crate::case::parse_dict(
+            "internalField nonuniform List<vector> 2((1 2 3) (4 5 6));",
+            "U",
+        )
+        .unwrap();
+        assert_eq!(
+            internal(&d, 2, "a vector", Item::as_vector, vector_row).unwrap(),
+            InternalField::Nonuniform(vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+        );
+    }
 }

@@ -66,7 +66,7 @@ pub(crate) fn scan(text: &str, expected: Option<usize>) -> Option<Packed> {
                 }
             }
             let k = data.len();
-            if k % 64 == 0 {
+            if k.is_multiple_of(64) {
                 labels.push(0);
             }
             if label {

@@ -67,12 +67,22 @@ pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
 }
 
 fn parse_source(file: Arc<SourceFile>, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
+    parse_with(file, case_dir, true)
+}
+
+/// `pack`: whether numeric lists are read packed (off only to compare with the general path).
+fn parse_with(
+    file: Arc<SourceFile>,
+    case_dir: Option<&Path>,
+    pack: bool,
+) -> Result<Dict, CaseError> {
     let mut ctx = Ctx {
         stack: vec![Dict::new(String::new(), Location::new(&file, 0))],
         case_dir: case_dir.map(Path::to_path_buf),
         depth: 0,
         include_depth: 0,
         macro_tokens: 0,
+        pack,
     };
     let text = file.text();
     let src = Src {
@@ -119,6 +129,7 @@ struct Ctx {
     depth: usize,
     include_depth: usize,
     macro_tokens: usize,
+    pack: bool,
 }
 
 // ----- lexemes (nom) --------------------------------------------------------------------------
@@ -624,7 +635,7 @@ impl Ctx {
         i: &'a str,
         count: Option<usize>,
     ) -> Result<(&'a str, Value), CaseError> {
-        if let Some(p) = packed::scan(i, count) {
+        if let Some(p) = packed::scan(i, count).filter(|_| self.pack) {
             let value = Value::Numbers {
                 width: p.width,
                 data: p.data,
@@ -1139,6 +1150,167 @@ mod tests {
 
     fn err(text: &str) -> CaseError {
         parse_dict(text, "test").expect_err("expected a parse error")
+    }
+
+    /// `text` read without packing numeric lists: one token per number.
+    fn parse_general(text: &str) -> Dict {
+        let file = Arc::new(SourceFile::from_text(
+            PathBuf::new(),
+            "test".to_string(),
+            text.to_string(),
+        ));
+        parse_with(file, None, false).unwrap_or_else(|e| panic!("{}", e.report()))
+    }
+
+    /// SplitMix64 (Steele, Lea & Flood 2014): seeded numbers for the tests.
+    struct SplitMix(u64);
+
+    impl SplitMix {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        }
+
+        fn below(&mut self, n: u64) -> u64 {
+            self.next() % n
+        }
+    }
+
+    /// A number in one of the textual forms OpenFOAM files use.
+    fn random_number(rng: &mut SplitMix) -> String {
+        let digits = rng.below(100_000);
+        let small = rng.below(100);
+        let sign = ["", "-", "+"][rng.below(3) as usize];
+        match rng.below(8) {
+            0 => format!("{sign}{digits}"),
+            1 => format!("{sign}{small}.{digits}e-{}", rng.below(12)),
+            2 => format!("{sign}{small}E+{:02}", rng.below(20)),
+            3 => format!("{sign}.{digits}"),
+            4 => format!("{sign}{digits}."),
+            5 => format!("{sign}{small}.{digits}"),
+            6 => format!("{sign}{digits}e{}", rng.below(5)),
+            _ => format!("{sign}0"),
+        }
+    }
+
+    /// Blanks and comments between numbers.
+    fn random_gap(rng: &mut SplitMix) -> &'static str {
+        [" ", "  ", "\t", "\n", "\r\n", " // note\n", " /* (1 x) */ "][rng.below(7) as usize]
+    }
+
+    #[test]
+    fn packed_lists_read_as_the_general_path_does() {
+        let mut rng = SplitMix(20261123);
+        for width in [1usize, 3, 9] {
+            let n = 500;
+            let mut text = format!("a\n{n}\n(");
+            for _ in 0..n {
+                text.push_str(random_gap(&mut rng));
+                if width > 1 {
+                    text.push('(');
+                }
+                for c in 0..width {
+                    if c > 0 {
+                        text.push_str(random_gap(&mut rng));
+                    }
+                    text.push_str(&random_number(&mut rng));
+                }
+                if width > 1 {
+                    text.push(')');
+                }
+            }
+            text.push_str("\n);\nb (1 2 3);\n");
+            let packed = parse(&text);
+            let general = parse_general(&text);
+            let p = &packed.get_tokens("a").unwrap()[0];
+            let g = &general.get_tokens("a").unwrap()[0];
+            assert!(
+                matches!(p.value, Value::Numbers { width: w, .. } if w == width),
+                "{width}: {}",
+                &text[..200]
+            );
+            assert!(matches!(g.value, Value::List(_)));
+            assert_eq!(p.to_string(), g.to_string());
+            let (pl, gl) = (p.as_list().unwrap(), g.as_list().unwrap());
+            assert_eq!(pl.len(), n);
+            assert_eq!(gl.len(), n);
+            for i in 0..n {
+                let (pi, gi) = (pl.get(i).unwrap(), gl.get(i).unwrap());
+                assert_eq!(pi.to_string(), gi.to_string(), "element {i}");
+                assert_eq!(pi.loc.line_col(), gi.loc.line_col(), "element {i}");
+                let (pn, gn) = (pl.numbers(i).unwrap(), gl.numbers(i).unwrap());
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&pn), bits(&gn), "element {i}");
+                if width == 1 {
+                    assert_eq!(pi.as_label(), gi.as_label(), "element {i}");
+                } else {
+                    let (pr, gr) = (pi.as_list().unwrap(), gi.as_list().unwrap());
+                    for c in 0..width {
+                        let (pc, gc) = (pr.get(c).unwrap(), gr.get(c).unwrap());
+                        assert_eq!(pc.as_label(), gc.as_label(), "element {i}.{c}");
+                        assert_eq!(pc.loc.line_col(), gc.loc.line_col(), "element {i}.{c}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn errors_in_and_after_numeric_lists_name_the_place() {
+        // A word among numbers: the list is read by the general grammar, and a typed read
+        // points at the word.
+        let mut text = String::from("a (\n");
+        for i in 0..2000 {
+            text.push_str(if i == 1000 { "abc\n" } else { "1.5 2\n" });
+        }
+        text.push_str(");\n");
+        let d = parse(&text);
+        let list = d.get_tokens("a").unwrap()[0].as_list().unwrap();
+        let bad = (0..list.len())
+            .map(|i| list.get(i).unwrap())
+            .find(|x| x.as_scalar().is_none())
+            .unwrap();
+        assert_eq!(bad.loc.line_col(), (1002, 1));
+        // A missing `)`: at the `;`, naming where the list opened.
+        let text = format!("x 1;\nb 3 ( 1 2\n   3 {};\n", "4 ".repeat(10));
+        let e = err(&text);
+        assert_eq!((e.line, e.col), (3, 26), "{e}");
+        assert!(e.message.contains("opened at line 2 column 5"), "{e}");
+        // A count that disagrees with a packed list.
+        let e = err("b 3(1 2);");
+        assert_eq!((e.line, e.col), (1, 3), "{e}");
+        assert!(e.message.contains("expected 3 elements"), "{e}");
+    }
+
+    #[test]
+    fn a_released_text_is_read_again_for_messages() {
+        let dir = std::env::temp_dir().join(format!("fsim-parser-release-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big");
+        let rows = (RELEASE_BYTES / 20) + 10;
+        let mut text = String::from("a (\n");
+        for i in 0..rows {
+            text.push_str(&format!("({i} 0.5 -1e-3)\n"));
+        }
+        text.push_str(");\nb abc;\n");
+        std::fs::write(&path, &text).unwrap();
+        let d = read_dict_file(&path, Some(&dir)).unwrap();
+        let e = d.get_scalar("b").unwrap_err();
+        assert_eq!((e.line, e.col), (rows + 3, 3), "{e}");
+        assert_eq!(
+            e.excerpt().unwrap().lines().nth(2).unwrap().trim_end(),
+            format!("{} | b abc;", rows + 3)
+        );
+        let list = d.get_tokens("a").unwrap()[0].as_list().unwrap();
+        let row = list.get(rows - 1).unwrap();
+        assert_eq!(row.loc.line_col(), (rows + 1, 1));
+        let last = row.as_list().unwrap().get(2).unwrap();
+        let col = format!("({} 0.5 ", rows - 1).len() + 1;
+        assert_eq!(last.loc.line_col(), (rows + 1, col));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
