@@ -321,6 +321,21 @@ mod tests {
     }
 
     #[test]
+    fn top_level_positions_are_packed() {
+        let d = crate::case::parse_dict(
+            "FoamFile { class vectorField; }\n3\n(\n(0 0 0)\n(1 2 3)\n(4 5 6.5)\n)\n",
+            "positions",
+        )
+        .unwrap();
+        let (width, data) = d.values[0].as_numbers().unwrap();
+        assert_eq!(width, 3);
+        assert_eq!(data, [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.5]);
+        let row = d.values[0].as_list().unwrap().get(2).unwrap();
+        assert_eq!(row.to_string(), "(4 5 6.5)");
+        assert_eq!(row.loc.line_col(), (6, 1));
+    }
+
+    #[test]
     fn element_offsets_are_found_again() {
         let text = "x 2\n( (1 2 3)\n  (4 5 6) );";
         let e = |index, component| Element { index, component };

@@ -214,6 +214,16 @@ impl Item {
         }
     }
 
+    /// A packed number list as `(width, numbers)`, row by row: the way to read a large field
+    /// or position list without a token per number (`None` for any other token, including a
+    /// list the parser could not pack; [`ListView::numbers`] reads those row by row).
+    pub fn as_numbers(&self) -> Option<(usize, &[f64])> {
+        match &self.value {
+            Value::Numbers { width, data, .. } => Some((*width, data)),
+            _ => None,
+        }
+    }
+
     /// A list of exactly three numbers.
     pub fn as_vector(&self) -> Option<[f64; 3]> {
         if let Value::Numbers { width: 1, data, .. } = &self.value {
