@@ -1,6 +1,7 @@
 //! `system/blockMeshDict`: one axis-aligned hex block of uniform cells and the patches on its
 //! six faces, turned into a [`Grid`].
 
+use std::borrow::Cow;
 use std::fmt;
 
 use super::control_dict::at_value;
@@ -397,7 +398,7 @@ fn read_vertices(d: &Dict) -> Result<Vec<[f64; 3]>, CaseError> {
 
 fn read_block(d: &Dict, vertex_count: usize) -> Result<Block, CaseError> {
     let list = the_list(d, "blocks")?;
-    let items: Vec<&Item> = list.iter().collect();
+    let items: Vec<Cow<Item>> = list.iter().collect();
     let Some(first) = items.first() else {
         return Err(at_value(
             d,
@@ -416,8 +417,8 @@ fn read_block(d: &Dict, vertex_count: usize) -> Result<Block, CaseError> {
     }
     let mut k = 1;
     let next = |k: usize, what: &str| -> Result<&Item, CaseError> {
-        items.get(k).copied().ok_or_else(|| {
-            let last = items[k - 1];
+        items.get(k).map(|c| &**c).ok_or_else(|| {
+            let last = &items[k - 1];
             CaseError::at(
                 &last.loc,
                 format!("expected {what} after {} in the hex block", last.describe()),
@@ -692,14 +693,14 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
                 ),
             )
         })?;
-        Ok(list.iter().cloned().collect())
+        Ok(list.iter().map(Cow::into_owned).collect())
     };
     if d.contains("boundary") {
         let list = the_list(d, "boundary")?;
-        let items: Vec<&Item> = list.iter().collect();
+        let items: Vec<Cow<Item>> = list.iter().collect();
         let mut k = 0;
         while k < items.len() {
-            let name_item = items[k];
+            let name_item = &items[k];
             let name = name_item.as_word().ok_or_else(|| {
                 CaseError::at(
                     &name_item.loc,
@@ -748,10 +749,10 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
         }
     } else if d.contains("patches") {
         let list = the_list(d, "patches")?;
-        let items: Vec<&Item> = list.iter().collect();
+        let items: Vec<Cow<Item>> = list.iter().collect();
         for chunk in items.chunks(3) {
-            let kind = patch_type(chunk[0])?;
-            let name_item = chunk.get(1).copied().ok_or_else(|| {
+            let kind = patch_type(&chunk[0])?;
+            let name_item = chunk.get(1).map(|c| &**c).ok_or_else(|| {
                 CaseError::at(&chunk[0].loc, "expected a patch name after the patch type")
             })?;
             let name = name_item.as_word().ok_or_else(|| {
@@ -760,7 +761,7 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
                     format!("expected a patch name, found {}", name_item.describe()),
                 )
             })?;
-            let faces_item = chunk.get(2).copied().ok_or_else(|| {
+            let faces_item = chunk.get(2).map(|c| &**c).ok_or_else(|| {
                 CaseError::at(
                     &name_item.loc,
                     format!("expected the faces of patch '{name}' after its name"),

@@ -78,7 +78,11 @@ pub(crate) fn choice(
 /// An error at the value of `keyword` (which must exist).
 pub(crate) fn at_value(dict: &Dict, keyword: &str, message: String) -> CaseError {
     match dict.peek(keyword) {
-        Some(e) => CaseError::at(e.value_loc(), message),
+        // At the value itself, past a dimension set (`nu [0 2 -1 0 0 0 0] -0.01;`).
+        Some(e) => match single_token(e, "a value") {
+            Ok(item) => CaseError::at(&item.loc, message),
+            Err(_) => CaseError::at(e.value_loc(), message),
+        },
         None => CaseError::at(&dict.loc, message),
     }
 }

@@ -32,7 +32,7 @@ impl CaseError {
             line,
             col,
             message: one_line(message.into()),
-            source_line: Some(loc.file.line_text(line).to_string()),
+            source_line: Some(loc.file.line_text(line)),
         }
     }
 

@@ -6,7 +6,7 @@ use std::path::Path;
 use super::block_mesh::{BlockMesh, Patch, PatchType};
 use super::dictionary::{single_token, Dict, Entry, EntryBody};
 use super::error::CaseError;
-use super::value::Item;
+use super::value::{Item, Value};
 
 /// A field's cell values: one value for all cells, or one per cell in the grid's x-fastest
 /// order.
@@ -159,8 +159,14 @@ impl Fields {
         let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir)).map_err(hint)?;
         let p_dict = Dict::read(&dir.join("p"), Some(case_dir)).map_err(hint)?;
         let cells = mesh.grid.cell_count();
-        let u = internal(&u_dict, cells, "a vector (x y z)", Item::as_vector)?;
-        let p = internal(&p_dict, cells, "a number", Item::as_scalar)?;
+        let u = internal(
+            &u_dict,
+            cells,
+            "a vector (x y z)",
+            Item::as_vector,
+            vector_row,
+        )?;
+        let p = internal(&p_dict, cells, "a number", Item::as_scalar, scalar_row)?;
         let u_bc = conditions(&u_dict, mesh, warnings)?
             .into_iter()
             .zip(&mesh.patches)
@@ -199,12 +205,14 @@ impl Fields {
     }
 }
 
-/// `internalField uniform X;` or `internalField nonuniform List<T> N(…);`.
+/// `internalField uniform X;` or `internalField nonuniform List<T> N(…);`. `convert` reads
+/// one value token, `from_row` one row of a packed list (and refuses a row of another width).
 fn internal<T>(
     d: &Dict,
     cells: usize,
     what: &str,
     convert: impl Fn(&Item) -> Option<T>,
+    from_row: impl Fn(&[f64]) -> Option<T>,
 ) -> Result<InternalField<T>, CaseError> {
     let entry = d.get_entry("internalField")?;
     let (kind, value) = uniform_or_not(entry)?;
@@ -241,10 +249,36 @@ fn internal<T>(
         ));
     }
     let mut values = Vec::with_capacity(cells);
+    if let Value::Numbers { width, data, .. } = &value.value {
+        // The common case, a packed list of the right width: no token per value.
+        for row in data.chunks_exact(*width) {
+            match from_row(row) {
+                Some(v) => values.push(v),
+                None => break,
+            }
+        }
+        if values.len() == cells {
+            return Ok(InternalField::Nonuniform(values));
+        }
+        values.clear();
+    }
     for item in list.iter() {
-        values.push(convert(item).ok_or_else(|| bad(item))?);
+        values.push(convert(&item).ok_or_else(|| bad(&item))?);
     }
     Ok(InternalField::Nonuniform(values))
+}
+
+/// A packed row of one number.
+fn scalar_row(row: &[f64]) -> Option<f64> {
+    match row {
+        [x] => Some(*x),
+        _ => None,
+    }
+}
+
+/// A packed row of three numbers.
+fn vector_row(row: &[f64]) -> Option<[f64; 3]> {
+    <[f64; 3]>::try_from(row).ok()
 }
 
 /// Splits `uniform X` / `nonuniform List<T> N(…)` into the keyword and the value token.
@@ -570,23 +604,61 @@ mod tests {
         let d = crate::case::parse_dict("internalField nonuniform List<scalar> 3(1 2 3);", "p")
             .unwrap();
         assert_eq!(
-            internal(&d, 3, "a number", Item::as_scalar).unwrap(),
+            internal(&d, 3, "a number", Item::as_scalar, scalar_row).unwrap(),
             InternalField::Nonuniform(vec![1.0, 2.0, 3.0])
         );
-        let e = internal(&d, 4, "a number", Item::as_scalar).unwrap_err();
+        let e = internal(&d, 4, "a number", Item::as_scalar, scalar_row).unwrap_err();
         assert!(e.message.contains("expected 4 values"), "{e}");
         let d =
             crate::case::parse_dict("internalField nonuniform List<scalar> 2 (1 2);", "p").unwrap();
         assert_eq!(
-            internal(&d, 2, "a number", Item::as_scalar).unwrap(),
+            internal(&d, 2, "a number", Item::as_scalar, scalar_row).unwrap(),
             InternalField::Nonuniform(vec![1.0, 2.0])
         );
         let d =
             crate::case::parse_dict("internalField nonuniform List<scalar> 3 (1 2);", "p").unwrap();
-        let e = internal(&d, 2, "a number", Item::as_scalar).unwrap_err();
+        let e = internal(&d, 2, "a number", Item::as_scalar, scalar_row).unwrap_err();
         assert_eq!((e.line, e.col), (1, 39), "{e}");
         let d = crate::case::parse_dict("internalField uniform (1 2 x);", "U").unwrap();
-        let e = internal(&d, 4, "a vector", Item::as_vector).unwrap_err();
+        let e = internal(&d, 4, "a vector", Item::as_vector, vector_row).unwrap_err();
         assert_eq!((e.line, e.col), (1, 23));
+    }
+
+    #[test]
+    fn errors_inside_long_fields_point_at_the_element() {
+        // A word at element 1000 of a scalar field.
+        let mut text = String::from("internalField nonuniform List<scalar>\n2000\n(\n");
+        for i in 0..2000 {
+            text.push_str(if i == 1000 { "abc\n" } else { "0.5\n" });
+        }
+        text.push_str(");\n");
+        let d = crate::case::parse_dict(&text, "p").unwrap();
+        let e = internal(&d, 2000, "a number", Item::as_scalar, scalar_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1004, 1), "{e}");
+        assert!(e.message.contains("found the word 'abc'"), "{e}");
+        // A packed list of the wrong width: the first row that does not fit, found again.
+        let mut text = String::from("internalField nonuniform List<vector> 3((0 0 0) (1 1 1)\n");
+        text.push_str("  (2 2));\n");
+        let d = crate::case::parse_dict(&text, "U").unwrap();
+        let e = internal(&d, 3, "a vector", Item::as_vector, vector_row).unwrap_err();
+        assert_eq!((e.line, e.col), (2, 3), "{e}");
+        let d = crate::case::parse_dict("internalField nonuniform 3(1 2\n 3);", "U").unwrap();
+        let e = internal(&d, 3, "a vector", Item::as_vector, vector_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 28), "{e}");
+        assert!(e.message.contains("found the integer 1"), "{e}");
+        let d =
+            crate::case::parse_dict("internalField nonuniform 2((1 2 3)\n (4 5 6));", "p").unwrap();
+        let e = internal(&d, 2, "a number", Item::as_scalar, scalar_row).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 28), "{e}");
+        // Packed and right: the values in order.
+        let d = crate::case::parse_dict(
+            "internalField nonuniform List<vector> 2((1 2 3) (4 5 6));",
+            "U",
+        )
+        .unwrap();
+        assert_eq!(
+            internal(&d, 2, "a vector", Item::as_vector, vector_row).unwrap(),
+            InternalField::Nonuniform(vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+        );
     }
 }

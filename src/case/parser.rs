@@ -34,6 +34,7 @@ use nom::IResult;
 use super::dictionary::{Dict, Directive, Entry, EntryBody, Key};
 use super::error::CaseError;
 use super::expression::{evaluate, Number};
+use super::packed;
 use super::source::{Location, SourceFile};
 use super::value::{Dimensions, Item, Value};
 
@@ -66,27 +67,53 @@ pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
 }
 
 fn parse_source(file: Arc<SourceFile>, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
+    parse_with(file, case_dir, true)
+}
+
+/// `pack`: whether numeric lists are read packed (off only to compare with the general path).
+fn parse_with(
+    file: Arc<SourceFile>,
+    case_dir: Option<&Path>,
+    pack: bool,
+) -> Result<Dict, CaseError> {
     let mut ctx = Ctx {
         stack: vec![Dict::new(String::new(), Location::new(&file, 0))],
         case_dir: case_dir.map(Path::to_path_buf),
         depth: 0,
         include_depth: 0,
         macro_tokens: 0,
+        pack,
     };
-    let src = Src { file: &file };
-    let rest = ctx.body(&src, &file.text, None)?;
+    let text = file.text();
+    let src = Src {
+        file: &file,
+        text: &text,
+    };
+    let rest = ctx.body(&src, &text, None)?;
     debug_assert!(rest.is_empty());
+    release_if_large(&file, text.len());
     Ok(ctx.stack.pop().expect("top-level dictionary"))
+}
+
+/// Files at least this long let their text go once parsed (a message reads them again).
+const RELEASE_BYTES: usize = 1 << 20;
+
+fn release_if_large(file: &SourceFile, len: usize) {
+    if len >= RELEASE_BYTES {
+        file.release_text();
+    }
 }
 
 /// The file being read.
 struct Src<'a> {
     file: &'a Arc<SourceFile>,
+    /// Its text, held for the whole read.
+    text: &'a str,
 }
 
 impl Src<'_> {
     fn loc(&self, rest: &str) -> Location {
-        Location::new(self.file, self.file.text.len() - rest.len())
+        Location::new(self.file, self.text.len() - rest.len())
     }
 
     fn err(&self, rest: &str, message: impl Into<String>) -> CaseError {
@@ -102,6 +129,7 @@ struct Ctx {
     depth: usize,
     include_depth: usize,
     macro_tokens: usize,
+    pack: bool,
 }
 
 // ----- lexemes (nom) --------------------------------------------------------------------------
@@ -399,8 +427,8 @@ impl Ctx {
         let one = |rest, value| Ok((rest, vec![Item::new(value, loc.clone())]));
         match c {
             '(' => {
-                let (rest, items) = self.list(src, i)?;
-                one(rest, Value::List(items))
+                let (rest, list) = self.list(src, i, None)?;
+                one(rest, list)
             }
             '{' => {
                 let name = scoped_name(&self.current().name, "{}");
@@ -559,24 +587,25 @@ impl Ctx {
             && (gap.is_empty()
                 || (gap.trim().is_empty()
                     && gap.contains('\n')
-                    && first_on_line(&src.file.text, count_loc.offset)));
+                    && first_on_line(src.text, count_loc.offset)));
         if count < 0 || !(list_follows || next.starts_with('{')) {
             return Ok(None);
         }
         let count = count as usize;
         if next.starts_with('(') {
-            let (rest, items) = self.list(src, next)?;
-            let found = element_count(&items);
+            let (rest, list) = self.list(src, next, Some(count))?;
+            let found = match &list {
+                Value::List(items) => element_count(items),
+                Value::Numbers { width, data, .. } => data.len() / width,
+                _ => unreachable!("a list reads as a list"),
+            };
             if found != count {
                 return Err(CaseError::at(
                     count_loc,
                     format!("expected {count} elements as the count says, found a list of {found}"),
                 ));
             }
-            return Ok(Some((
-                rest,
-                vec![Item::new(Value::List(items), count_loc.clone())],
-            )));
+            return Ok(Some((rest, vec![Item::new(list, count_loc.clone())])));
         }
         // `N{value}`: one token between the braces.
         let inner = self.skip(src, &next[1..])?;
@@ -598,8 +627,22 @@ impl Ctx {
         )))
     }
 
-    /// `( token* )`.
-    fn list<'a>(&mut self, src: &Src, i: &'a str) -> Result<(&'a str, Vec<Item>), CaseError> {
+    /// `( token* )`: packed when it holds numbers only ([`packed::scan`]; `count` is the
+    /// count written before it), else a [`Value::List`].
+    fn list<'a>(
+        &mut self,
+        src: &Src,
+        i: &'a str,
+        count: Option<usize>,
+    ) -> Result<(&'a str, Value), CaseError> {
+        if let Some(p) = packed::scan(i, count).filter(|_| self.pack) {
+            let value = Value::Numbers {
+                width: p.width,
+                data: p.data,
+                labels: p.labels,
+            };
+            return Ok((&i[p.end..], value));
+        }
         let open = src.loc(i);
         self.enter(src, i)?;
         let mut items = Vec::new();
@@ -609,7 +652,7 @@ impl Ctx {
             match i.chars().next() {
                 Some(')') => {
                     self.depth -= 1;
-                    return Ok((&i[1..], items));
+                    return Ok((&i[1..], Value::List(items)));
                 }
                 None | Some(';') | Some('}') => {
                     let found = i
@@ -815,7 +858,10 @@ impl Ctx {
                 let mut names = Vec::new();
                 for item in &items {
                     match &item.value {
-                        Value::List(list) => names.extend(list.iter().map(|x| x.to_string())),
+                        Value::List(_) | Value::Numbers { .. } => {
+                            let list = item.as_list().expect("a list");
+                            names.extend(list.iter().map(|x| x.to_string()))
+                        }
                         Value::Word(w) | Value::Str(w) => names.push(w.clone()),
                         _ => names.push(item.to_string()),
                     }
@@ -908,11 +954,18 @@ impl Ctx {
             ));
         }
         let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
-        let inner = Src { file: &file };
+        let text = file.text();
+        let inner = Src {
+            file: &file,
+            text: &text,
+        };
         let had_header = self.current().contains("FoamFile");
         self.include_depth += 1;
-        let result = self.body(&inner, &file.text, None);
+        let result = self.body(&inner, &text, None);
         self.include_depth -= 1;
+        if result.is_ok() {
+            release_if_large(&file, text.len());
+        }
         // An included file's own header is not an entry of the dictionary it lands in.
         if self.stack.len() > 1 && !had_header {
             self.current().remove("FoamFile");
@@ -1006,6 +1059,7 @@ fn count_items(items: &[Item]) -> usize {
         .iter()
         .map(|item| match &item.value {
             Value::List(inner) => 1 + count_items(inner),
+            Value::Numbers { data, .. } => 1 + data.len(),
             Value::Dict(d) => 1 + d.entries().iter().map(entry_size).sum::<usize>(),
             _ => 1,
         })
@@ -1096,6 +1150,167 @@ mod tests {
 
     fn err(text: &str) -> CaseError {
         parse_dict(text, "test").expect_err("expected a parse error")
+    }
+
+    /// `text` read without packing numeric lists: one token per number.
+    fn parse_general(text: &str) -> Dict {
+        let file = Arc::new(SourceFile::from_text(
+            PathBuf::new(),
+            "test".to_string(),
+            text.to_string(),
+        ));
+        parse_with(file, None, false).unwrap_or_else(|e| panic!("{}", e.report()))
+    }
+
+    /// SplitMix64 (Steele, Lea & Flood 2014): seeded numbers for the tests.
+    struct SplitMix(u64);
+
+    impl SplitMix {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        }
+
+        fn below(&mut self, n: u64) -> u64 {
+            self.next() % n
+        }
+    }
+
+    /// A number in one of the textual forms OpenFOAM files use.
+    fn random_number(rng: &mut SplitMix) -> String {
+        let digits = rng.below(100_000);
+        let small = rng.below(100);
+        let sign = ["", "-", "+"][rng.below(3) as usize];
+        match rng.below(8) {
+            0 => format!("{sign}{digits}"),
+            1 => format!("{sign}{small}.{digits}e-{}", rng.below(12)),
+            2 => format!("{sign}{small}E+{:02}", rng.below(20)),
+            3 => format!("{sign}.{digits}"),
+            4 => format!("{sign}{digits}."),
+            5 => format!("{sign}{small}.{digits}"),
+            6 => format!("{sign}{digits}e{}", rng.below(5)),
+            _ => format!("{sign}0"),
+        }
+    }
+
+    /// Blanks and comments between numbers.
+    fn random_gap(rng: &mut SplitMix) -> &'static str {
+        [" ", "  ", "\t", "\n", "\r\n", " // note\n", " /* (1 x) */ "][rng.below(7) as usize]
+    }
+
+    #[test]
+    fn packed_lists_read_as_the_general_path_does() {
+        let mut rng = SplitMix(20261123);
+        for width in [1usize, 3, 9] {
+            let n = 500;
+            let mut text = format!("a\n{n}\n(");
+            for _ in 0..n {
+                text.push_str(random_gap(&mut rng));
+                if width > 1 {
+                    text.push('(');
+                }
+                for c in 0..width {
+                    if c > 0 {
+                        text.push_str(random_gap(&mut rng));
+                    }
+                    text.push_str(&random_number(&mut rng));
+                }
+                if width > 1 {
+                    text.push(')');
+                }
+            }
+            text.push_str("\n);\nb (1 2 3);\n");
+            let packed = parse(&text);
+            let general = parse_general(&text);
+            let p = &packed.get_tokens("a").unwrap()[0];
+            let g = &general.get_tokens("a").unwrap()[0];
+            assert!(
+                matches!(p.value, Value::Numbers { width: w, .. } if w == width),
+                "{width}: {}",
+                &text[..200]
+            );
+            assert!(matches!(g.value, Value::List(_)));
+            assert_eq!(p.to_string(), g.to_string());
+            let (pl, gl) = (p.as_list().unwrap(), g.as_list().unwrap());
+            assert_eq!(pl.len(), n);
+            assert_eq!(gl.len(), n);
+            for i in 0..n {
+                let (pi, gi) = (pl.get(i).unwrap(), gl.get(i).unwrap());
+                assert_eq!(pi.to_string(), gi.to_string(), "element {i}");
+                assert_eq!(pi.loc.line_col(), gi.loc.line_col(), "element {i}");
+                let (pn, gn) = (pl.numbers(i).unwrap(), gl.numbers(i).unwrap());
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&pn), bits(&gn), "element {i}");
+                if width == 1 {
+                    assert_eq!(pi.as_label(), gi.as_label(), "element {i}");
+                } else {
+                    let (pr, gr) = (pi.as_list().unwrap(), gi.as_list().unwrap());
+                    for c in 0..width {
+                        let (pc, gc) = (pr.get(c).unwrap(), gr.get(c).unwrap());
+                        assert_eq!(pc.as_label(), gc.as_label(), "element {i}.{c}");
+                        assert_eq!(pc.loc.line_col(), gc.loc.line_col(), "element {i}.{c}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn errors_in_and_after_numeric_lists_name_the_place() {
+        // A word among numbers: the list is read by the general grammar, and a typed read
+        // points at the word.
+        let mut text = String::from("a (\n");
+        for i in 0..2000 {
+            text.push_str(if i == 1000 { "abc\n" } else { "1.5 2\n" });
+        }
+        text.push_str(");\n");
+        let d = parse(&text);
+        let list = d.get_tokens("a").unwrap()[0].as_list().unwrap();
+        let bad = (0..list.len())
+            .map(|i| list.get(i).unwrap())
+            .find(|x| x.as_scalar().is_none())
+            .unwrap();
+        assert_eq!(bad.loc.line_col(), (1002, 1));
+        // A missing `)`: at the `;`, naming where the list opened.
+        let text = format!("x 1;\nb 3 ( 1 2\n   3 {};\n", "4 ".repeat(10));
+        let e = err(&text);
+        assert_eq!((e.line, e.col), (3, 26), "{e}");
+        assert!(e.message.contains("opened at line 2 column 5"), "{e}");
+        // A count that disagrees with a packed list.
+        let e = err("b 3(1 2);");
+        assert_eq!((e.line, e.col), (1, 3), "{e}");
+        assert!(e.message.contains("expected 3 elements"), "{e}");
+    }
+
+    #[test]
+    fn a_released_text_is_read_again_for_messages() {
+        let dir = std::env::temp_dir().join(format!("fsim-parser-release-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big");
+        let rows = (RELEASE_BYTES / 20) + 10;
+        let mut text = String::from("a (\n");
+        for i in 0..rows {
+            text.push_str(&format!("({i} 0.5 -1e-3)\n"));
+        }
+        text.push_str(");\nb abc;\n");
+        std::fs::write(&path, &text).unwrap();
+        let d = read_dict_file(&path, Some(&dir)).unwrap();
+        let e = d.get_scalar("b").unwrap_err();
+        assert_eq!((e.line, e.col), (rows + 3, 3), "{e}");
+        assert_eq!(
+            e.excerpt().unwrap().lines().nth(2).unwrap().trim_end(),
+            format!("{} | b abc;", rows + 3)
+        );
+        let list = d.get_tokens("a").unwrap()[0].as_list().unwrap();
+        let row = list.get(rows - 1).unwrap();
+        assert_eq!(row.loc.line_col(), (rows + 1, 1));
+        let last = row.as_list().unwrap().get(2).unwrap();
+        let col = format!("({} 0.5 ", rows - 1).len() + 1;
+        assert_eq!(last.loc.line_col(), (rows + 1, col));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

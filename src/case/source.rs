@@ -1,11 +1,14 @@
 //! Source files as read from disk (plain or gzip) and positions inside them.
 //!
 //! Every parsed token keeps a [`Location`]: the shared file plus a byte offset. Line and
-//! column are computed only when an error is reported, by a binary search in the line starts.
+//! column are computed only when an error is reported, from line starts found on first need.
+//! A large file's text is let go once it is parsed ([`SourceFile::release_text`]), so that a
+//! 90 MB field does not stay in memory beside its numbers; a message that needs it reads the
+//! file again.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use super::error::CaseError;
 
@@ -19,27 +22,44 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// Path as shown to the user: relative to the case directory when inside it.
     pub display: String,
-    /// The whole text (decompressed).
-    pub text: String,
-    /// Byte offset of the start of every line.
-    line_starts: Vec<usize>,
+    /// The whole text (decompressed); `None` once released.
+    text: Mutex<Option<Arc<String>>>,
+    /// Byte offset of the start of every line, found on first need.
+    line_starts: OnceLock<Vec<usize>>,
 }
 
 impl SourceFile {
     /// A source held in memory, shown as `display` in messages.
     pub fn from_text(path: PathBuf, display: String, text: String) -> Self {
-        let mut line_starts = vec![0];
-        line_starts.extend(
-            text.bytes()
-                .enumerate()
-                .filter(|&(_, b)| b == b'\n')
-                .map(|(i, _)| i + 1),
-        );
         SourceFile {
             path,
             display,
-            text,
-            line_starts,
+            text: Mutex::new(Some(Arc::new(text))),
+            line_starts: OnceLock::new(),
+        }
+    }
+
+    /// The whole text, read from disk again when it was released (empty when that fails,
+    /// so that a message still comes out without its source line).
+    pub fn text(&self) -> Arc<String> {
+        let mut slot = self.text.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(text) = slot.as_ref() {
+            return text.clone();
+        }
+        let text = Arc::new(
+            read_text(&self.path, &self.display)
+                .map(|(text, _)| text)
+                .unwrap_or_default(),
+        );
+        *slot = Some(text.clone());
+        text
+    }
+
+    /// Lets the text go (it is read again if a message needs it). Only a file read from disk
+    /// can let it go.
+    pub fn release_text(&self) {
+        if !self.path.as_os_str().is_empty() {
+            *self.text.lock().unwrap_or_else(|e| e.into_inner()) = None;
         }
     }
 
@@ -57,30 +77,9 @@ impl SourceFile {
             }
         }
         let display = display_path(&path, case_dir);
-        let bytes = std::fs::read(&path).map_err(|e| {
-            let reason = match e.kind() {
-                std::io::ErrorKind::NotFound => "file not found".to_string(),
-                _ => format!("cannot read the file: {e}"),
-            };
-            CaseError::in_file(display.clone(), reason)
-        })?;
-        let gzipped = path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&GZIP_MAGIC);
-        let bytes = if gzipped {
-            let mut out = Vec::new();
-            flate2::read::MultiGzDecoder::new(&bytes[..])
-                .read_to_end(&mut out)
-                .map_err(|e| {
-                    CaseError::in_file(display.clone(), format!("cannot decompress gzip data: {e}"))
-                })?;
-            out
-        } else {
-            bytes
-        };
-        match String::from_utf8(bytes) {
-            Ok(text) => Ok(SourceFile::from_text(path, display, text)),
-            Err(e) => {
-                let valid = e.utf8_error().valid_up_to();
-                let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+        match read_text(&path, &display)? {
+            (text, None) => Ok(SourceFile::from_text(path, display, text)),
+            (text, Some(valid)) => {
                 let file = Arc::new(SourceFile::from_text(path, display, text));
                 // The lossy text keeps every byte before the first invalid one in place.
                 Err(CaseError::at(
@@ -91,31 +90,78 @@ impl SourceFile {
         }
     }
 
+    fn line_starts(&self, text: &str) -> &[usize] {
+        self.line_starts.get_or_init(|| {
+            let mut starts = vec![0];
+            starts.extend(
+                text.bytes()
+                    .enumerate()
+                    .filter(|&(_, b)| b == b'\n')
+                    .map(|(i, _)| i + 1),
+            );
+            starts
+        })
+    }
+
     /// 1-based line and column (in characters) of a byte offset.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
-        let offset = offset.min(self.text.len());
-        let line = self.line_starts.partition_point(|&s| s <= offset) - 1;
-        let start = self.line_starts[line];
-        let col = self
-            .text
+        let text = self.text();
+        let offset = offset.min(text.len());
+        let line_starts = self.line_starts(&text);
+        let line = line_starts.partition_point(|&s| s <= offset) - 1;
+        let start = line_starts[line];
+        let col = text
             .get(start..offset)
             .map_or(offset - start, |s| s.chars().count());
         (line + 1, col + 1)
     }
 
     /// The text of a 1-based line, without its line break.
-    pub fn line_text(&self, line: usize) -> &str {
-        let Some(&start) = self.line_starts.get(line.wrapping_sub(1)) else {
-            return "";
+    pub fn line_text(&self, line: usize) -> String {
+        let text = self.text();
+        let line_starts = self.line_starts(&text);
+        let Some(&start) = line_starts.get(line.wrapping_sub(1)) else {
+            return String::new();
         };
-        let end = self
-            .line_starts
-            .get(line)
-            .map_or(self.text.len(), |&next| next - 1);
-        self.text
-            .get(start..end)
+        let end = line_starts.get(line).map_or(text.len(), |&next| next - 1);
+        text.get(start..end)
             .unwrap_or("")
             .trim_end_matches('\r')
+            .to_string()
+    }
+}
+
+/// A file's text, decompressed when gzipped, and the offset of the first byte that is not
+/// UTF-8 (the text is then lossy).
+fn read_text(path: &Path, display: &str) -> Result<(String, Option<usize>), CaseError> {
+    let bytes = std::fs::read(path).map_err(|e| {
+        let reason = match e.kind() {
+            std::io::ErrorKind::NotFound => "file not found".to_string(),
+            _ => format!("cannot read the file: {e}"),
+        };
+        CaseError::in_file(display, reason)
+    })?;
+    let gzipped = path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&GZIP_MAGIC);
+    let bytes = if gzipped {
+        let mut out = Vec::new();
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .read_to_end(&mut out)
+            .map_err(|e| {
+                CaseError::in_file(display, format!("cannot decompress gzip data: {e}"))
+            })?;
+        out
+    } else {
+        bytes
+    };
+    match String::from_utf8(bytes) {
+        Ok(text) => Ok((text, None)),
+        Err(e) => {
+            let valid = e.utf8_error().valid_up_to();
+            Ok((
+                String::from_utf8_lossy(e.as_bytes()).into_owned(),
+                Some(valid),
+            ))
+        }
     }
 }
 
@@ -123,8 +169,20 @@ impl SourceFile {
 #[derive(Clone, Debug)]
 pub struct Location {
     pub file: Arc<SourceFile>,
-    /// Byte offset into the file's text.
+    /// Byte offset into the file's text; for an element of a packed number list, the list's.
     pub offset: usize,
+    /// Which element of the packed list at `offset` this is, when it is one.
+    pub element: Option<Element>,
+}
+
+/// An element of a packed number list ([`super::Value::Numbers`]): its position is found
+/// again by rescanning the list, so that the list needs one [`Location`] only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Element {
+    /// The element: a number, or a `( … )` tuple.
+    pub index: usize,
+    /// The number inside that tuple.
+    pub component: Option<usize>,
 }
 
 impl Location {
@@ -132,12 +190,41 @@ impl Location {
         Location {
             file: file.clone(),
             offset,
+            element: None,
+        }
+    }
+
+    /// Where element `i` of the list this location starts is: a packed list's element, or
+    /// the number `i` of such an element.
+    pub fn child(&self, i: usize) -> Location {
+        let element = match self.element {
+            None => Element {
+                index: i,
+                component: None,
+            },
+            Some(Element { index, .. }) => Element {
+                index,
+                component: Some(i),
+            },
+        };
+        Location {
+            file: self.file.clone(),
+            offset: self.offset,
+            element: Some(element),
+        }
+    }
+
+    /// The byte offset this location names, rescanning a packed list for an element.
+    pub fn resolved_offset(&self) -> usize {
+        match self.element {
+            None => self.offset,
+            Some(e) => super::packed::element_offset(&self.file.text(), self.offset, e),
         }
     }
 
     /// 1-based line and column.
     pub fn line_col(&self) -> (usize, usize) {
-        self.file.line_col(self.offset)
+        self.file.line_col(self.resolved_offset())
     }
 
     /// `file:line:col`, for messages that point at a second place.
@@ -188,7 +275,7 @@ mod tests {
         std::fs::write(&path, enc.finish().unwrap()).unwrap();
         let f = SourceFile::read(&path, Some(&dir)).unwrap();
         std::fs::remove_dir_all(&dir).unwrap();
-        assert_eq!(f.text, "a 1;\n");
+        assert_eq!(f.text().as_str(), "a 1;\n");
         assert_eq!(f.display, "positions");
     }
 }

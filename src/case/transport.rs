@@ -99,5 +99,13 @@ mod tests {
         let e = Transport::from_dict(&d).unwrap_err();
         assert_eq!((e.line, e.col), (3, 6));
         assert!(e.message.contains("positive kinematic viscosity"));
+        // Past the dimension set, in both the current and the old (`nu nu [..] x`) form.
+        let d = parse_dict("nu [0 2 -1 0 0 0 0] -0.01;", "t").unwrap();
+        let e = Transport::from_dict(&d).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 21), "{e}");
+        let d = parse_dict("rho [1 -3 0 0 0 0 0] 0;\nnu nu [0 2 -1 0 0 0 0] 1;", "t").unwrap();
+        let e = Transport::from_dict(&d).unwrap_err();
+        assert_eq!((e.line, e.col), (1, 22), "{e}");
+        assert!(e.message.contains("positive density"), "{e}");
     }
 }

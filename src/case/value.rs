@@ -2,8 +2,12 @@
 //!
 //! `internalField uniform (0 0 0);` is the stream `[Word("uniform"), List([0, 0, 0])]`.
 //! Every token keeps the [`Location`] it was read at (for a macro, where the macro's value was
-//! written), so that a type error can point at it.
+//! written), so that a type error can point at it. A list of plain numbers or of equal-width
+//! number tuples (a field of a million vectors) is held packed, [`Value::Numbers`]: one
+//! `f64` per number and one [`Location`] for the whole list; an element's own position is
+//! found again by rescanning the text when a message needs it.
 
+use std::borrow::Cow;
 use std::fmt;
 
 use super::dictionary::Dict;
@@ -29,6 +33,15 @@ pub enum Value {
     Scalar(f64),
     /// `( … )`, plain or count-prefixed (`3(…)`: the count is checked and dropped).
     List(Vec<Item>),
+    /// A list whose elements are all numbers (`width` 1) or all `( … )` tuples of `width`
+    /// numbers (3 for vectors), packed row by row. `labels` has bit k set when number k was
+    /// written as a label (no `.`, no exponent), so that elements read back exactly as the
+    /// general [`Value::List`] would give them.
+    Numbers {
+        width: usize,
+        data: Vec<f64>,
+        labels: Vec<u64>,
+    },
     /// `N{value}`: `count` copies of one value, kept unexpanded.
     UniformList(usize, Box<Item>),
     /// `[0 1 -1 0 0 0 0]` or a named form such as `[m/s]`.
@@ -55,6 +68,27 @@ pub enum Dimensions {
 pub enum ListView<'a> {
     Items(&'a [Item]),
     Repeat(usize, &'a Item),
+    /// A [`Value::Numbers`] list read at `loc`: an element is built when asked for.
+    Packed {
+        width: usize,
+        data: &'a [f64],
+        labels: &'a [u64],
+        loc: &'a Location,
+    },
+}
+
+/// Whether bit `k` of a label bit set is on.
+pub fn label_bit(labels: &[u64], k: usize) -> bool {
+    labels.get(k / 64).is_some_and(|w| w >> (k % 64) & 1 == 1)
+}
+
+/// The token for number `k` of a packed list.
+fn packed_number(data: &[f64], labels: &[u64], k: usize) -> Value {
+    if label_bit(labels, k) {
+        Value::Label(data[k] as i64)
+    } else {
+        Value::Scalar(data[k])
+    }
 }
 
 impl<'a> ListView<'a> {
@@ -62,6 +96,7 @@ impl<'a> ListView<'a> {
         match self {
             ListView::Items(items) => items.len(),
             ListView::Repeat(n, _) => *n,
+            ListView::Packed { width, data, .. } => data.len() / width,
         }
     }
 
@@ -69,14 +104,62 @@ impl<'a> ListView<'a> {
         self.len() == 0
     }
 
-    pub fn get(&self, i: usize) -> Option<&'a Item> {
+    /// Element `i`: borrowed from the list, or built for a packed one (a number, or a
+    /// packed tuple), located at its place in the text.
+    pub fn get(&self, i: usize) -> Option<Cow<'a, Item>> {
         match *self {
-            ListView::Items(items) => items.get(i),
-            ListView::Repeat(n, item) => (i < n).then_some(item),
+            ListView::Items(items) => items.get(i).map(Cow::Borrowed),
+            ListView::Repeat(n, item) => (i < n).then_some(Cow::Borrowed(item)),
+            ListView::Packed {
+                width,
+                data,
+                labels,
+                loc,
+            } => {
+                if i >= data.len() / width {
+                    return None;
+                }
+                let value = if width == 1 {
+                    packed_number(data, labels, i)
+                } else {
+                    let row = i * width..(i + 1) * width;
+                    let mut row_labels = vec![0u64; width.div_ceil(64)];
+                    for (c, k) in row.clone().enumerate() {
+                        if label_bit(labels, k) {
+                            row_labels[c / 64] |= 1 << (c % 64);
+                        }
+                    }
+                    Value::Numbers {
+                        width: 1,
+                        data: data[row].to_vec(),
+                        labels: row_labels,
+                    }
+                };
+                Some(Cow::Owned(Item::new(value, loc.child(i))))
+            }
         }
     }
 
-    pub fn iter(&self) -> impl Iterator<Item = &'a Item> + 'a {
+    /// The numbers of element `i` when it is a number or a tuple of numbers, without building
+    /// a token: the fast way through a packed list.
+    pub fn numbers(&self, i: usize) -> Option<Cow<'a, [f64]>> {
+        match *self {
+            ListView::Packed { width, data, .. } => {
+                data.get(i * width..(i + 1) * width).map(Cow::Borrowed)
+            }
+            _ => {
+                let item = self.get(i)?;
+                if let Some(x) = item.as_scalar() {
+                    return Some(Cow::Owned(vec![x]));
+                }
+                let list = item.as_list()?;
+                let row: Option<Vec<f64>> = list.iter().map(|x| x.as_scalar()).collect();
+                row.map(Cow::Owned)
+            }
+        }
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = Cow<'a, Item>> + 'a {
         let view = *self;
         (0..view.len()).map(move |i| view.get(i).expect("index below len"))
     }
@@ -117,12 +200,35 @@ impl Item {
         match &self.value {
             Value::List(items) => Some(ListView::Items(items)),
             Value::UniformList(n, item) => Some(ListView::Repeat(*n, item)),
+            Value::Numbers {
+                width,
+                data,
+                labels,
+            } => Some(ListView::Packed {
+                width: *width,
+                data,
+                labels,
+                loc: &self.loc,
+            }),
+            _ => None,
+        }
+    }
+
+    /// A packed number list as `(width, numbers)`, row by row: the way to read a large field
+    /// or position list without a token per number (`None` for any other token, including a
+    /// list the parser could not pack; [`ListView::numbers`] reads those row by row).
+    pub fn as_numbers(&self) -> Option<(usize, &[f64])> {
+        match &self.value {
+            Value::Numbers { width, data, .. } => Some((*width, data)),
             _ => None,
         }
     }
 
     /// A list of exactly three numbers.
     pub fn as_vector(&self) -> Option<[f64; 3]> {
+        if let Value::Numbers { width: 1, data, .. } = &self.value {
+            return <[f64; 3]>::try_from(data.as_slice()).ok();
+        }
         let list = self.as_list()?;
         if list.len() != 3 {
             return None;
@@ -159,6 +265,9 @@ impl Item {
             Value::Label(n) => format!("the integer {n}"),
             Value::Scalar(x) => format!("the number {x}"),
             Value::List(items) => format!("a list of {} elements", items.len()),
+            Value::Numbers { width, data, .. } => {
+                format!("a list of {} elements", data.len() / width)
+            }
             Value::UniformList(n, _) => format!("a uniform list of {n} elements"),
             Value::Dimensions(_) => "a dimension set".to_string(),
             Value::Dict(_) => "a dictionary".to_string(),
@@ -183,6 +292,34 @@ impl fmt::Display for Item {
                         write!(f, " ")?;
                     }
                     write!(f, "{item}")?;
+                }
+                write!(f, ")")
+            }
+            Value::Numbers {
+                width,
+                data,
+                labels,
+            } => {
+                write!(f, "(")?;
+                for k in 0..data.len() {
+                    let sep = match (k % width, *width > 1) {
+                        (0, _) if k == 0 => "",
+                        (0, true) => ") ",
+                        (0, false) => " ",
+                        _ => " ",
+                    };
+                    let open = if *width > 1 && k % width == 0 {
+                        "("
+                    } else {
+                        ""
+                    };
+                    match packed_number(data, labels, k) {
+                        Value::Label(n) => write!(f, "{sep}{open}{n}")?,
+                        _ => write!(f, "{sep}{open}{:?}", data[k])?,
+                    }
+                }
+                if *width > 1 && !data.is_empty() {
+                    write!(f, ")")?;
                 }
                 write!(f, ")")
             }
