@@ -88,6 +88,9 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
         None
     };
     let mut sim = Simulation::new(case, restart.as_ref())?;
+    for note in sim.particles.iter().flat_map(|p| &p.notes) {
+        eprintln!("fsimFoam: note: {note}");
+    }
     check_first_step(&mut sim)?;
     if options.dry_run {
         print_plan(case, &mut sim, threads);

@@ -48,6 +48,8 @@ pub struct Particles {
     pub wall_model: String,
     /// Collision sub-steps of the last fluid step.
     pub substeps: usize,
+    /// Notes from reading the cloud (ignored keywords, settings without effect).
+    pub notes: Vec<String>,
 }
 
 /// What the cloud did in one fluid step, for the log and the monitor.
@@ -143,6 +145,7 @@ impl Simulation {
                         pair_model: cloud.pair_model_name,
                         wall_model: cloud.wall_model_name,
                         substeps: 0,
+                        notes: cloud.warnings,
                     });
                 }
             }
@@ -313,6 +316,7 @@ fn restore_particles(
         pair_model: cloud.pair_model_name,
         wall_model: cloud.wall_model_name,
         substeps: 0,
+        notes: cloud.warnings,
     })
 }
 
