@@ -7,13 +7,16 @@ use std::path::Path;
 use fsim::case::{Case, Cloud};
 use fsim::particles::{Dem, FaceCondition, PairModel, TangentialRule, WallModel};
 
-const GOLDSCHMIDT: &str = "/usr/share/doc/openfoam-examples/examples/lagrangian/DPMFoam/Goldschmidt";
+const GOLDSCHMIDT: &str =
+    "/usr/share/doc/openfoam-examples/examples/lagrangian/DPMFoam/Goldschmidt";
 
 #[test]
 fn goldschmidt_cloud_maps_onto_the_engine() {
     let dir = Path::new(GOLDSCHMIDT);
     if !dir.is_dir() {
-        println!("note: {GOLDSCHMIDT} is absent; install Debian's openfoam-examples to run this test");
+        println!(
+            "note: {GOLDSCHMIDT} is absent; install Debian's openfoam-examples to run this test"
+        );
         return;
     }
     let case = Case::load(dir).unwrap_or_else(|e| panic!("{}", e.report()));
@@ -93,7 +96,11 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
         .iter()
         .any(|w| w.contains("ignored keyword 'constantProperties.alphaMax'")));
     // the particles are a valid engine input: no overlaps, all inside (3 mm spacing, d 2.5 mm)
-    let dem = Dem::new(cloud.config.clone(), cloud.domain.clone(), cloud.particles.clone())
-        .unwrap_or_else(|e| panic!("{}", cloud.locate(&e)));
+    let dem = Dem::new(
+        cloud.config.clone(),
+        cloud.domain.clone(),
+        cloud.particles.clone(),
+    )
+    .unwrap_or_else(|e| panic!("{}", cloud.locate(&e)));
     assert_eq!(dem.max_overlap_ratio(), 0.0);
 }

@@ -197,7 +197,10 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
     let text = fs::read_to_string(&props).unwrap();
     fs::write(
         &props,
-        text.replace("pairModel pairLinearSpringDashpot;", "pairModel hertzMindlin;"),
+        text.replace(
+            "pairModel pairLinearSpringDashpot;",
+            "pairModel hertzMindlin;",
+        ),
     )
     .unwrap();
     let err = rejected(&case);
@@ -216,8 +219,14 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
     let props = case.join("constant/kinematicCloudProperties");
     let text = fs::read_to_string(&props)
         .unwrap()
-        .replace("pairModel pairLinearSpringDashpot;", "pairModel pairSpringSliderDashpot;")
-        .replace("rho0            2500;", "rho0 2500; youngsModulus 1e7; poissonsRatio 0.3;")
+        .replace(
+            "pairModel pairLinearSpringDashpot;",
+            "pairModel pairSpringSliderDashpot;",
+        )
+        .replace(
+            "rho0            2500;",
+            "rho0 2500; youngsModulus 1e7; poissonsRatio 0.3;",
+        )
         .replace(
             "wallModel wallLinearSpringDashpot;",
             "pairSpringSliderDashpotCoeffs { alpha 0.1; b 1.5; mu 0.3; \
@@ -234,9 +243,10 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
     // a particle force that fsim does not implement
     let case = copy_tutorial("particleSettling", &scratch.0, "force");
     let props = case.join("constant/kinematicCloudProperties");
-    let text = fs::read_to_string(&props)
-        .unwrap()
-        .replace("        gravity;", "        gravity;\n        virtualMass { Cvm 0.5; }");
+    let text = fs::read_to_string(&props).unwrap().replace(
+        "        gravity;",
+        "        gravity;\n        virtualMass { Cvm 0.5; }",
+    );
     fs::write(&props, text).unwrap();
     let err = rejected(&case);
     assert!(

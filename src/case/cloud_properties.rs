@@ -48,8 +48,8 @@ use super::error::CaseError;
 use super::source::Location;
 use super::value::{Item, Value};
 use crate::particles::{
-    random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, FaceCondition,
-    PairModel, ParticleState, SplitMix64, TangentialRule, WallModel,
+    random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, FaceCondition, PairModel,
+    ParticleState, SplitMix64, TangentialRule, WallModel,
 };
 
 /// Forces of `particleForces` fsim accepts; all but `gravity` act through the coupling.
@@ -204,9 +204,18 @@ impl Cloud {
         }
 
         for (keyword, what) in [
-            ("dispersionModel", "particle dispersion is not supported by fsim"),
-            ("heatTransferModel", "heat transfer is not supported by fsim"),
-            ("surfaceFilmModel", "surface films are not supported by fsim"),
+            (
+                "dispersionModel",
+                "particle dispersion is not supported by fsim",
+            ),
+            (
+                "heatTransferModel",
+                "heat transfer is not supported by fsim",
+            ),
+            (
+                "surfaceFilmModel",
+                "surface films are not supported by fsim",
+            ),
             (
                 "stochasticCollisionModel",
                 "stochastic collisions are not supported by fsim",
@@ -398,7 +407,13 @@ impl Cloud {
                 }
             } else {
                 let (lo, hi) = read_box(m)?;
-                let phi = scalar_in(m, "volumeFraction", None, |x| x > 0.0 && x < 1.0, "in (0, 1)")?;
+                let phi = scalar_in(
+                    m,
+                    "volumeFraction",
+                    None,
+                    |x| x > 0.0 && x < 1.0,
+                    "in (0, 1)",
+                )?;
                 let sizes = SizeDistribution::read(m)?;
                 let mut rng = SplitMix64::new(seed);
                 let volume = (0..3).map(|a| hi[a] - lo[a]).product::<f64>();
@@ -414,9 +429,8 @@ impl Cloud {
                 }
                 // largest first packs best
                 diameters.sort_by(|a, b| b.total_cmp(a));
-                let centres =
-                    random_packing_sizes(lo, hi, &diameters, phi, seed.wrapping_add(1))
-                        .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
+                let centres = random_packing_sizes(lo, hi, &diameters, phi, seed.wrapping_add(1))
+                    .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
                 for (x, d) in centres.into_iter().zip(diameters) {
                     let id = particles.len() as u64;
                     particles.push(id, x, d, rho0);
@@ -473,9 +487,10 @@ impl Cloud {
             | DemError::DuplicateId {
                 index_a, index_b, ..
             } => match (at(*index_a), at(*index_b)) {
-                (Some(a), Some(b)) => {
-                    CaseError::at(a, format!("{err} (the other one is defined at {})", place(b)))
-                }
+                (Some(a), Some(b)) => CaseError::at(
+                    a,
+                    format!("{err} (the other one is defined at {})", place(b)),
+                ),
                 _ => CaseError::plain(err.to_string()),
             },
             _ => CaseError::in_file(
@@ -538,7 +553,13 @@ fn linear(c: &Dict) -> Result<[f64; 6], CaseError> {
         scalar_in(c, "kt", Some(2.0 / 7.0 * kn), |x| x >= 0.0, ">= 0")?,
         scalar_in(c, "mu", None, |x| x >= 0.0, ">= 0")?,
         scalar_in(c, "tangentialDampingRatio", Some(0.5), |x| x >= 0.0, ">= 0")?,
-        scalar_in(c, "collisionResolutionSteps", Some(50.0), |x| x >= 1.0, ">= 1")?,
+        scalar_in(
+            c,
+            "collisionResolutionSteps",
+            Some(50.0),
+            |x| x >= 1.0,
+            ">= 1",
+        )?,
     ])
 }
 
@@ -555,7 +576,10 @@ fn read_box(m: &Dict) -> Result<([f64; 3], [f64; 3]), CaseError> {
     let [a, b] = tokens else {
         return Err(bad());
     };
-    let (lo, hi) = (a.as_vector().ok_or_else(bad)?, b.as_vector().ok_or_else(bad)?);
+    let (lo, hi) = (
+        a.as_vector().ok_or_else(bad)?,
+        b.as_vector().ok_or_else(bad)?,
+    );
     if (0..3).any(|k| hi[k] <= lo[k]) {
         return Err(CaseError::at(
             &b.loc,
@@ -569,8 +593,16 @@ fn read_box(m: &Dict) -> Result<([f64; 3], [f64; 3]), CaseError> {
 #[derive(Clone, Debug)]
 enum SizeDistribution {
     Fixed(f64),
-    Uniform { min: f64, max: f64 },
-    Normal { mean: f64, sd: f64, min: f64, max: f64 },
+    Uniform {
+        min: f64,
+        max: f64,
+    },
+    Normal {
+        mean: f64,
+        sd: f64,
+        min: f64,
+        max: f64,
+    },
 }
 
 impl SizeDistribution {
@@ -850,7 +882,13 @@ impl PatchInteraction {
 fn rebound_coefficients(d: &Dict) -> Result<(f64, f64), CaseError> {
     Ok((
         scalar_in(d, "e", Some(1.0), |x| (0.0..=1.0).contains(&x), "in [0, 1]")?,
-        scalar_in(d, "mu", Some(0.0), |x| (0.0..=1.0).contains(&x), "in [0, 1]")?,
+        scalar_in(
+            d,
+            "mu",
+            Some(0.0),
+            |x| (0.0..=1.0).contains(&x),
+            "in [0, 1]",
+        )?,
     ))
 }
 
@@ -890,7 +928,10 @@ mod tests {
         let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64;
         assert!((mean - 1e-3).abs() < 2e-6, "mean {mean}");
         let sd = var.sqrt();
-        assert!((sd / (2e-4 / std::f64::consts::SQRT_2) - 1.0).abs() < 0.01, "sd {sd}");
+        assert!(
+            (sd / (2e-4 / std::f64::consts::SQRT_2) - 1.0).abs() < 0.01,
+            "sd {sd}"
+        );
         // truncation at the mean keeps the upper half only: mean + sd √(2/π)
         let half = SizeDistribution::Normal {
             mean: 1e-3,

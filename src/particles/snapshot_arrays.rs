@@ -72,9 +72,7 @@ impl DemSnapshot {
     }
 
     /// Reads the arrays back through `get` (by name); the error names the bad array.
-    pub fn from_arrays<'a>(
-        get: impl Fn(&str) -> Option<&'a [f64]>,
-    ) -> Result<DemSnapshot, String> {
+    pub fn from_arrays<'a>(get: impl Fn(&str) -> Option<&'a [f64]>) -> Result<DemSnapshot, String> {
         let need = |name: &str| get(name).ok_or_else(|| format!("no array '{name}'"));
         let n = need("dem.diameter")?.len();
         let sized = |name: &str, per: usize| -> Result<&'a [f64], String> {
