@@ -134,6 +134,29 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
         String::from_utf8_lossy(&out.stdout)
     );
 
+    // collisionModel none: particles pass through each other, overlaps are allowed
+    let case = cloud_case(
+        &scratch,
+        "noCollision",
+        MANUAL,
+        &format!("{POSITIONS_HEAD}(0.0119 0.005 0.005)\n)\n"),
+    );
+    let props = case.join("constant/kinematicCloudProperties");
+    let text = fs::read_to_string(&props).unwrap();
+    fs::write(
+        &props,
+        text.replace("collisionModel pairCollision;", "collisionModel none;"),
+    )
+    .unwrap();
+    let out = fsim(&case, &["-dry-run"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        String::from_utf8_lossy(&out.stdout)
+            .contains("3 particles; pairModel none, wallModel none"),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+
     // overlapping initial particles: the second line is 1.9 mm from the first
     let case = cloud_case(
         &scratch,

@@ -20,7 +20,8 @@
 //!   the standard deviation. Random sizes come from SplitMix64 seeded with the injection's
 //!   `seed` (fsim's keyword, default 1), drawn in particle order; a random packing places
 //!   its spheres with the seed `seed + 1`.
-//! * `collisionModel pairCollision` with `pairModel pairSpringSliderDashpot` or fsim's
+//! * `collisionModel none` (particles pass through each other; walls must then be rebound
+//!   patches) or `collisionModel pairCollision` with `pairModel pairSpringSliderDashpot` or fsim's
 //!   `pairLinearSpringDashpot`, `wallModel wallSpringSliderDashpot` or fsim's
 //!   `wallLinearSpringDashpot` (coefficients `kn e kt mu tangentialDampingRatio
 //!   collisionResolutionSteps`; `kt` defaults to `2/7 kn`, the damping ratio to ½, the steps
@@ -232,101 +233,47 @@ impl Cloud {
 
         // ----- contact models -----
         let collision = choice(sub, "collisionModel", &["pairCollision", "none"], Some(1))?;
-        if collision == 1 {
-            return Err(at_value(
-                sub,
-                "collisionModel",
-                "collisionModel none is not supported by fsim yet: its particles always \
-                 collide (use pairCollision)"
-                    .to_string(),
-            ));
-        }
-        let coeffs = sub.get_dict("pairCollisionCoeffs")?;
-        coeffs.lookup("maxInteractionDistance");
-        coeffs.lookup("writeReferredParticleCloud");
-        coeffs.lookup("U");
-        let pair_kind = choice(
-            coeffs,
-            "pairModel",
-            &["pairSpringSliderDashpot", "pairLinearSpringDashpot"],
-            None,
-        )?;
-        let pair_model = if pair_kind == 0 {
-            let c = coeffs.get_dict("pairSpringSliderDashpotCoeffs")?;
-            let (alpha, b, mu, steps, rule) = spring_slider(c)?;
-            PairModel::SpringSliderDashpot {
-                youngs_modulus: scalar_in(props, "youngsModulus", None, |x| x > 0.0, "> 0")?,
-                poissons_ratio: scalar_in(
-                    props,
-                    "poissonsRatio",
-                    None,
-                    |x| x > -1.0 && x < 0.5,
-                    "in (-1, 0.5)",
-                )?,
-                alpha,
-                b,
-                mu,
-                collision_resolution_steps: steps,
-                tangential: rule,
-            }
+        // collisionModel none: particles pass through each other (the pair model is unused)
+        let (pair_model, wall_model, pair_model_name, wall_model_name) = if collision == 1 {
+            (
+                PairModel::linear(1.0, 1.0, 0.0),
+                WallModel::None,
+                "none".to_string(),
+                "none".to_string(),
+            )
         } else {
-            let c = coeffs.get_dict("pairLinearSpringDashpotCoeffs")?;
-            let l = linear(c)?;
-            PairModel::LinearSpringDashpot {
-                kn: l[0],
-                restitution: l[1],
-                kt: l[2],
-                mu: l[3],
-                tangential_damping_ratio: l[4],
-                collision_resolution_steps: l[5],
-            }
-        };
-        let wall_kind = choice(
-            coeffs,
-            "wallModel",
-            &["wallSpringSliderDashpot", "wallLinearSpringDashpot", "none"],
-            Some(2),
-        )?;
-        let wall_model = match wall_kind {
-            0 => {
-                let c = coeffs.get_dict("wallSpringSliderDashpotCoeffs")?;
+            let coeffs = sub.get_dict("pairCollisionCoeffs")?;
+            coeffs.lookup("maxInteractionDistance");
+            coeffs.lookup("writeReferredParticleCloud");
+            coeffs.lookup("U");
+            let pair_kind = choice(
+                coeffs,
+                "pairModel",
+                &["pairSpringSliderDashpot", "pairLinearSpringDashpot"],
+                None,
+            )?;
+            let pair_model = if pair_kind == 0 {
+                let c = coeffs.get_dict("pairSpringSliderDashpotCoeffs")?;
                 let (alpha, b, mu, steps, rule) = spring_slider(c)?;
-                let PairModel::SpringSliderDashpot {
-                    youngs_modulus: pe,
-                    poissons_ratio: pnu,
-                    ..
-                } = pair_model
-                else {
-                    return Err(at_value(
-                        coeffs,
-                        "wallModel",
-                        "wallSpringSliderDashpot needs the particle's youngsModulus and \
-                         poissonsRatio: use it with pairSpringSliderDashpot"
-                            .to_string(),
-                    ));
-                };
-                WallModel::SpringSliderDashpot {
-                    youngs_modulus: scalar_in(c, "youngsModulus", None, |x| x > 0.0, "> 0")?,
+                PairModel::SpringSliderDashpot {
+                    youngs_modulus: scalar_in(props, "youngsModulus", None, |x| x > 0.0, "> 0")?,
                     poissons_ratio: scalar_in(
-                        c,
+                        props,
                         "poissonsRatio",
                         None,
                         |x| x > -1.0 && x < 0.5,
                         "in (-1, 0.5)",
                     )?,
-                    particle_youngs_modulus: pe,
-                    particle_poissons_ratio: pnu,
                     alpha,
                     b,
                     mu,
                     collision_resolution_steps: steps,
                     tangential: rule,
                 }
-            }
-            1 => {
-                let c = coeffs.get_dict("wallLinearSpringDashpotCoeffs")?;
+            } else {
+                let c = coeffs.get_dict("pairLinearSpringDashpotCoeffs")?;
                 let l = linear(c)?;
-                WallModel::LinearSpringDashpot {
+                PairModel::LinearSpringDashpot {
                     kn: l[0],
                     restitution: l[1],
                     kt: l[2],
@@ -334,11 +281,67 @@ impl Cloud {
                     tangential_damping_ratio: l[4],
                     collision_resolution_steps: l[5],
                 }
-            }
-            _ => WallModel::None,
+            };
+            let wall_kind = choice(
+                coeffs,
+                "wallModel",
+                &["wallSpringSliderDashpot", "wallLinearSpringDashpot", "none"],
+                Some(2),
+            )?;
+            let wall_model = match wall_kind {
+                0 => {
+                    let c = coeffs.get_dict("wallSpringSliderDashpotCoeffs")?;
+                    let (alpha, b, mu, steps, rule) = spring_slider(c)?;
+                    let PairModel::SpringSliderDashpot {
+                        youngs_modulus: pe,
+                        poissons_ratio: pnu,
+                        ..
+                    } = pair_model
+                    else {
+                        return Err(at_value(
+                            coeffs,
+                            "wallModel",
+                            "wallSpringSliderDashpot needs the particle's youngsModulus and \
+                         poissonsRatio: use it with pairSpringSliderDashpot"
+                                .to_string(),
+                        ));
+                    };
+                    WallModel::SpringSliderDashpot {
+                        youngs_modulus: scalar_in(c, "youngsModulus", None, |x| x > 0.0, "> 0")?,
+                        poissons_ratio: scalar_in(
+                            c,
+                            "poissonsRatio",
+                            None,
+                            |x| x > -1.0 && x < 0.5,
+                            "in (-1, 0.5)",
+                        )?,
+                        particle_youngs_modulus: pe,
+                        particle_poissons_ratio: pnu,
+                        alpha,
+                        b,
+                        mu,
+                        collision_resolution_steps: steps,
+                        tangential: rule,
+                    }
+                }
+                1 => {
+                    let c = coeffs.get_dict("wallLinearSpringDashpotCoeffs")?;
+                    let l = linear(c)?;
+                    WallModel::LinearSpringDashpot {
+                        kn: l[0],
+                        restitution: l[1],
+                        kt: l[2],
+                        mu: l[3],
+                        tangential_damping_ratio: l[4],
+                        collision_resolution_steps: l[5],
+                    }
+                }
+                _ => WallModel::None,
+            };
+            let pair_model_name = coeffs.get_word("pairModel")?;
+            let wall_model_name = coeffs.get_word_or("wallModel", "none")?;
+            (pair_model, wall_model, pair_model_name, wall_model_name)
         };
-        let pair_model_name = coeffs.get_word("pairModel")?;
-        let wall_model_name = coeffs.get_word_or("wallModel", "none")?;
 
         // ----- faces -----
         let domain = domain_box(case, sub, wall_model != WallModel::None)?;
@@ -448,6 +451,7 @@ impl Cloud {
         let mut config = DemConfig::new(pair_model, wall_model);
         config.gravity = gravity;
         config.fluid_density = case.transport.rho;
+        config.pair_collisions = collision == 0;
 
         warnings.extend(ignored_keywords(dict));
         Ok(Some(Cloud {
