@@ -6,6 +6,8 @@
 //! while time remains:
 //!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
 //!     evolve the fluid                        (momentum predictor, pressure projection)
+//!     evolve the cloud                        (DEM collision sub-steps; model none: gravity
+//!                                              and buoyancy, no fluid forces)
 //!     check the solution                      (a diverged run stops, keeping its last time)
 //!     monitor, log
 //!     write the time directory when due       (whole or not at all)
@@ -15,9 +17,10 @@ use crate::case::Case;
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::output::{
-    write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, RESTART_FILE_NAME,
+    write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, PARTICLE_FILE_NAME,
+    RESTART_FILE_NAME,
 };
-use crate::simulation::{continues, Simulation, StepSizing};
+use crate::simulation::{continues, CloudReport, Simulation, StepSizing};
 use std::time::Instant;
 
 /// Columns of the per-step fluid monitor `postProcessing/fluid/<startTime>/fluid.dat`.
@@ -33,6 +36,19 @@ const FLUID_MONITOR_COLUMNS: [&str; 11] = [
     "drivingGradient",
     "stepWallTime",
     "step",
+];
+
+/// Columns of the per-step particle monitor `postProcessing/cloud/<startTime>/cloud.dat`.
+const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
+    "Time",
+    "particles",
+    "kineticEnergy",
+    "rotationalEnergy",
+    "Ux",
+    "Uy",
+    "Uz",
+    "maxOverlapOverD",
+    "subSteps",
 ];
 
 /// Runs `fsimFoam` with the given options.
@@ -72,6 +88,9 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
         None
     };
     let mut sim = Simulation::new(case, restart.as_ref())?;
+    for note in sim.particles.iter().flat_map(|p| &p.notes) {
+        eprintln!("fsimFoam: note: {note}");
+    }
     check_first_step(&mut sim)?;
     if options.dry_run {
         print_plan(case, &mut sim, threads);
@@ -87,6 +106,13 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
     let start_name = output.time_name(sim.time.time);
     let mut monitor = Monitor::create(&case.dir, "fluid", &start_name, &FLUID_MONITOR_COLUMNS)
         .map_err(output_error)?;
+    let mut cloud_monitor = match sim.particles {
+        Some(_) => Some(
+            Monitor::create(&case.dir, "cloud", &start_name, &CLOUD_MONITOR_COLUMNS)
+                .map_err(output_error)?,
+        ),
+        None => None,
+    };
     let mut log = Log::stdout();
     log.banner(&banner(case, &sim, threads))?;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
@@ -101,6 +127,7 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
         let report = sim.evolve_fluid(dt);
+        let cloud = sim.evolve_cloud(dt);
         let write_due = sim.time.advance(dt);
         let diagnostics = sim.check_health()?;
         let wall = clock.elapsed().as_secs_f64();
@@ -130,6 +157,22 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
                 sim.time.step as f64,
             ])
             .map_err(output_error)?;
+        if let (Some(c), Some(m)) = (&cloud, cloud_monitor.as_mut()) {
+            log_cloud(&mut log, c)?;
+            let [ux, uy, uz] = c.mean_velocity;
+            m.row(&[
+                sim.time.time,
+                c.count as f64,
+                c.kinetic_energy.0,
+                c.kinetic_energy.1,
+                ux,
+                uy,
+                uz,
+                c.max_overlap,
+                c.substeps as f64,
+            ])
+            .map_err(output_error)?;
+        }
         if write_due {
             write_time(&mut output, &mut sim)?;
         }
@@ -137,8 +180,22 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
         log.progress(sim.time.time, start, case.control.end_time);
     }
     monitor.flush().map_err(output_error)?;
+    if let Some(m) = cloud_monitor.as_mut() {
+        m.flush().map_err(output_error)?;
+    }
     log.end()?;
     Ok(())
+}
+
+/// The cloud's lines of the step log, in the manner of DPMFoam's.
+fn log_cloud(log: &mut Log<std::io::Stdout>, c: &CloudReport) -> std::io::Result<()> {
+    let [ux, uy, uz] = c.mean_velocity;
+    log.line(&format!(
+        "Cloud: {} particles, {} collision sub-steps\n    Linear kinetic energy = {:.6e}\n    \
+         Rotational kinetic energy = {:.6e}\n    Mean velocity = ({:.6e} {:.6e} {:.6e})\n    \
+         Max overlap / d = {:.4e}",
+        c.count, c.substeps, c.kinetic_energy.0, c.kinetic_energy.1, ux, uy, uz, c.max_overlap
+    ))
 }
 
 /// A fixed `deltaT` above the scheme's bound for the initial field is bad input (exit 2),
@@ -170,25 +227,38 @@ fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimE
         ],
     )
     .map_err(output_error)?;
+    sim.write_particles(&dir.file(PARTICLE_FILE_NAME))?;
     sim.write_restart(&dir.file(RESTART_FILE_NAME))?;
     output.commit(dir).map_err(output_error)?;
     Ok(())
 }
 
 fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
+    let mut extra = vec![
+        (
+            "Scheme".to_string(),
+            sim.fluid.settings().scheme.name().to_string(),
+        ),
+        ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
+    ];
+    if let Some(p) = &sim.particles {
+        extra.push((
+            "Particles".to_string(),
+            format!(
+                "{} (pairModel {}, wallModel {})",
+                p.dem.particles().len(),
+                p.pair_model,
+                p.wall_model
+            ),
+        ));
+    }
     Banner {
         exec: std::env::args().collect::<Vec<_>>().join(" "),
         case: case.dir.clone(),
         model: case.coupling.model.name().to_string(),
         threads,
         grid: sim.grid().clone(),
-        extra: vec![
-            (
-                "Scheme".to_string(),
-                sim.fluid.settings().scheme.name().to_string(),
-            ),
-            ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
-        ],
+        extra,
     }
 }
 
@@ -227,6 +297,19 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
     );
     let memory = sim.fluid.bytes_per_cell() * cells as f64;
     println!("Memory  : about {:.1} MB for the fluid", memory / 1e6);
+    if let Some(p) = &sim.particles {
+        let n = p.dem.particles().len();
+        let bytes = p.dem.memory_bytes() as f64;
+        println!(
+            "Cloud   : {n} particles; pairModel {}, wallModel {}; {} collision sub-steps per \
+             step now; memory about {:.1} MB ({:.0} bytes per particle)",
+            p.pair_model,
+            p.wall_model,
+            p.dem.substep_count(dt),
+            bytes / 1e6,
+            bytes / n.max(1) as f64
+        );
+    }
     // Throughput measured by tools/bench on 2 cores (README); per thread, RK3 step.
     let rate = 4.0e6 * threads as f64;
     println!(

@@ -1,18 +1,20 @@
 //! A case turned into a running simulation: the grid, the fluid with its boundary conditions
-//! and driving, the time axis, and (later) the particles and their coupling.
+//! and driving, the time axis, and the particles (with `model none`, a cloud that evolves
+//! beside the fluid, feeling gravity and the fluid's buoyancy only).
 //!
 //! Everything a case asks for is checked here, before the first step: a boundary condition
 //! the solver cannot honour, a time scheme it does not know, a fixed `deltaT` above the
 //! scheme's stability bound (paper eq. 3) all stop the run with exit code 2.
 
-use crate::case::{Case, CouplingModel, PatchType, PressureBc, StartFrom, VelocityBc};
+use crate::case::{Case, Cloud, CouplingModel, PatchType, PressureBc, StartFrom, VelocityBc};
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
     MeanVelocityForce, StepReport, TimeScheme,
 };
 use crate::grid::Grid;
-use crate::output::{RestartHeader, RestartState, TimeEntry};
+use crate::output::{ParticleFields, RestartHeader, RestartState, TimeEntry};
+use crate::particles::{Dem, DemSnapshot};
 use crate::time_control::TimeControl;
 
 /// How each step's size is chosen.
@@ -34,6 +36,32 @@ pub struct Simulation {
     pub model: CouplingModel,
     /// Fluid density, kg/m³ (the solver works with kinematic pressure p/ρ).
     pub rho: f64,
+    /// The particles, when the case has an active cloud.
+    pub particles: Option<Particles>,
+}
+
+/// The cloud of a run: the DEM engine and what the log says about it.
+pub struct Particles {
+    pub dem: Dem,
+    /// `pairModel` and `wallModel` as the case names them.
+    pub pair_model: String,
+    pub wall_model: String,
+    /// Collision sub-steps of the last fluid step.
+    pub substeps: usize,
+    /// Notes from reading the cloud (ignored keywords, settings without effect).
+    pub notes: Vec<String>,
+}
+
+/// What the cloud did in one fluid step, for the log and the monitor.
+#[derive(Clone, Copy, Debug)]
+pub struct CloudReport {
+    pub count: usize,
+    /// `(Σ ½ m v², Σ ½ I ω²)`, J.
+    pub kinetic_energy: (f64, f64),
+    pub mean_velocity: [f64; 3],
+    /// Largest overlap over the diameter.
+    pub max_overlap: f64,
+    pub substeps: usize,
 }
 
 impl Simulation {
@@ -92,10 +120,35 @@ impl Simulation {
             dt: control.delta_t,
             model: case.coupling.model,
             rho: case.transport.rho,
+            particles: None,
         };
+        let cloud = Cloud::from_case(case)?;
         match restart {
-            Some(entry) => sim.restore(&case.dir.join(&entry.name), write_control, control)?,
-            None => sim.set_initial_fields(case),
+            Some(entry) => {
+                let dir = case.dir.join(&entry.name);
+                let state = sim.restore(&dir, write_control, control)?;
+                if let Some(cloud) = cloud {
+                    sim.particles = Some(restore_particles(cloud, &state, &dir)?);
+                }
+            }
+            None => {
+                sim.set_initial_fields(case);
+                if let Some(cloud) = cloud {
+                    let dem = Dem::new(
+                        cloud.config.clone(),
+                        cloud.domain.clone(),
+                        cloud.particles.clone(),
+                    )
+                    .map_err(|e| cloud.locate(&e))?;
+                    sim.particles = Some(Particles {
+                        dem,
+                        pair_model: cloud.pair_model_name,
+                        wall_model: cloud.wall_model_name,
+                        substeps: 0,
+                        notes: cloud.warnings,
+                    });
+                }
+            }
         }
         Ok(sim)
     }
@@ -114,7 +167,7 @@ impl Simulation {
         time_dir: &std::path::Path,
         write_control: crate::case::WriteControl,
         control: &crate::case::ControlDict,
-    ) -> Result<(), FsimError> {
+    ) -> Result<RestartState, FsimError> {
         let path = time_dir.join(crate::output::RESTART_FILE_NAME);
         let state = RestartState::read(&path).map_err(|e| FsimError::input(e.to_string()))?;
         for name in FluidSolver::RESTART_NAMES {
@@ -134,7 +187,7 @@ impl Simulation {
             control.write_interval,
         );
         self.dt = header.delta_t;
-        Ok(())
+        Ok(state)
     }
 
     /// The grid of the fluid.
@@ -183,6 +236,40 @@ impl Simulation {
         report
     }
 
+    /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`
+    /// without particles.
+    pub fn evolve_cloud(&mut self, dt: f64) -> Option<CloudReport> {
+        let p = self.particles.as_mut()?;
+        p.substeps = p.dem.advance(dt);
+        Some(CloudReport {
+            count: p.dem.particles().len(),
+            kinetic_energy: p.dem.kinetic_energy(),
+            mean_velocity: p.dem.mean_velocity(),
+            max_overlap: p.dem.max_overlap_ratio(),
+            substeps: p.substeps,
+        })
+    }
+
+    /// Writes the particles (id, d, U, omega, F_hydro, F_contact) to `path`, when there are any.
+    pub fn write_particles(&self, path: &std::path::Path) -> Result<(), FsimError> {
+        let Some(particles) = &self.particles else {
+            return Ok(());
+        };
+        let p = particles.dem.particles();
+        let id: Vec<i64> = p.id.iter().map(|&i| i as i64).collect();
+        ParticleFields {
+            positions: &p.position,
+            id: &id,
+            d: &p.diameter,
+            velocity: &p.velocity,
+            omega: &p.angular_velocity,
+            hydrodynamic_force: &p.external_force,
+            contact_force: &p.contact_force,
+        }
+        .write(path)
+        .map_err(|e| FsimError::run(e.to_string()))
+    }
+
     /// Divergence, energy, mean velocity and Courant number of the last step; a velocity
     /// that is no longer finite means the run diverged.
     pub fn check_health(&mut self) -> Result<FluidDiagnostics, FsimError> {
@@ -199,11 +286,38 @@ impl Simulation {
     /// Writes the restart state (every array a bit-identical continuation needs).
     pub fn write_restart(&mut self, path: &std::path::Path) -> Result<(), FsimError> {
         let header = RestartHeader::new(self.time.time, self.time.step, self.dt);
-        let arrays = self.fluid.restart_arrays();
+        let cloud = self
+            .particles
+            .as_ref()
+            .map(|p| p.dem.snapshot().to_arrays())
+            .unwrap_or_default();
+        let mut arrays = self.fluid.restart_arrays();
+        arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
         header
             .write(path, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))
     }
+}
+
+/// The engine continued from the DEM arrays of a restart state (same config and box, from the
+/// case).
+fn restore_particles(
+    cloud: Cloud,
+    state: &RestartState,
+    time_dir: &std::path::Path,
+) -> Result<Particles, FsimError> {
+    let path = time_dir.join(crate::output::RESTART_FILE_NAME);
+    let snapshot = DemSnapshot::from_arrays(|name| state.array(name))
+        .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+    let dem = Dem::restore(cloud.config, cloud.domain, &snapshot)
+        .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+    Ok(Particles {
+        dem,
+        pair_model: cloud.pair_model_name,
+        wall_model: cloud.wall_model_name,
+        substeps: 0,
+        notes: cloud.warnings,
+    })
 }
 
 /// Whether the case starts from the latest time directory.

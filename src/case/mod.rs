@@ -8,6 +8,7 @@
 pub mod block_mesh;
 #[allow(clippy::module_inception)]
 pub mod case;
+pub mod cloud_properties;
 pub mod control_dict;
 pub mod coupling;
 pub mod dictionary;
@@ -23,6 +24,7 @@ pub mod value;
 
 pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};
 pub use case::Case;
+pub use cloud_properties::Cloud;
 pub use control_dict::{time_name, ControlDict, StartFrom, WriteControl};
 pub use coupling::{Coupling, CouplingModel};
 pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};

@@ -48,6 +48,9 @@ pub struct DemConfig {
     /// Optional upper bound on the collision sub-step, s (DPMFoam's rule alone gives one
     /// huge sub-step when everything is at rest).
     pub max_substep: Option<f64>,
+    /// Whether particles collide with each other (DPMFoam's `collisionModel none` turns
+    /// pair contacts off: then particles pass through each other and `pair_model` is unused).
+    pub pair_collisions: bool,
 }
 
 impl DemConfig {
@@ -62,6 +65,7 @@ impl DemConfig {
             skin_fraction: 0.1,
             overlap_tolerance: 1e-3,
             max_substep: None,
+            pair_collisions: true,
         }
     }
 }
@@ -537,6 +541,7 @@ impl Dem {
             &self.radius,
             &self.particles.fixed,
             mask,
+            self.config.pair_collisions,
         );
         self.rebuilds += 1;
     }
@@ -677,6 +682,7 @@ impl Dem {
         };
         let mut dt = f64::INFINITY;
         match (&self.config.pair_model, &self.pair_law) {
+            _ if !self.config.pair_collisions => {}
             (
                 PairModel::SpringSliderDashpot {
                     collision_resolution_steps,
@@ -1736,6 +1742,35 @@ mod tests {
         assert_eq!(dem.kinetic_energy(), (0.0, 0.0));
         assert_eq!(dem.max_overlap_ratio(), 0.0);
         assert_eq!(dem.mean_velocity(), [0.0; 3]);
+    }
+
+    #[test]
+    fn without_pair_collisions_particles_pass_through_each_other() {
+        // two overlapping spheres approaching head-on: with collisions off they keep their
+        // velocities exactly (no force, one sub-step per outer step); with collisions on
+        // the same input is rejected as overlapping
+        let mut p = two_particles([0.004, 0.005, 0.005], [0.0045, 0.005, 0.005], 1e-3, 1e-3);
+        p.velocity[0] = [0.1, 0.0, 0.0];
+        p.velocity[1] = [-0.1, 0.0, 0.0];
+        let mut cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        cfg.gravity = [0.0; 3];
+        let domain = DomainBox::uniform([0.0; 3], [0.01; 3], FaceCondition::Periodic);
+        assert!(matches!(
+            Dem::new(cfg.clone(), domain.clone(), p.clone()),
+            Err(DemError::Overlap { .. })
+        ));
+        cfg.pair_collisions = false;
+        let mut dem = Dem::new(cfg, domain, p).unwrap();
+        for _ in 0..20 {
+            assert_eq!(dem.advance(1e-3), 1);
+        }
+        let q = dem.particles();
+        for i in 0..2 {
+            let v = if q.id[i] == 1 { 0.1 } else { -0.1 };
+            assert_eq!(q.velocity[i], [v, 0.0, 0.0]);
+            assert_eq!(q.contact_force[i], [0.0; 3]);
+        }
+        assert_eq!(dem.pair_count(), 0);
     }
 
     #[test]

@@ -52,6 +52,7 @@ mod domain_box;
 mod neighbour_list;
 mod particle_state;
 mod random_packing;
+mod snapshot_arrays;
 mod vec3;
 
 pub use contact_model::{PairModel, TangentialRule, WallModel};
@@ -61,4 +62,5 @@ pub use domain_box::{DomainBox, FaceCondition};
 pub use neighbour_list::ContactHistory;
 pub use particle_state::ParticleState;
 pub use random_packing::{random_packing, random_packing_sizes, PackingError, SplitMix64};
+pub use snapshot_arrays::DEM_RESTART_NAMES;
 pub use vec3::Vec3;

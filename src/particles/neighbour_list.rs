@@ -82,6 +82,7 @@ impl NeighbourList {
         radius: &[f64],
         fixed: &[bool],
         wall_faces: [bool; 6],
+        pairs: bool,
     ) {
         let n = positions.len();
         // cell tables for the sorted order: particle k sits in cell_of[order[k]]
@@ -115,7 +116,8 @@ impl NeighbourList {
                     let m = grid.neighbours(cc, &mut nb);
                     let xi = positions[i];
                     let fixed_i = any_fixed && fixed[i];
-                    for &cell in &nb[..m] {
+                    let candidates = if pairs { &nb[..m] } else { &nb[..0] };
+                    for &cell in candidates {
                         // sorted order: a cell's particles are one index range, so j > i is a
                         // range start rather than a test per candidate
                         let (s, e) = (cell_start[cell] as usize, cell_start[cell + 1] as usize);

@@ -7,6 +7,10 @@ Tolerances come from the discretisation, not from a previous run:
   nu k_h^2 with k_h^2 = k^2 (1 - k^2 h^2 / 12), an amplitude error of 2 nu t k^2 h^2 / 12
   (0.32 % at t = 5); the fourth-order cell/face transfers add 3 (kh)^4 / 128 each (4e-5);
   1 % relative L2 bounds their sum with margin.
+- Particle settling: the beads fall about 12 mm on average, reaching sqrt(2 g 0.012) = 0.49
+  m/s; at rest means every bead below 1 % of that (4.9 mm/s; a last rattler may still
+  wobble) and the rms speed below 0.02 % of it (1e-4 m/s). The linear springs give a static overlap of about
+  m g N_layers / k_n = 0.1 % of d for the ~15 layers, so overlaps stay under the issue's 1 %.
 - Channel: the steady plane Poiseuille profile is a parabola, which the MAC discretisation
   represents exactly; 0.5 % of the centre-line velocity (the issue's bound).
 """
@@ -22,7 +26,7 @@ import pytest
 import vtk_checks
 
 ROOT = Path(__file__).resolve().parents[2]
-TUTORIALS = ["cavity", "channel", "taylorGreen"]
+TUTORIALS = ["cavity", "channel", "taylorGreen", "particleSettling"]
 
 
 @pytest.fixture(scope="session")
@@ -95,3 +99,35 @@ def test_cavity_log_and_monitor_follow_openfoam_conventions(runs):
     assert rows.shape[0] == 4000
     assert rows[-1, 0] == pytest.approx(20.0, abs=1e-9)
     assert np.all(rows[:, columns.index("divergence")] < 1e-10)
+
+
+def test_particle_settling_ends_at_rest_inside_the_box(runs):
+    case = runs["particleSettling"]
+    names = vtk_checks.time_directories(case)
+    assert [t for _, t in names] == pytest.approx([0, 0.1, 0.2, 0.3, 0.4])
+    first = vtk_checks.read_particles(case, names[0][0])
+    last = vtk_checks.read_particles(case, names[-1][0])
+    n = len(first["positions"])
+    assert n > 1500 and len(last["positions"]) == n
+    assert sorted(last["id"].tolist()) == list(range(n))
+    x, d = last["positions"], last["d"]
+    lo, hi = np.zeros(3), np.array([0.024, 0.024, 0.048])
+    # every sphere inside the box, walls overlapped by less than 1 % of d
+    assert np.all(x - 0.5 * d[:, None] > lo - 0.01 * d[:, None])
+    assert np.all(x + 0.5 * d[:, None] < hi + 0.01 * d[:, None])
+    speed = np.linalg.norm(last["U"], axis=1)
+    assert speed.max() < 4.9e-3, f"max particle speed {speed.max():.3e} m/s: not at rest"
+    assert np.sqrt(np.mean(speed**2)) < 1e-4, "rms particle speed: not at rest"
+    # the bed has settled: the mean height dropped, the packing is denser than the initial 0.3
+    assert x[:, 2].mean() < first["positions"][:, 2].mean() - 0.005
+    columns, rows = vtk_checks.read_monitor(case / "postProcessing" / "cloud" / "0" / "cloud.dat")
+    assert columns == ["Time", "particles", "kineticEnergy", "rotationalEnergy", "Ux", "Uy", "Uz",
+                       "maxOverlapOverD", "subSteps"]
+    assert rows.shape[0] == 400 and np.all(rows[:, 1] == n)
+    assert rows[-1, columns.index("maxOverlapOverD")] < 0.01
+    # pair overlaps from the positions (all pairs: 3 million distances), as the monitor says
+    gap = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2) - 0.5 * (d[:, None] + d[None, :])
+    np.fill_diagonal(gap, np.inf)
+    worst = (-gap / np.minimum(d[:, None], d[None, :])).max()
+    assert 0 < worst < 0.01, f"max pair overlap {worst:.3e} d"
+    assert worst <= rows[-1, columns.index("maxOverlapOverD")] * (1 + 1e-9)

@@ -1,0 +1,960 @@
+//! `constant/kinematicCloudProperties` (DPMFoam's form, OpenFOAM v1912 keywords) and
+//! `constant/kinematicCloudPositions`, read into the DEM engine's plain types
+//! ([`DemConfig`], [`DomainBox`], [`ParticleState`]); the keyword map is in
+//! [`crate::particles`].
+//!
+//! What fsim reads, and what it adds of its own:
+//!
+//! * `solution { active; coupled; transient; }`; `active false` means no cloud.
+//! * `constantProperties { rho0; youngsModulus; poissonsRatio; }`.
+//! * `subModels.particleForces`: `gravity` (with buoyancy `1 − ρ_f/ρ_p`, as OpenFOAM's
+//!   `gravity` force), and the fluid forces `sphereDrag`, `ErgunWenYuDrag`, `WenYuDrag`,
+//!   `pressureGradient`, kept for the coupling models (no effect with `model none`).
+//! * `injectionModels`: `manualInjection` (`positionsFile`, `U0`, `sizeDistribution`,
+//!   `parcelBasisType fixed`, `nParticle 1`, `SOI` not after the start) and fsim's
+//!   `randomPacking` (`box (lo) (hi); volumeFraction; sizeDistribution; U0; seed;`).
+//!   `sizeDistribution` is `fixedValue { value }`, `uniform { minValue maxValue }` (uniform in
+//!   d) or `normal { expectation variance minValue maxValue }` — v1912 samples
+//!   `μ + variance·erf⁻¹(·)`, i.e. a normal of standard deviation `variance/√2` truncated to
+//!   `[minValue, maxValue]`; the newer `{ mu sigma minValue maxValue }` form takes `sigma` as
+//!   the standard deviation. Random sizes come from SplitMix64 seeded with the injection's
+//!   `seed` (fsim's keyword, default 1), drawn in particle order; a random packing places
+//!   its spheres with the seed `seed + 1`.
+//! * `collisionModel none` (particles pass through each other; walls must then be rebound
+//!   patches) or `collisionModel pairCollision` with `pairModel pairSpringSliderDashpot` or fsim's
+//!   `pairLinearSpringDashpot`, `wallModel wallSpringSliderDashpot` or fsim's
+//!   `wallLinearSpringDashpot` (coefficients `kn e kt mu tangentialDampingRatio
+//!   collisionResolutionSteps`; `kt` defaults to `2/7 kn`, the damping ratio to ½, the steps
+//!   to 50). fsim's `tangentialRule dpmFoamReset | cappedSpring;` in the spring-slider
+//!   coefficients picks what the tangential spring does on sliding; DPMFoam's reset is the
+//!   default for DPMFoam's own models so that the same case gives DPMFoam's forces.
+//! * Walls: a `wall` patch is a soft wall when a wall model is set, else a `rebound` face with
+//!   the patch interaction's `e` and `mu` (`standardWallInteraction` or `localInteraction`).
+//!   `symmetry`, `symmetryPlane` and `empty` patches mirror particles (`rebound` with e = 1,
+//!   μ = 0) unless `localInteraction` gives them coefficients; `cyclic` patches wrap
+//!   particles; particles would escape through a plain `patch`, which fsim does not do.
+//!
+//! Whatever else would change the physics (cohesion, `useEquivalentSize`, parcels of several
+//! particles, other injection, dispersion or force models) stops the run with the file, line
+//! and column; other keywords are listed once as ignored.
+
+use std::path::Path;
+
+use super::block_mesh::{BoxFace, PatchType};
+use super::case::Case;
+use super::control_dict::{at_value, choice};
+use super::coupling::CouplingModel;
+use super::dictionary::Dict;
+use super::error::CaseError;
+use super::source::Location;
+use super::value::{Item, Value};
+use crate::particles::{
+    random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, FaceCondition, PairModel,
+    ParticleState, SplitMix64, TangentialRule, WallModel,
+};
+
+/// Forces of `particleForces` fsim accepts; all but `gravity` act through the coupling.
+pub const PARTICLE_FORCES: [&str; 5] = [
+    "gravity",
+    "sphereDrag",
+    "ErgunWenYuDrag",
+    "WenYuDrag",
+    "pressureGradient",
+];
+
+/// A cloud ready for [`crate::particles::Dem::new`], with what the banner and errors need.
+#[derive(Clone, Debug)]
+pub struct Cloud {
+    pub config: DemConfig,
+    pub domain: DomainBox,
+    pub particles: ParticleState,
+    /// `pairModel` and `wallModel` as named in the file.
+    pub pair_model_name: String,
+    pub wall_model_name: String,
+    /// The `particleForces` listed, in file order.
+    pub forces: Vec<String>,
+    /// `solution.coupled`.
+    pub coupled: bool,
+    /// One line per injection model: name, type, count.
+    pub injections: Vec<String>,
+    /// Where each particle (input index) was defined: its line of the positions file, or its
+    /// injection model.
+    pub origins: Vec<Location>,
+    /// Ignored keywords (each once) and settings without effect.
+    pub warnings: Vec<String>,
+}
+
+/// Where a value was written: the entry's value, or the dictionary when absent.
+fn value_loc(d: &Dict, keyword: &str) -> Location {
+    d.peek(keyword)
+        .map(|e| e.value_loc().clone())
+        .unwrap_or_else(|| d.loc.clone())
+}
+
+/// A number with a range check, the error at its value.
+fn scalar_in(
+    d: &Dict,
+    keyword: &str,
+    default: Option<f64>,
+    ok: impl Fn(f64) -> bool,
+    expected: &str,
+) -> Result<f64, CaseError> {
+    let x = match default {
+        Some(v) => d.get_scalar_or(keyword, v)?,
+        None => d.get_scalar(keyword)?,
+    };
+    if ok(x) && x.is_finite() {
+        Ok(x)
+    } else {
+        Err(at_value(
+            d,
+            keyword,
+            format!("'{keyword}' = {x}: expected {expected}"),
+        ))
+    }
+}
+
+/// A word that must be one of `allowed`; anything else is fatal at its value (`what` says why).
+fn only(d: &Dict, keyword: &str, allowed: &[&str], what: &str) -> Result<(), CaseError> {
+    if let Some(e) = d.lookup(keyword) {
+        let word = e
+            .as_tokens()
+            .and_then(|t| t.first())
+            .map(|i| i.to_string())
+            .unwrap_or_default();
+        if !allowed.contains(&word.trim_matches('"')) {
+            return Err(CaseError::at(
+                e.value_loc(),
+                format!("{keyword} '{word}': {what}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Cloud {
+    /// The case's cloud, or `None` when it has no `kinematicCloudProperties` or the cloud is
+    /// not `active`.
+    pub fn from_case(case: &Case) -> Result<Option<Cloud>, CaseError> {
+        let Some(dict) = &case.cloud_properties else {
+            return Ok(None);
+        };
+        let mut warnings = Vec::new();
+        let solution = dict.get_dict("solution")?;
+        if !solution.get_bool_or("active", true)? {
+            warnings.push(format!(
+                "{}: the cloud is not active (solution.active false): no particles",
+                dict.file()
+            ));
+            return Ok(None);
+        }
+        let coupled = solution.get_bool_or("coupled", false)?;
+        if !solution.get_bool_or("transient", true)? {
+            return Err(at_value(
+                solution,
+                "transient",
+                "a steady-state cloud (transient no) is not supported: fsim tracks particles \
+                 in time"
+                    .to_string(),
+            ));
+        }
+
+        let props = dict.get_dict("constantProperties")?;
+        let rho0 = scalar_in(props, "rho0", None, |x| x > 0.0, "> 0")?;
+        let sub = dict.get_dict("subModels")?;
+
+        // ----- forces -----
+        let mut forces = Vec::new();
+        if let Some(f) = sub.opt_dict("particleForces")? {
+            for e in f.entries() {
+                let name = e.keyword();
+                if !PARTICLE_FORCES.contains(&name) {
+                    return Err(CaseError::at(
+                        &e.key_loc,
+                        format!(
+                            "particle force '{name}' is not supported by fsim (supported: {})",
+                            PARTICLE_FORCES.join(", ")
+                        ),
+                    ));
+                }
+                e.mark_used();
+                if let Some(d) = e.as_dict() {
+                    // the coupling models read their own settings
+                    d.mark_all_used();
+                }
+                forces.push(name.to_string());
+            }
+        }
+        let gravity = if forces.iter().any(|f| f == "gravity") {
+            case.gravity
+        } else {
+            [0.0; 3]
+        };
+        let fluid_forces: Vec<&String> = forces.iter().filter(|f| *f != "gravity").collect();
+        if !fluid_forces.is_empty() && case.coupling.model == CouplingModel::None {
+            warnings.push(format!(
+                "{}: particleForces {}: no effect with coupling model none (particles feel \
+                 gravity and buoyancy only)",
+                dict.file(),
+                fluid_forces
+                    .iter()
+                    .map(|s| s.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+
+        for (keyword, what) in [
+            (
+                "dispersionModel",
+                "particle dispersion is not supported by fsim",
+            ),
+            (
+                "heatTransferModel",
+                "heat transfer is not supported by fsim",
+            ),
+            (
+                "surfaceFilmModel",
+                "surface films are not supported by fsim",
+            ),
+            (
+                "stochasticCollisionModel",
+                "stochastic collisions are not supported by fsim",
+            ),
+        ] {
+            only(sub, keyword, &["none"], what)?;
+        }
+        only(
+            sub,
+            "radiation",
+            &["off", "no", "false", "none"],
+            "radiation is not supported by fsim",
+        )?;
+
+        // ----- contact models -----
+        let collision = choice(sub, "collisionModel", &["pairCollision", "none"], Some(1))?;
+        // collisionModel none: particles pass through each other (the pair model is unused)
+        let (pair_model, wall_model, pair_model_name, wall_model_name) = if collision == 1 {
+            (
+                PairModel::linear(1.0, 1.0, 0.0),
+                WallModel::None,
+                "none".to_string(),
+                "none".to_string(),
+            )
+        } else {
+            let coeffs = sub.get_dict("pairCollisionCoeffs")?;
+            coeffs.lookup("maxInteractionDistance");
+            coeffs.lookup("writeReferredParticleCloud");
+            coeffs.lookup("U");
+            let pair_kind = choice(
+                coeffs,
+                "pairModel",
+                &["pairSpringSliderDashpot", "pairLinearSpringDashpot"],
+                None,
+            )?;
+            let pair_model = if pair_kind == 0 {
+                let c = coeffs.get_dict("pairSpringSliderDashpotCoeffs")?;
+                let (alpha, b, mu, steps, rule) = spring_slider(c)?;
+                PairModel::SpringSliderDashpot {
+                    youngs_modulus: scalar_in(props, "youngsModulus", None, |x| x > 0.0, "> 0")?,
+                    poissons_ratio: scalar_in(
+                        props,
+                        "poissonsRatio",
+                        None,
+                        |x| x > -1.0 && x < 0.5,
+                        "in (-1, 0.5)",
+                    )?,
+                    alpha,
+                    b,
+                    mu,
+                    collision_resolution_steps: steps,
+                    tangential: rule,
+                }
+            } else {
+                let c = coeffs.get_dict("pairLinearSpringDashpotCoeffs")?;
+                let l = linear(c)?;
+                PairModel::LinearSpringDashpot {
+                    kn: l[0],
+                    restitution: l[1],
+                    kt: l[2],
+                    mu: l[3],
+                    tangential_damping_ratio: l[4],
+                    collision_resolution_steps: l[5],
+                }
+            };
+            let wall_kind = choice(
+                coeffs,
+                "wallModel",
+                &["wallSpringSliderDashpot", "wallLinearSpringDashpot", "none"],
+                Some(2),
+            )?;
+            let wall_model = match wall_kind {
+                0 => {
+                    let c = coeffs.get_dict("wallSpringSliderDashpotCoeffs")?;
+                    let (alpha, b, mu, steps, rule) = spring_slider(c)?;
+                    let PairModel::SpringSliderDashpot {
+                        youngs_modulus: pe,
+                        poissons_ratio: pnu,
+                        ..
+                    } = pair_model
+                    else {
+                        return Err(at_value(
+                            coeffs,
+                            "wallModel",
+                            "wallSpringSliderDashpot needs the particle's youngsModulus and \
+                         poissonsRatio: use it with pairSpringSliderDashpot"
+                                .to_string(),
+                        ));
+                    };
+                    WallModel::SpringSliderDashpot {
+                        youngs_modulus: scalar_in(c, "youngsModulus", None, |x| x > 0.0, "> 0")?,
+                        poissons_ratio: scalar_in(
+                            c,
+                            "poissonsRatio",
+                            None,
+                            |x| x > -1.0 && x < 0.5,
+                            "in (-1, 0.5)",
+                        )?,
+                        particle_youngs_modulus: pe,
+                        particle_poissons_ratio: pnu,
+                        alpha,
+                        b,
+                        mu,
+                        collision_resolution_steps: steps,
+                        tangential: rule,
+                    }
+                }
+                1 => {
+                    let c = coeffs.get_dict("wallLinearSpringDashpotCoeffs")?;
+                    let l = linear(c)?;
+                    WallModel::LinearSpringDashpot {
+                        kn: l[0],
+                        restitution: l[1],
+                        kt: l[2],
+                        mu: l[3],
+                        tangential_damping_ratio: l[4],
+                        collision_resolution_steps: l[5],
+                    }
+                }
+                _ => WallModel::None,
+            };
+            let pair_model_name = coeffs.get_word("pairModel")?;
+            let wall_model_name = coeffs.get_word_or("wallModel", "none")?;
+            (pair_model, wall_model, pair_model_name, wall_model_name)
+        };
+
+        // ----- faces -----
+        let domain = domain_box(case, sub, wall_model != WallModel::None)?;
+
+        // ----- injection -----
+        let mut particles = ParticleState::default();
+        let mut origins = Vec::new();
+        let mut injections = Vec::new();
+        let models = sub.get_dict("injectionModels")?;
+        for e in models.entries() {
+            e.mark_used();
+            let name = e.keyword();
+            let m = e.as_dict().ok_or_else(|| {
+                CaseError::at(
+                    e.value_loc(),
+                    format!("expected a dictionary {{ … }} for injection model '{name}'"),
+                )
+            })?;
+            let before = particles.len();
+            let kind = choice(m, "type", &["manualInjection", "randomPacking"], None)?;
+            let seed = m.get_label_or("seed", 1)? as u64;
+            let u0 = m.get_vector_or("U0", [0.0; 3])?;
+            if kind == 0 {
+                m.get_vector("U0")?;
+                only(
+                    m,
+                    "parcelBasisType",
+                    &["fixed"],
+                    "fsim tracks single particles: use parcelBasisType fixed with nParticle 1",
+                )?;
+                if let Some(n) = m.opt_scalar("nParticle")? {
+                    if n != 1.0 {
+                        return Err(at_value(
+                            m,
+                            "nParticle",
+                            format!(
+                                "nParticle {n}: fsim tracks single particles (parcels of \
+                                 several particles are not supported); use nParticle 1"
+                            ),
+                        ));
+                    }
+                }
+                m.lookup("massTotal");
+                let soi = m.get_scalar_or("SOI", case.control.start_time)?;
+                if soi > case.control.start_time {
+                    return Err(at_value(
+                        m,
+                        "SOI",
+                        format!(
+                            "SOI {soi}: fsim injects every particle at the start time {}; a \
+                             later start of injection is not supported",
+                            case.control.start_time
+                        ),
+                    ));
+                }
+                let file = m.get_word("positionsFile")?;
+                let path = case.dir.join("constant").join(&file);
+                let (positions, locs) = read_positions(&path, &case.dir)?;
+                let mut rng = SplitMix64::new(seed);
+                let sizes = SizeDistribution::read(m)?;
+                for (x, loc) in positions.into_iter().zip(locs) {
+                    let id = particles.len() as u64;
+                    particles.push(id, x, sizes.sample(&mut rng), rho0);
+                    *particles.velocity.last_mut().expect("pushed") = u0;
+                    origins.push(loc);
+                }
+            } else {
+                let (lo, hi) = read_box(m)?;
+                let phi = scalar_in(
+                    m,
+                    "volumeFraction",
+                    None,
+                    |x| x > 0.0 && x < 1.0,
+                    "in (0, 1)",
+                )?;
+                let sizes = SizeDistribution::read(m)?;
+                let mut rng = SplitMix64::new(seed);
+                let volume = (0..3).map(|a| hi[a] - lo[a]).product::<f64>();
+                let mut diameters = Vec::new();
+                let mut filled = 0.0;
+                loop {
+                    let d = sizes.sample(&mut rng);
+                    if filled + 0.5 * sphere_volume(d) > phi * volume {
+                        break;
+                    }
+                    filled += sphere_volume(d);
+                    diameters.push(d);
+                }
+                // largest first packs best
+                diameters.sort_by(|a, b| b.total_cmp(a));
+                let centres = random_packing_sizes(lo, hi, &diameters, phi, seed.wrapping_add(1))
+                    .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
+                for (x, d) in centres.into_iter().zip(diameters) {
+                    let id = particles.len() as u64;
+                    particles.push(id, x, d, rho0);
+                    *particles.velocity.last_mut().expect("pushed") = u0;
+                    origins.push(e.key_loc.clone());
+                }
+            }
+            injections.push(format!(
+                "{name} ({}): {} particles",
+                m.get_word("type")?,
+                particles.len() - before
+            ));
+        }
+
+        let mut config = DemConfig::new(pair_model, wall_model);
+        config.gravity = gravity;
+        config.fluid_density = case.transport.rho;
+        config.pair_collisions = collision == 0;
+
+        warnings.extend(ignored_keywords(dict));
+        Ok(Some(Cloud {
+            config,
+            domain,
+            particles,
+            pair_model_name,
+            wall_model_name,
+            forces,
+            coupled,
+            injections,
+            origins,
+            warnings,
+        }))
+    }
+
+    /// An engine error as a case error, at the particle's origin for a particle, at the cloud
+    /// file for the rest.
+    pub fn locate(&self, err: &DemError) -> CaseError {
+        let file = self.origins.first().map(|l| l.file.display.clone());
+        let at = |index: usize| self.origins.get(index);
+        let place = |l: &Location| {
+            let (line, col) = l.line_col();
+            format!("{}:{line}:{col}", l.file.display)
+        };
+        match err {
+            DemError::BadDiameter { index, .. }
+            | DemError::BadDensity { index, .. }
+            | DemError::OutsideDomain { index, .. }
+            | DemError::WallOverlap { index, .. } => match at(*index) {
+                Some(l) => CaseError::at(l, err.to_string()),
+                None => CaseError::plain(err.to_string()),
+            },
+            DemError::Overlap {
+                index_a, index_b, ..
+            }
+            | DemError::DuplicateId {
+                index_a, index_b, ..
+            } => match (at(*index_a), at(*index_b)) {
+                (Some(a), Some(b)) => CaseError::at(
+                    a,
+                    format!("{err} (the other one is defined at {})", place(b)),
+                ),
+                _ => CaseError::plain(err.to_string()),
+            },
+            _ => CaseError::in_file(
+                file.unwrap_or_else(|| "constant/kinematicCloudProperties".to_string()),
+                err.to_string(),
+            ),
+        }
+    }
+}
+
+/// `alpha b mu collisionResolutionSteps` and fsim's `tangentialRule` of a spring-slider model.
+fn spring_slider(c: &Dict) -> Result<(f64, f64, f64, f64, TangentialRule), CaseError> {
+    if c.get_bool_or("useEquivalentSize", false)? {
+        return Err(at_value(
+            c,
+            "useEquivalentSize",
+            "useEquivalentSize yes is not supported by fsim (use no)".to_string(),
+        ));
+    }
+    let cohesion = c.get_scalar_or("cohesionEnergyDensity", 0.0)?;
+    if cohesion != 0.0 {
+        return Err(at_value(
+            c,
+            "cohesionEnergyDensity",
+            format!("cohesionEnergyDensity {cohesion}: cohesion is not supported by fsim (use 0)"),
+        ));
+    }
+    let volume_factor = c.get_scalar_or("volumeFactor", 1.0)?;
+    if volume_factor != 1.0 {
+        return Err(at_value(
+            c,
+            "volumeFactor",
+            format!("volumeFactor {volume_factor} is not supported by fsim (use 1)"),
+        ));
+    }
+    let rule = match choice(
+        c,
+        "tangentialRule",
+        &["dpmFoamReset", "cappedSpring"],
+        Some(0),
+    )? {
+        0 => TangentialRule::DpmFoamReset,
+        _ => TangentialRule::CappedSpring,
+    };
+    Ok((
+        scalar_in(c, "alpha", None, |x| x >= 0.0, ">= 0")?,
+        scalar_in(c, "b", None, |x| x > 0.0, "> 0")?,
+        scalar_in(c, "mu", None, |x| x >= 0.0, ">= 0")?,
+        scalar_in(c, "collisionResolutionSteps", None, |x| x >= 1.0, ">= 1")?,
+        rule,
+    ))
+}
+
+/// `kn e kt mu tangentialDampingRatio collisionResolutionSteps` of a linear model.
+fn linear(c: &Dict) -> Result<[f64; 6], CaseError> {
+    let kn = scalar_in(c, "kn", None, |x| x > 0.0, "> 0")?;
+    Ok([
+        kn,
+        scalar_in(c, "e", None, |x| x > 0.0 && x <= 1.0, "in (0, 1]")?,
+        scalar_in(c, "kt", Some(2.0 / 7.0 * kn), |x| x >= 0.0, ">= 0")?,
+        scalar_in(c, "mu", None, |x| x >= 0.0, ">= 0")?,
+        scalar_in(c, "tangentialDampingRatio", Some(0.5), |x| x >= 0.0, ">= 0")?,
+        scalar_in(
+            c,
+            "collisionResolutionSteps",
+            Some(50.0),
+            |x| x >= 1.0,
+            ">= 1",
+        )?,
+    ])
+}
+
+/// `box (lo) (hi);` of a random packing, inside the mesh's block.
+fn read_box(m: &Dict) -> Result<([f64; 3], [f64; 3]), CaseError> {
+    let tokens = m.get_tokens("box")?;
+    let bad = || {
+        at_value(
+            m,
+            "box",
+            "expected two corners (xmin ymin zmin) (xmax ymax zmax) for 'box'".to_string(),
+        )
+    };
+    let [a, b] = tokens else {
+        return Err(bad());
+    };
+    let (lo, hi) = (
+        a.as_vector().ok_or_else(bad)?,
+        b.as_vector().ok_or_else(bad)?,
+    );
+    if (0..3).any(|k| hi[k] <= lo[k]) {
+        return Err(CaseError::at(
+            &b.loc,
+            "box: each coordinate of the second corner must exceed the first's",
+        ));
+    }
+    Ok((lo, hi))
+}
+
+/// OpenFOAM's `sizeDistribution`, sampled in diameter.
+#[derive(Clone, Debug)]
+enum SizeDistribution {
+    Fixed(f64),
+    Uniform {
+        min: f64,
+        max: f64,
+    },
+    Normal {
+        mean: f64,
+        sd: f64,
+        min: f64,
+        max: f64,
+    },
+}
+
+impl SizeDistribution {
+    fn read(m: &Dict) -> Result<SizeDistribution, CaseError> {
+        let s = m.get_dict("sizeDistribution")?;
+        let kind = choice(s, "type", &["fixedValue", "uniform", "normal"], None)?;
+        let positive = |x: f64| x > 0.0;
+        Ok(match kind {
+            0 => {
+                let c = s.get_dict("fixedValueDistribution")?;
+                SizeDistribution::Fixed(scalar_in(c, "value", None, positive, "a diameter > 0")?)
+            }
+            1 => {
+                let c = s.get_dict("uniformDistribution")?;
+                let min = scalar_in(c, "minValue", None, positive, "a diameter > 0")?;
+                let max = scalar_in(c, "maxValue", None, |x| x >= min, ">= minValue")?;
+                SizeDistribution::Uniform { min, max }
+            }
+            _ => {
+                let c = s.get_dict("normalDistribution")?;
+                let min = scalar_in(c, "minValue", None, positive, "a diameter > 0")?;
+                let max = scalar_in(c, "maxValue", None, |x| x >= min, ">= minValue")?;
+                let (mean, sd) = if c.contains("mu") {
+                    (
+                        c.get_scalar("mu")?,
+                        scalar_in(c, "sigma", None, |x| x >= 0.0, ">= 0")?,
+                    )
+                } else {
+                    (
+                        c.get_scalar("expectation")?,
+                        scalar_in(c, "variance", None, |x| x >= 0.0, ">= 0")?
+                            / std::f64::consts::SQRT_2,
+                    )
+                };
+                SizeDistribution::Normal { mean, sd, min, max }
+            }
+        })
+    }
+
+    /// One diameter. The truncated normal is sampled by rejection (Box–Muller), exact for
+    /// any window; a window far in the tail falls back to its nearest bound.
+    fn sample(&self, rng: &mut SplitMix64) -> f64 {
+        match *self {
+            SizeDistribution::Fixed(d) => d,
+            SizeDistribution::Uniform { min, max } => min + rng.next_f64() * (max - min),
+            SizeDistribution::Normal { mean, sd, min, max } => {
+                for _ in 0..10_000 {
+                    let u1 = 1.0 - rng.next_f64();
+                    let u2 = rng.next_f64();
+                    let z = (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
+                    let d = mean + sd * z;
+                    if (min..=max).contains(&d) {
+                        return d;
+                    }
+                }
+                mean.clamp(min, max)
+            }
+        }
+    }
+}
+
+/// The centres of a positions file, `(x y z)` per particle, each optionally followed by the
+/// `cellI tetFace tetPt` labels of some OpenFOAM versions; with the location of each.
+pub fn read_positions(
+    path: &Path,
+    case_dir: &Path,
+) -> Result<(Vec<[f64; 3]>, Vec<Location>), CaseError> {
+    let d = Dict::read(path, Some(case_dir))?;
+    let list = match d.values.as_slice() {
+        [item] => item,
+        _ => {
+            return Err(CaseError::at(
+                &d.loc,
+                "expected one list of particle positions ( (x y z) … )",
+            ))
+        }
+    };
+    let items: &[Item] = match &list.value {
+        Value::List(items) => items,
+        _ => {
+            return Err(CaseError::at(
+                &list.loc,
+                format!(
+                    "expected a list of particle positions, found {}",
+                    list.describe()
+                ),
+            ))
+        }
+    };
+    let mut positions = Vec::with_capacity(items.len());
+    let mut locs = Vec::with_capacity(items.len());
+    let mut labels_after = usize::MAX;
+    for item in items {
+        if let Some(x) = item.as_vector() {
+            positions.push(x);
+            locs.push(item.loc.clone());
+            labels_after = 0;
+        } else if item.as_label().is_some() && labels_after < 3 {
+            labels_after += 1;
+        } else {
+            return Err(CaseError::at(
+                &item.loc,
+                format!(
+                    "expected a particle position (x y z), found {}",
+                    item.describe()
+                ),
+            ));
+        }
+    }
+    Ok((positions, locs))
+}
+
+/// The particle condition of each box face from its patch, the collision wall model and the
+/// patch interaction model.
+fn domain_box(case: &Case, sub: &Dict, soft_walls: bool) -> Result<DomainBox, CaseError> {
+    let g = &case.mesh.grid;
+    let length = g.length();
+    let lo = g.origin;
+    let hi = [lo[0] + length[0], lo[1] + length[1], lo[2] + length[2]];
+    let interaction = PatchInteraction::read(sub)?;
+    let mut faces = [FaceCondition::Periodic; 6];
+    for face in BoxFace::ALL {
+        let patch = case.mesh.patch_on(face);
+        faces[face.index()] = match patch.kind {
+            PatchType::Cyclic => FaceCondition::Periodic,
+            PatchType::Wall if soft_walls => FaceCondition::Wall,
+            kind => match interaction.rebound(&patch.name, kind)? {
+                Some((e, mu)) => FaceCondition::Rebound { e, mu },
+                None if kind == PatchType::Wall => {
+                    return Err(CaseError::at(
+                        &patch.loc,
+                        format!(
+                            "wall patch '{}': no wall model in pairCollisionCoeffs and no \
+                             rebound patch interaction for it; particles would pass through",
+                            patch.name
+                        ),
+                    ))
+                }
+                None if kind == PatchType::Patch => {
+                    return Err(CaseError::at(
+                        &patch.loc,
+                        format!(
+                            "patch '{}' (type patch): particles would escape through it, which \
+                             fsim does not support; make it a wall or give it a rebound \
+                             localInteraction",
+                            patch.name
+                        ),
+                    ))
+                }
+                // symmetry, symmetryPlane, empty: a mirror
+                None => FaceCondition::Rebound { e: 1.0, mu: 0.0 },
+            },
+        };
+    }
+    Ok(DomainBox { lo, hi, faces })
+}
+
+/// `patchInteractionModel` with its coefficients: `rebound` only.
+enum PatchInteraction {
+    None,
+    /// `standardWallInteraction`: one rule for every wall patch.
+    Standard(Option<(f64, f64)>, Location, String),
+    /// `localInteraction`: `(patch name or regex, rule, where)`.
+    Local(Vec<(String, Dict)>),
+}
+
+impl PatchInteraction {
+    fn read(sub: &Dict) -> Result<PatchInteraction, CaseError> {
+        let kind = choice(
+            sub,
+            "patchInteractionModel",
+            &["none", "standardWallInteraction", "localInteraction"],
+            Some(0),
+        )?;
+        Ok(match kind {
+            0 => PatchInteraction::None,
+            1 => {
+                let c = sub.get_dict("standardWallInteractionCoeffs")?;
+                let t = c.get_word("type")?;
+                let rule = if t == "rebound" {
+                    Some(rebound_coefficients(c)?)
+                } else {
+                    None
+                };
+                PatchInteraction::Standard(rule, value_loc(c, "type"), t)
+            }
+            _ => {
+                let c = sub.get_dict("localInteractionCoeffs")?;
+                let tokens = c.get_tokens("patches")?;
+                let list = tokens
+                    .first()
+                    .and_then(|t| match &t.value {
+                        Value::List(items) => Some(items),
+                        _ => None,
+                    })
+                    .ok_or_else(|| {
+                        at_value(
+                            c,
+                            "patches",
+                            "expected a list ( name { type rebound; e …; mu …; } … )".to_string(),
+                        )
+                    })?;
+                let mut rules = Vec::new();
+                for pair in list.chunks(2) {
+                    match pair {
+                        [name, body] => {
+                            let n = match &name.value {
+                                Value::Word(w) | Value::Str(w) => w.clone(),
+                                _ => String::new(),
+                            };
+                            let Some(d) = body.as_dict() else {
+                                return Err(CaseError::at(
+                                    &body.loc,
+                                    "expected a dictionary { type …; } after the patch name",
+                                ));
+                            };
+                            rules.push((n, d.clone()));
+                        }
+                        [alone] => {
+                            return Err(CaseError::at(
+                                &alone.loc,
+                                "expected a patch name followed by { type …; }",
+                            ))
+                        }
+                        _ => unreachable!("chunks of two"),
+                    }
+                }
+                PatchInteraction::Local(rules)
+            }
+        })
+    }
+
+    /// `(e, mu)` of the rebound rule for a patch, `None` when no rule applies.
+    fn rebound(&self, patch: &str, kind: PatchType) -> Result<Option<(f64, f64)>, CaseError> {
+        match self {
+            PatchInteraction::None => Ok(None),
+            PatchInteraction::Standard(rule, loc, t) => {
+                if kind != PatchType::Wall {
+                    return Ok(None);
+                }
+                match rule {
+                    Some(r) => Ok(Some(*r)),
+                    None => Err(CaseError::at(
+                        loc,
+                        format!("patch interaction '{t}' is not supported by fsim (use rebound)"),
+                    )),
+                }
+            }
+            PatchInteraction::Local(rules) => {
+                for (name, d) in rules.iter().rev() {
+                    let matches = name == patch
+                        || regex::Regex::new(&format!("^(?:{name})$"))
+                            .map(|r| r.is_match(patch))
+                            .unwrap_or(false);
+                    if matches {
+                        let t = d.get_word("type")?;
+                        if t != "rebound" {
+                            return Err(at_value(
+                                d,
+                                "type",
+                                format!(
+                                    "patch interaction '{t}' on patch '{patch}' is not \
+                                     supported by fsim (use rebound)"
+                                ),
+                            ));
+                        }
+                        return rebound_coefficients(d).map(Some);
+                    }
+                }
+                Ok(None)
+            }
+        }
+    }
+}
+
+/// `e` and `mu` of a rebound rule (OpenFOAM's defaults 1 and 0).
+fn rebound_coefficients(d: &Dict) -> Result<(f64, f64), CaseError> {
+    Ok((
+        scalar_in(d, "e", Some(1.0), |x| (0.0..=1.0).contains(&x), "in [0, 1]")?,
+        scalar_in(
+            d,
+            "mu",
+            Some(0.0),
+            |x| (0.0..=1.0).contains(&x),
+            "in [0, 1]",
+        )?,
+    ))
+}
+
+/// One note per keyword of the cloud file that fsim did not read.
+fn ignored_keywords(d: &Dict) -> Vec<String> {
+    let mut seen = std::collections::BTreeSet::new();
+    let mut notes = Vec::new();
+    for (key, loc) in d.unused() {
+        if seen.insert(key.clone()) {
+            let (line, col) = loc.line_col();
+            notes.push(format!(
+                "{}:{line}:{col}: ignored keyword '{key}' (fsim does not use it)",
+                loc.file.display
+            ));
+        }
+    }
+    notes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn truncated_normal_has_the_requested_moments() {
+        // v1912 form: variance 2e-4 means a standard deviation 2e-4/√2
+        let d = SizeDistribution::Normal {
+            mean: 1e-3,
+            sd: 2e-4 / std::f64::consts::SQRT_2,
+            min: 0.0,
+            max: 1.0,
+        };
+        let mut rng = SplitMix64::new(1);
+        let n = 200_000;
+        let xs: Vec<f64> = (0..n).map(|_| d.sample(&mut rng)).collect();
+        let mean = xs.iter().sum::<f64>() / n as f64;
+        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64;
+        assert!((mean - 1e-3).abs() < 2e-6, "mean {mean}");
+        let sd = var.sqrt();
+        assert!(
+            (sd / (2e-4 / std::f64::consts::SQRT_2) - 1.0).abs() < 0.01,
+            "sd {sd}"
+        );
+        // truncation at the mean keeps the upper half only: mean + sd √(2/π)
+        let half = SizeDistribution::Normal {
+            mean: 1e-3,
+            sd: 1e-4,
+            min: 1e-3,
+            max: 1.0,
+        };
+        let m2 = (0..n).map(|_| half.sample(&mut rng)).sum::<f64>() / n as f64;
+        let want = 1e-3 + 1e-4 * (2.0 / std::f64::consts::PI).sqrt();
+        assert!((m2 - want).abs() < 1e-6, "{m2} vs {want}");
+    }
+
+    #[test]
+    fn uniform_sizes_fill_their_window_evenly() {
+        let d = SizeDistribution::Uniform { min: 1.0, max: 3.0 };
+        let mut rng = SplitMix64::new(7);
+        let xs: Vec<f64> = (0..100_000).map(|_| d.sample(&mut rng)).collect();
+        assert!(xs.iter().all(|x| (1.0..3.0).contains(x)));
+        let mean = xs.iter().sum::<f64>() / xs.len() as f64;
+        assert!((mean - 2.0).abs() < 0.01, "mean {mean}");
+    }
+}
