@@ -13,7 +13,7 @@
 //!     write the time directory when due       (whole or not at all)
 //! ```
 
-use crate::case::Case;
+use crate::case::{Case, InternalField};
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::output::{
@@ -53,7 +53,7 @@ const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
 
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
-    let case = load_case(options)?;
+    let mut case = load_case(options)?;
     let threads = options.threads.unwrap_or_else(|| {
         std::thread::available_parallelism()
             .map(|n| n.get())
@@ -66,7 +66,7 @@ pub fn run(options: &Options) -> Result<(), FsimError> {
         .num_threads(threads)
         .build()
         .map_err(|e| FsimError::run(format!("cannot start {threads} threads: {e}")))?;
-    pool.install(|| run_case(&case, options, threads))
+    pool.install(|| run_case(&mut case, options, threads))
 }
 
 /// Reads and validates every file of the case, listing the keywords fsim ignores.
@@ -78,7 +78,7 @@ fn load_case(options: &Options) -> Result<Case, FsimError> {
     Ok(case)
 }
 
-fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimError> {
+fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), FsimError> {
     let output_error = |e: OutputError| FsimError::run(e.to_string());
     let restart = if continues(case) {
         crate::output::latest_time(&case.dir)
@@ -88,6 +88,9 @@ fn run_case(case: &Case, options: &Options, threads: usize) -> Result<(), FsimEr
         None
     };
     let mut sim = Simulation::new(case, restart.as_ref())?;
+    // The initial field now lives on the solver's faces; free the case's copy (24 B/cell).
+    case.fields.u = InternalField::Uniform([0.0; 3]);
+    let case = &*case;
     for note in sim.particles.iter().flat_map(|p| &p.notes) {
         eprintln!("fsimFoam: note: {note}");
     }

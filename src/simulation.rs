@@ -6,7 +6,9 @@
 //! the solver cannot honour, a time scheme it does not know, a fixed `deltaT` above the
 //! scheme's stability bound (paper eq. 3) all stop the run with exit code 2.
 
-use crate::case::{Case, Cloud, CouplingModel, PatchType, PressureBc, StartFrom, VelocityBc};
+use crate::case::{
+    Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
+};
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -154,8 +156,13 @@ impl Simulation {
     }
 
     fn set_initial_fields(&mut self, case: &Case) {
-        let cells = case.mesh.grid.cell_count();
-        self.fluid.set_cell_velocity(&case.fields.u.to_vec(cells));
+        match &case.fields.u {
+            InternalField::Nonuniform(cells) => self.fluid.set_cell_velocity(cells),
+            InternalField::Uniform(u) => {
+                self.fluid
+                    .set_cell_velocity(&vec![*u; case.mesh.grid.cell_count()])
+            }
+        }
         // The initial field need not be discretely divergence-free: project it once, as the
         // first pressure correction would.
         self.fluid.project();

@@ -47,7 +47,7 @@ use super::coupling::CouplingModel;
 use super::dictionary::Dict;
 use super::error::CaseError;
 use super::source::Location;
-use super::value::{Item, Value};
+use super::value::Value;
 use crate::particles::{
     random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, FaceCondition, PairModel,
     ParticleState, SplitMix64, TangentialRule, WallModel,
@@ -684,22 +684,25 @@ pub fn read_positions(
             ))
         }
     };
-    let items: &[Item] = match &list.value {
-        Value::List(items) => items,
-        _ => {
-            return Err(CaseError::at(
-                &list.loc,
-                format!(
-                    "expected a list of particle positions, found {}",
-                    list.describe()
-                ),
-            ))
-        }
+    // A plain positions file is read packed: one (x y z) per particle, nothing else.
+    if let Some((3, data)) = list.as_numbers() {
+        let positions = data.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let locs = (0..data.len() / 3).map(|i| list.loc.child(i)).collect();
+        return Ok((positions, locs));
+    }
+    let Some(items) = list.as_list() else {
+        return Err(CaseError::at(
+            &list.loc,
+            format!(
+                "expected a list of particle positions, found {}",
+                list.describe()
+            ),
+        ));
     };
     let mut positions = Vec::with_capacity(items.len());
     let mut locs = Vec::with_capacity(items.len());
     let mut labels_after = usize::MAX;
-    for item in items {
+    for item in items.iter() {
         if let Some(x) = item.as_vector() {
             positions.push(x);
             locs.push(item.loc.clone());
