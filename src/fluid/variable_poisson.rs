@@ -27,7 +27,7 @@ pub enum Preconditioner {
 impl Preconditioner {
     /// The default of [`VariablePoisson::new`]: the faster of the two on the measured cases
     /// (smooth `β`, a packed-bed surface, 100× jumps; see the README's table).
-    pub const DEFAULT: Preconditioner = Preconditioner::Multigrid;
+    pub const DEFAULT: Preconditioner = Preconditioner::Spectral;
 }
 
 /// The coarse-face averaging of the multigrid preconditioner.
