@@ -146,9 +146,35 @@ impl Stencil<'_> {
     /// `(Σ_nb w_nb x_nb, A_cc)` at cell `idx`.
     #[inline(always)]
     fn row(&self, x: &[f64], idx: [usize; 3], c: usize) -> (f64, f64) {
+        let [i, j, k] = idx;
+        let [n0, n1, n2] = self.n;
+        if i > 0 && i + 1 < n0 && j > 0 && j + 1 < n1 && k > 0 && k + 1 < n2 {
+            return self.interior_row(x, idx, c);
+        }
         let mut off = 0.0;
         let diagonal = self.couplings(idx, c, |nb, w| off += w * x[nb]);
         (off, diagonal)
+    }
+
+    /// [`Self::row`] away from every boundary: all six neighbours exist unwrapped.
+    #[inline(always)]
+    fn interior_row(&self, x: &[f64], idx: [usize; 3], c: usize) -> (f64, f64) {
+        let [i, j, k] = idx;
+        let [n0, n1, _] = self.n;
+        let plane = n0 * n1;
+        let fx = i + (n0 + 1) * (j + n1 * k);
+        let fy = i + n0 * (j + (n1 + 1) * k);
+        let [bx, by, bz] = self.beta;
+        let wx = [bx[fx] * self.inv_h2[0], bx[fx + 1] * self.inv_h2[0]];
+        let wy = [by[fy] * self.inv_h2[1], by[fy + n0] * self.inv_h2[1]];
+        let wz = [bz[c] * self.inv_h2[2], bz[c + plane] * self.inv_h2[2]];
+        let off = wx[0] * x[c - 1]
+            + wx[1] * x[c + 1]
+            + wy[0] * x[c - n0]
+            + wy[1] * x[c + n0]
+            + wz[0] * x[c - plane]
+            + wz[1] * x[c + plane];
+        (off, wx[0] + wx[1] + wy[0] + wy[1] + wz[0] + wz[1])
     }
 
     /// `out = b − A x`.
@@ -681,7 +707,7 @@ mod tests {
     /// problem with a seeded random right-hand side: each cycle must cut the residual at
     /// least fourfold (measured 0.05 then 0.16–0.20 per cycle for V(2,2)).
     #[test]
-    fn v_cycle_reduces_the_residual_tenfold() {
+    fn v_cycle_reduces_the_residual_fourfold() {
         let n = [32, 32, 32];
         let h = [1.0 / 32.0; 3];
         let len = n[0] * n[1] * n[2];
