@@ -9,7 +9,8 @@
 //! are solved exactly to round-off by separable real transforms: FFT in periodic directions,
 //! DCT where the pressure has zero normal gradient, DST where it is fixed
 //! ([`SpectralPoisson`]). [`VariablePoisson`] solves `∇·(β∇p) = f` by conjugate gradients
-//! preconditioned with the constant-coefficient spectral solve, for the drag-law model.
+//! preconditioned with the constant-coefficient spectral solve or a geometric-multigrid
+//! V-cycle ([`Multigrid`], [`Preconditioner`]), for the drag-law model.
 //!
 //! Storage (see [`FluidSolver`]): velocity components on their faces in padded arrays (one
 //! ghost layer per side, [`PaddedLayout`]); pressure unpadded in the x-fastest layout of

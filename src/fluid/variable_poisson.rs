@@ -25,8 +25,10 @@ pub enum Preconditioner {
 }
 
 impl Preconditioner {
-    /// The default of [`VariablePoisson::new`]: the faster of the two on the measured cases
-    /// (smooth `β`, a packed-bed surface, 100× jumps; see the README's table).
+    /// The default of [`VariablePoisson::new`]: the one with the shorter wall time per solve
+    /// on the packed-bed surface (`examples/variable_poisson_bench.rs`). The V-cycle needs
+    /// fewer iterations (9 against 15–16 on a bed, 32–36 against 80–89 on 100× jumps) but
+    /// each costs more than two spectral solves.
     pub const DEFAULT: Preconditioner = Preconditioner::Spectral;
 }
 
