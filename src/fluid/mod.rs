@@ -9,7 +9,8 @@
 //! are solved exactly to round-off by separable real transforms: FFT in periodic directions,
 //! DCT where the pressure has zero normal gradient, DST where it is fixed
 //! ([`SpectralPoisson`]). [`VariablePoisson`] solves `∇·(β∇p) = f` by conjugate gradients
-//! preconditioned with the constant-coefficient spectral solve, for the drag-law model.
+//! preconditioned with the constant-coefficient spectral solve or a geometric-multigrid
+//! V-cycle ([`Multigrid`], [`Preconditioner`]), for the drag-law model.
 //!
 //! Storage (see [`FluidSolver`]): velocity components on their faces in padded arrays (one
 //! ghost layer per side, [`PaddedLayout`]); pressure unpadded in the x-fastest layout of
@@ -55,6 +56,7 @@ mod ghost_fill;
 mod implicit_viscosity;
 mod mean_velocity_force;
 mod momentum;
+mod multigrid;
 mod padded_layout;
 mod projection;
 mod spectral_poisson;
@@ -66,7 +68,8 @@ pub use boundary_conditions::{BoundaryConditions, FaceCondition};
 pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
 pub use mean_velocity_force::MeanVelocityForce;
+pub use multigrid::{FaceAveraging, Multigrid};
 pub use padded_layout::PaddedLayout;
 pub use spectral_poisson::{AxisKind, PressureBoundary, SpectralPoisson};
 pub use time_scheme::TimeScheme;
-pub use variable_poisson::{PcgReport, VariablePoisson};
+pub use variable_poisson::{PcgReport, Preconditioner, VariablePoisson};
