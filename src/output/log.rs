@@ -113,8 +113,12 @@ impl<W: Write> Log<W> {
         ))
     }
 
-    /// The last line of a run that finished normally.
+    /// The last lines of a run that finished normally: the process's peak resident memory
+    /// (when the system tells it) and `End`.
     pub fn end(&mut self) -> std::io::Result<()> {
+        if let Some(bytes) = peak_resident_bytes() {
+            self.write_text(&format!("Peak memory = {:.1} MB\n\n", bytes as f64 / 1e6))?;
+        }
         self.write_text("End\n\n")?;
         self.clear_bar();
         Ok(())
@@ -217,6 +221,14 @@ pub fn cpu_time_seconds() -> f64 {
         static FIRST: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
         FIRST.get_or_init(Instant::now).elapsed().as_secs_f64()
     })
+}
+
+/// Peak resident set size of this process (`VmHWM` of `/proc/self/status`), in bytes.
+pub fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 /// The current UTC time as `YYYY-MM-DD hh:mm:ss UTC` (civil date from days since the epoch:

@@ -34,19 +34,39 @@ DT = 0.005
 FOAM_ENV = dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam", FOAM_ETC="/usr/share/openfoam/etc")
 
 
+def high_water_mark(pid):
+    """VmHWM of a running process, bytes (None once it has exited)."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
 def run_measured(cmd, cwd, env=None, log=None):
-    """Run a command; return (wall seconds, peak RSS bytes, stdout text)."""
+    """Run a command; return (wall seconds, peak RSS bytes).
+
+    The peak is the child's own VmHWM, polled while it runs: wait4's ru_maxrss is not usable
+    here, because Linux carries the forking Python process's high-water mark into the child
+    across exec. fsimFoam also prints its own peak at the end of its log (read by run_fsim).
+    """
     out = open(log, "w") if log else subprocess.DEVNULL
     t0 = time.perf_counter()
     p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
-    _, status, usage = os.wait4(p.pid, 0)
+    peak = 0
+    while p.poll() is None:
+        peak = max(peak, high_water_mark(p.pid) or 0)
+        time.sleep(0.01)
     wall = time.perf_counter() - t0
     if log:
         out.close()
-    if os.waitstatus_to_exitcode(status) != 0:
+    if p.returncode != 0:
         tail = open(log).read()[-2000:] if log else ""
         raise RuntimeError(f"{cmd[0]} failed in {cwd}:\n{tail}")
-    return wall, usage.ru_maxrss * 1024
+    return wall, peak
 
 
 def exact_velocity(centres, t):
@@ -75,8 +95,11 @@ def run_fsim(binary, n, threads, steps, scratch, scheme):
     case = os.path.join(scratch, f"fsim_{n}_{threads}")
     shutil.rmtree(case, ignore_errors=True)
     end = cases.taylor_green(case, n, steps, DT, nu=NU, scheme=scheme)
-    wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch,
-                             log=os.path.join(case, "log.fsimFoam"))
+    log = os.path.join(case, "log.fsimFoam")
+    wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch, log=log)
+    reported = re.findall(r"Peak memory = ([0-9.]+) MB", open(log).read())
+    if reported:
+        rss = max(rss, float(reported[-1]) * 1e6)
     monitor = os.path.join(case, "postProcessing", "fluid", "0", "fluid.dat")
     data = np.loadtxt(monitor, comments="#")
     names = open(monitor).readline().lstrip("#").split()
