@@ -220,34 +220,8 @@ impl ControlDict {
     }
 }
 
-/// A time as OpenFOAM names its directory: C++'s general format with `precision`
-/// significant digits (`0`, `0.5`, `1e-05`), as `timeFormat general` writes it.
-pub fn time_name(t: f64, precision: usize) -> String {
-    if t == 0.0 || !t.is_finite() {
-        return if t == 0.0 { "0".into() } else { t.to_string() };
-    }
-    let precision = precision.max(1);
-    // The exponent after rounding to `precision` digits decides the notation (C's %g rule).
-    let sci = format!("{:.*e}", precision - 1, t);
-    let (mantissa, exp) = sci.split_once('e').expect("scientific notation has an 'e'");
-    let exp: i32 = exp.parse().expect("exponent is an integer");
-    if exp < -4 || exp >= precision as i32 {
-        let mantissa = trim_zeros(mantissa);
-        let sign = if exp < 0 { '-' } else { '+' };
-        format!("{mantissa}e{sign}{:02}", exp.abs())
-    } else {
-        let decimals = (precision as i32 - 1 - exp).max(0) as usize;
-        trim_zeros(&format!("{t:.decimals$}")).to_string()
-    }
-}
-
-fn trim_zeros(s: &str) -> &str {
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        s
-    }
-}
+/// Time directory names, as OpenFOAM writes them (one implementation, in `output`).
+pub use crate::output::time_name;
 
 #[cfg(test)]
 mod tests {

@@ -87,23 +87,12 @@ pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<
     Ok(())
 }
 
-/// Streams values as little-endian f64 through a fixed stack buffer.
+/// Streams values as little-endian f64 (XML appended raw data).
 fn write_little_endian(
     out: &mut impl Write,
     values: impl Iterator<Item = f64>,
 ) -> std::io::Result<()> {
-    const CHUNK: usize = 4096;
-    let mut buffer = [0u8; CHUNK * 8];
-    let mut filled = 0;
-    for v in values {
-        buffer[filled..filled + 8].copy_from_slice(&v.to_le_bytes());
-        filled += 8;
-        if filled == buffer.len() {
-            out.write_all(&buffer)?;
-            filled = 0;
-        }
-    }
-    out.write_all(&buffer[..filled])
+    super::fluid_vtk::write_f64_bytes(out, values, f64::to_le_bytes)
 }
 
 #[cfg(test)]

@@ -100,16 +100,26 @@ fn write_header(out: &mut impl Write, grid: &Grid, title: &str) -> std::io::Resu
     )
 }
 
-/// Streams values as big-endian f64 through a fixed stack buffer (no allocation per value).
+/// Streams values as big-endian f64 (legacy VTK) through a fixed stack buffer.
 fn write_big_endian(
     out: &mut impl Write,
     values: impl Iterator<Item = f64>,
+) -> std::io::Result<()> {
+    write_f64_bytes(out, values, f64::to_be_bytes)
+}
+
+/// Streams values as f64 in the byte order `to_bytes` gives, through a fixed stack buffer
+/// (no allocation per value).
+pub(super) fn write_f64_bytes(
+    out: &mut impl Write,
+    values: impl Iterator<Item = f64>,
+    to_bytes: fn(f64) -> [u8; 8],
 ) -> std::io::Result<()> {
     const CHUNK: usize = 4096;
     let mut buffer = [0u8; CHUNK * 8];
     let mut filled = 0;
     for v in values {
-        buffer[filled..filled + 8].copy_from_slice(&v.to_be_bytes());
+        buffer[filled..filled + 8].copy_from_slice(&to_bytes(v));
         filled += 8;
         if filled == buffer.len() {
             out.write_all(&buffer)?;
