@@ -12,4 +12,5 @@ pub mod output;
 pub mod particles;
 pub mod run;
 pub mod simulation;
+pub mod step_reporter;
 pub mod time_control;

@@ -17,39 +17,11 @@ use crate::case::{Case, InternalField};
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::output::{
-    write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, PARTICLE_FILE_NAME,
-    RESTART_FILE_NAME,
+    write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
-use crate::simulation::{continues, CloudReport, Simulation, StepSizing};
+use crate::simulation::{continues, Simulation, StepSizing};
+use crate::step_reporter::StepReporter;
 use std::time::Instant;
-
-/// Columns of the per-step fluid monitor `postProcessing/fluid/<startTime>/fluid.dat`.
-const FLUID_MONITOR_COLUMNS: [&str; 11] = [
-    "Time",
-    "deltaT",
-    "CoMax",
-    "divergence",
-    "kineticEnergy",
-    "Ux",
-    "Uy",
-    "Uz",
-    "drivingGradient",
-    "stepWallTime",
-    "step",
-];
-
-/// Columns of the per-step particle monitor `postProcessing/cloud/<startTime>/cloud.dat`.
-const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
-    "Time",
-    "particles",
-    "kineticEnergy",
-    "rotationalEnergy",
-    "Ux",
-    "Uy",
-    "Uz",
-    "maxOverlapOverD",
-    "subSteps",
-];
 
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
@@ -107,98 +79,38 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     )
     .map_err(output_error)?;
     let start_name = output.time_name(sim.time.time);
-    let mut monitor = Monitor::create(&case.dir, "fluid", &start_name, &FLUID_MONITOR_COLUMNS)
-        .map_err(output_error)?;
-    let mut cloud_monitor = match sim.particles {
-        Some(_) => Some(
-            Monitor::create(&case.dir, "cloud", &start_name, &CLOUD_MONITOR_COLUMNS)
-                .map_err(output_error)?,
-        ),
-        None => None,
-    };
-    let mut log = Log::stdout();
-    log.banner(&banner(case, &sim, threads))?;
+    let mut reporter = StepReporter::open(&case.dir, &start_name, sim.particles.is_some())?;
+    reporter.log.banner(&banner(case, &sim, threads))?;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
         // The start time gets its VTK files and restart state too, so the series opens at t0.
         write_time(&mut output, &mut sim)?;
     }
     let start = sim.time.time;
-    log.line("Starting time loop")?;
-    log.line("")?;
+    reporter.log.line("Starting time loop\n")?;
 
     while sim.time.running() {
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
-        let report = sim.evolve_fluid(dt);
+        let fluid = sim.evolve_fluid(dt);
         let cloud = sim.evolve_cloud(dt);
         let write_due = sim.time.advance(dt);
-        let diagnostics = sim.check_health()?;
-        let wall = clock.elapsed().as_secs_f64();
-
-        log.time(&output.time_name(sim.time.time))?;
-        log.line(&format!(
-            "Courant Number max: {:.6}\ndeltaT = {}\nProjection: divergence = {:.3e}, kinetic \
-             energy = {:.6e}",
-            diagnostics.max_courant, dt, diagnostics.divergence, diagnostics.kinetic_energy
-        ))?;
-        if let Some(g) = report.driving_gradient {
-            log.line(&format!("meanVelocityForce: pressure gradient = {g:.6e}"))?;
-        }
-        let [ux, uy, uz] = diagnostics.mean_velocity;
-        monitor
-            .row(&[
-                sim.time.time,
-                dt,
-                diagnostics.max_courant,
-                diagnostics.divergence,
-                diagnostics.kinetic_energy,
-                ux,
-                uy,
-                uz,
-                report.driving_gradient.unwrap_or(0.0),
-                wall,
-                sim.time.step as f64,
-            ])
-            .map_err(output_error)?;
-        if let (Some(c), Some(m)) = (&cloud, cloud_monitor.as_mut()) {
-            log_cloud(&mut log, c)?;
-            let [ux, uy, uz] = c.mean_velocity;
-            m.row(&[
-                sim.time.time,
-                c.count as f64,
-                c.kinetic_energy.0,
-                c.kinetic_energy.1,
-                ux,
-                uy,
-                uz,
-                c.max_overlap,
-                c.substeps as f64,
-            ])
-            .map_err(output_error)?;
-        }
+        let health = sim.check_health()?;
+        let name = output.time_name(sim.time.time);
+        reporter.step(
+            &name,
+            &sim,
+            dt,
+            &fluid,
+            cloud.as_ref(),
+            &health,
+            clock.elapsed(),
+        )?;
         if write_due {
             write_time(&mut output, &mut sim)?;
         }
-        log.execution_time()?;
-        log.progress(sim.time.time, start, case.control.end_time);
+        reporter.end_step(sim.time.time, start, case.control.end_time)?;
     }
-    monitor.flush().map_err(output_error)?;
-    if let Some(m) = cloud_monitor.as_mut() {
-        m.flush().map_err(output_error)?;
-    }
-    log.end()?;
-    Ok(())
-}
-
-/// The cloud's lines of the step log, in the manner of DPMFoam's.
-fn log_cloud(log: &mut Log<std::io::Stdout>, c: &CloudReport) -> std::io::Result<()> {
-    let [ux, uy, uz] = c.mean_velocity;
-    log.line(&format!(
-        "Cloud: {} particles, {} collision sub-steps\n    Linear kinetic energy = {:.6e}\n    \
-         Rotational kinetic energy = {:.6e}\n    Mean velocity = ({:.6e} {:.6e} {:.6e})\n    \
-         Max overlap / d = {:.4e}",
-        c.count, c.substeps, c.kinetic_energy.0, c.kinetic_energy.1, ux, uy, uz, c.max_overlap
-    ))
+    reporter.finish()
 }
 
 /// A fixed `deltaT` above the scheme's bound for the initial field is bad input (exit 2),

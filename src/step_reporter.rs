@@ -1,0 +1,156 @@
+//! What the time loop tells the user after each step: the log block in OpenFOAM's manner and
+//! the per-step monitors in `postProcessing/fluid/` and `postProcessing/cloud/`.
+
+use crate::error::FsimError;
+use crate::fluid::{FluidDiagnostics, StepReport};
+use crate::output::{Log, Monitor, OutputError};
+use crate::simulation::{CloudReport, Simulation};
+use std::io::Stdout;
+use std::path::Path;
+use std::time::Duration;
+
+/// Columns of the per-step fluid monitor `postProcessing/fluid/<startTime>/fluid.dat`.
+const FLUID_MONITOR_COLUMNS: [&str; 11] = [
+    "Time",
+    "deltaT",
+    "CoMax",
+    "divergence",
+    "kineticEnergy",
+    "Ux",
+    "Uy",
+    "Uz",
+    "drivingGradient",
+    "stepWallTime",
+    "step",
+];
+
+/// Columns of the per-step particle monitor `postProcessing/cloud/<startTime>/cloud.dat`.
+const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
+    "Time",
+    "particles",
+    "kineticEnergy",
+    "rotationalEnergy",
+    "Ux",
+    "Uy",
+    "Uz",
+    "maxOverlapOverD",
+    "subSteps",
+];
+
+/// The log and the monitors of one run.
+pub struct StepReporter {
+    pub log: Log<Stdout>,
+    fluid: Monitor,
+    cloud: Option<Monitor>,
+}
+
+fn output_error(e: OutputError) -> FsimError {
+    FsimError::run(e.to_string())
+}
+
+impl StepReporter {
+    /// Opens the monitors of a run starting at time `start_name` (a continued run gets its own
+    /// `<startTime>` directories, as OpenFOAM's function objects do).
+    pub fn open(case_dir: &Path, start_name: &str, has_cloud: bool) -> Result<Self, FsimError> {
+        let fluid = Monitor::create(case_dir, "fluid", start_name, &FLUID_MONITOR_COLUMNS)
+            .map_err(output_error)?;
+        let cloud = if has_cloud {
+            Some(
+                Monitor::create(case_dir, "cloud", start_name, &CLOUD_MONITOR_COLUMNS)
+                    .map_err(output_error)?,
+            )
+        } else {
+            None
+        };
+        Ok(StepReporter {
+            log: Log::stdout(),
+            fluid,
+            cloud,
+        })
+    }
+
+    /// The `Time = …` block and one monitor row per phase of the step just taken.
+    #[allow(clippy::too_many_arguments)]
+    pub fn step(
+        &mut self,
+        time_name: &str,
+        sim: &Simulation,
+        dt: f64,
+        fluid: &StepReport,
+        cloud: Option<&CloudReport>,
+        health: &FluidDiagnostics,
+        wall: Duration,
+    ) -> Result<(), FsimError> {
+        self.log.time(time_name)?;
+        self.log.line(&format!(
+            "Courant Number max: {:.6}\ndeltaT = {}\nProjection: divergence = {:.3e}, kinetic \
+             energy = {:.6e}",
+            health.max_courant, dt, health.divergence, health.kinetic_energy
+        ))?;
+        if let Some(g) = fluid.driving_gradient {
+            self.log
+                .line(&format!("meanVelocityForce: pressure gradient = {g:.6e}"))?;
+        }
+        let [ux, uy, uz] = health.mean_velocity;
+        self.fluid
+            .row(&[
+                sim.time.time,
+                dt,
+                health.max_courant,
+                health.divergence,
+                health.kinetic_energy,
+                ux,
+                uy,
+                uz,
+                fluid.driving_gradient.unwrap_or(0.0),
+                wall.as_secs_f64(),
+                sim.time.step as f64,
+            ])
+            .map_err(output_error)?;
+        if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
+            log_cloud(&mut self.log, c)?;
+            let [ux, uy, uz] = c.mean_velocity;
+            m.row(&[
+                sim.time.time,
+                c.count as f64,
+                c.kinetic_energy.0,
+                c.kinetic_energy.1,
+                ux,
+                uy,
+                uz,
+                c.max_overlap,
+                c.substeps as f64,
+            ])
+            .map_err(output_error)?;
+        }
+        Ok(())
+    }
+
+    /// Closes the step's block (`ExecutionTime = …`) and redraws the progress bar.
+    pub fn end_step(&mut self, time: f64, start: f64, end: f64) -> Result<(), FsimError> {
+        self.log.execution_time()?;
+        self.log.progress(time, start, end);
+        Ok(())
+    }
+
+    /// Flushes the monitors and ends the log.
+    pub fn finish(mut self) -> Result<(), FsimError> {
+        self.fluid.flush().map_err(output_error)?;
+        if let Some(m) = self.cloud.as_mut() {
+            m.flush().map_err(output_error)?;
+        }
+        self.log.end()?;
+        Ok(())
+    }
+}
+
+/// The cloud's lines of the step log, in the manner of DPMFoam's.
+fn log_cloud(log: &mut Log<std::io::Stdout>, c: &CloudReport) -> std::io::Result<()> {
+    let [ux, uy, uz] = c.mean_velocity;
+    log.line(&format!(
+        "Cloud: {} particles, {} collision sub-steps\n    Linear kinetic energy = {:.6e}\n    \
+         Rotational kinetic energy = {:.6e}\n    Mean velocity = ({:.6e} {:.6e} {:.6e})\n    \
+         Max overlap / d = {:.4e}",
+        c.count, c.substeps, c.kinetic_energy.0, c.kinetic_energy.1, ux, uy, uz, c.max_overlap
+    ))
+}
