@@ -225,11 +225,15 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
             bytes / n.max(1) as f64
         );
     }
-    // Throughput measured by tools/bench on 2 cores (README); per thread, RK3 step.
-    let rate = 4.0e6 * threads as f64;
+    // tools/bench (README, 128³): about 20 million cell-stages per second on one thread,
+    // 1.8 times that on two; each stage is one predictor and one projection.
+    let stage_rate = 20.0e6 * (threads as f64).powf(0.85);
+    let stages = sim.fluid.settings().scheme.stages().len() as f64;
+    let rate = stage_rate / stages;
     println!(
-        "Run time: about {:.0} s on {threads} thread(s) (at {:.0} million cell-steps/s)",
-        steps * cells as f64 / rate * sim.fluid.settings().scheme.stages().len() as f64 / 3.0,
+        "Run time: about {:.0} s for the fluid on {threads} thread(s) (at {:.0} million \
+         cell-steps/s)",
+        steps * cells as f64 / rate,
         rate / 1e6
     );
 }
