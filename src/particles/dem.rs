@@ -123,6 +123,79 @@ fn check(
     }
 }
 
+/// Material and spring-slider coefficients shared by DPMFoam's pair and wall models.
+fn check_spring_slider(
+    youngs_modulus: f64,
+    poissons_ratio: f64,
+    alpha: f64,
+    b: f64,
+    mu: f64,
+    collision_resolution_steps: f64,
+) -> Result<(), DemError> {
+    check_material(youngs_modulus, poissons_ratio, "")?;
+    check("alpha", alpha, alpha >= 0.0, ">= 0")?;
+    check("b", b, b > 0.0, "> 0")?;
+    check("mu", mu, mu >= 0.0, ">= 0")?;
+    check_resolution(collision_resolution_steps)
+}
+
+/// Young's modulus and Poisson's ratio; `whose` qualifies the expectation (" (particle)").
+fn check_material(youngs_modulus: f64, poissons_ratio: f64, whose: &str) -> Result<(), DemError> {
+    let (e_expected, nu_expected) = if whose.is_empty() {
+        ("> 0", "in (-1, 0.5)")
+    } else {
+        ("> 0 (particle)", "in (-1, 0.5) (particle)")
+    };
+    check(
+        "youngsModulus",
+        youngs_modulus,
+        youngs_modulus > 0.0,
+        e_expected,
+    )?;
+    check(
+        "poissonsRatio",
+        poissons_ratio,
+        poissons_ratio > -1.0 && poissons_ratio < 0.5,
+        nu_expected,
+    )
+}
+
+fn check_resolution(collision_resolution_steps: f64) -> Result<(), DemError> {
+    check(
+        "collisionResolutionSteps",
+        collision_resolution_steps,
+        collision_resolution_steps >= 1.0,
+        ">= 1",
+    )
+}
+
+/// Coefficients of the linear spring-dashpot, shared by the pair and wall models.
+fn check_linear(
+    kn: f64,
+    restitution: f64,
+    kt: f64,
+    mu: f64,
+    tangential_damping_ratio: f64,
+    collision_resolution_steps: f64,
+) -> Result<(), DemError> {
+    check("kn", kn, kn > 0.0, "> 0")?;
+    check(
+        "restitution",
+        restitution,
+        restitution > 0.0 && restitution <= 1.0,
+        "in (0, 1]",
+    )?;
+    check("kt", kt, kt >= 0.0, ">= 0")?;
+    check("mu", mu, mu >= 0.0, ">= 0")?;
+    check(
+        "tangentialDampingRatio",
+        tangential_damping_ratio,
+        tangential_damping_ratio >= 0.0,
+        ">= 0",
+    )?;
+    check_resolution(collision_resolution_steps)
+}
+
 fn validate_config(c: &DemConfig) -> Result<(), DemError> {
     match c.pair_model {
         PairModel::SpringSliderDashpot {
@@ -133,24 +206,14 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
             mu,
             collision_resolution_steps,
             ..
-        } => {
-            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
-            check(
-                "poissonsRatio",
-                poissons_ratio,
-                poissons_ratio > -1.0 && poissons_ratio < 0.5,
-                "in (-1, 0.5)",
-            )?;
-            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
-            check("b", b, b > 0.0, "> 0")?;
-            check("mu", mu, mu >= 0.0, ">= 0")?;
-            check(
-                "collisionResolutionSteps",
-                collision_resolution_steps,
-                collision_resolution_steps >= 1.0,
-                ">= 1",
-            )?;
-        }
+        } => check_spring_slider(
+            youngs_modulus,
+            poissons_ratio,
+            alpha,
+            b,
+            mu,
+            collision_resolution_steps,
+        )?,
         PairModel::LinearSpringDashpot {
             kn,
             restitution,
@@ -158,29 +221,14 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
             mu,
             tangential_damping_ratio,
             collision_resolution_steps,
-        } => {
-            check("kn", kn, kn > 0.0, "> 0")?;
-            check(
-                "restitution",
-                restitution,
-                restitution > 0.0 && restitution <= 1.0,
-                "in (0, 1]",
-            )?;
-            check("kt", kt, kt >= 0.0, ">= 0")?;
-            check("mu", mu, mu >= 0.0, ">= 0")?;
-            check(
-                "tangentialDampingRatio",
-                tangential_damping_ratio,
-                tangential_damping_ratio >= 0.0,
-                ">= 0",
-            )?;
-            check(
-                "collisionResolutionSteps",
-                collision_resolution_steps,
-                collision_resolution_steps >= 1.0,
-                ">= 1",
-            )?;
-        }
+        } => check_linear(
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        )?,
     }
     match c.wall_model {
         WallModel::None => {}
@@ -195,33 +243,18 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
             collision_resolution_steps,
             ..
         } => {
-            check("youngsModulus", youngs_modulus, youngs_modulus > 0.0, "> 0")?;
-            check(
-                "poissonsRatio",
+            check_spring_slider(
+                youngs_modulus,
                 poissons_ratio,
-                poissons_ratio > -1.0 && poissons_ratio < 0.5,
-                "in (-1, 0.5)",
-            )?;
-            check(
-                "youngsModulus",
-                particle_youngs_modulus,
-                particle_youngs_modulus > 0.0,
-                "> 0 (particle)",
-            )?;
-            check(
-                "poissonsRatio",
-                particle_poissons_ratio,
-                particle_poissons_ratio > -1.0 && particle_poissons_ratio < 0.5,
-                "in (-1, 0.5) (particle)",
-            )?;
-            check("alpha", alpha, alpha >= 0.0, ">= 0")?;
-            check("b", b, b > 0.0, "> 0")?;
-            check("mu", mu, mu >= 0.0, ">= 0")?;
-            check(
-                "collisionResolutionSteps",
+                alpha,
+                b,
+                mu,
                 collision_resolution_steps,
-                collision_resolution_steps >= 1.0,
-                ">= 1",
+            )?;
+            check_material(
+                particle_youngs_modulus,
+                particle_poissons_ratio,
+                " (particle)",
             )?;
         }
         WallModel::LinearSpringDashpot {
@@ -231,29 +264,14 @@ fn validate_config(c: &DemConfig) -> Result<(), DemError> {
             mu,
             tangential_damping_ratio,
             collision_resolution_steps,
-        } => {
-            check("kn", kn, kn > 0.0, "> 0")?;
-            check(
-                "restitution",
-                restitution,
-                restitution > 0.0 && restitution <= 1.0,
-                "in (0, 1]",
-            )?;
-            check("kt", kt, kt >= 0.0, ">= 0")?;
-            check("mu", mu, mu >= 0.0, ">= 0")?;
-            check(
-                "tangentialDampingRatio",
-                tangential_damping_ratio,
-                tangential_damping_ratio >= 0.0,
-                ">= 0",
-            )?;
-            check(
-                "collisionResolutionSteps",
-                collision_resolution_steps,
-                collision_resolution_steps >= 1.0,
-                ">= 1",
-            )?;
-        }
+        } => check_linear(
+            kn,
+            restitution,
+            kt,
+            mu,
+            tangential_damping_ratio,
+            collision_resolution_steps,
+        )?,
     }
     check(
         "fluidDensity",
