@@ -411,16 +411,7 @@ impl FluidSolver {
                 );
             }
         }
-        self.time = t0 + dt;
-        if self.drive.is_some() {
-            self.correct_bulk_velocity(dt);
-        }
-        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-        StepReport {
-            dt,
-            time: self.time,
-            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
-        }
+        self.finish_step(t0, dt)
     }
 
     /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
@@ -498,16 +489,7 @@ impl FluidSolver {
                 .zip(&phi[..])
                 .for_each(|(p, f)| *p += f);
         }
-        self.time = t0 + dt;
-        if self.drive.is_some() {
-            self.correct_bulk_velocity(dt);
-        }
-        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-        StepReport {
-            dt,
-            time: self.time,
-            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
-        }
+        self.finish_step(t0, dt)
     }
 
     /// `meanVelocityForce`: raise the driving gradient by `δG` and add `Δt δG` to every
@@ -536,6 +518,21 @@ impl FluidSolver {
                     }
                 }
             });
+    }
+
+    /// The end of every scheme's step: the new time, the bulk-velocity correction of
+    /// `meanVelocityForce`, and the ghost layers of the final velocity.
+    fn finish_step(&mut self, t0: f64, dt: f64) -> StepReport {
+        self.time = t0 + dt;
+        if self.drive.is_some() {
+            self.correct_bulk_velocity(dt);
+        }
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        StepReport {
+            dt,
+            time: self.time,
+            driving_gradient: self.drive.as_ref().map(|d| d.gradient),
+        }
     }
 
     /// Volume mean of component `c` (mean of the cell-centre interpolants), summed plane by
