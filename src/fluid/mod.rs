@@ -50,6 +50,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod boundary_conditions;
+mod coefficient_fields;
 mod diagnostics;
 mod fluid_solver;
 mod ghost_fill;
@@ -65,6 +66,7 @@ mod time_scheme;
 mod variable_poisson;
 
 pub use boundary_conditions::{BoundaryConditions, FaceCondition};
+pub use coefficient_fields::{comparison_beta, seeded_uniform};
 pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
 pub use mean_velocity_force::MeanVelocityForce;

@@ -638,6 +638,7 @@ fn prolong_add(coarse_x: &[f64], nc: [usize; 3], fine: &mut Level) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fluid::coefficient_fields::seeded_uniform;
     use crate::fluid::VariablePoisson;
     use PressureBoundary::*;
 
@@ -664,17 +665,6 @@ mod tests {
         ]
     }
 
-    /// A seeded pseudo-random sequence in [0, 1) (64-bit LCG, high bits).
-    fn uniform(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     /// The multigrid's fine operator is the solver's: `b − A x = b + ∇·(β∇x)`.
     #[test]
     fn fine_operator_matches_variable_poisson() {
@@ -682,7 +672,7 @@ mod tests {
         let h = [0.3, 0.2, 0.25];
         for (name, axes) in boundary_sets() {
             let mut vp = VariablePoisson::new(n, h, axes);
-            let mut next = uniform(7);
+            let mut next = seeded_uniform(7);
             for b in vp.beta_mut().iter_mut() {
                 b.iter_mut().for_each(|x| *x = 0.2 + next());
             }
@@ -719,7 +709,7 @@ mod tests {
             });
             let mut mg = Multigrid::new(n, h, axes, FaceAveraging::Arithmetic);
             mg.setup(&beta);
-            let mut next = uniform(11);
+            let mut next = seeded_uniform(11);
             let mut b: Vec<f64> = (0..len).map(|_| next() - 0.5).collect();
             if is_singular(&axes) {
                 let mean = b.iter().sum::<f64>() / len as f64;

@@ -144,6 +144,36 @@ impl VariablePoisson {
         &mut self.beta
     }
 
+    /// Sets every face coefficient from cell values (unpadded, x fastest): the harmonic mean
+    /// of the two cells a face joins — the series conductance across a jump — and the cell's
+    /// own value on a boundary face.
+    pub fn set_beta_harmonic(&mut self, cells: &[f64]) {
+        let (n, axes) = (self.n, self.axes);
+        assert_eq!(cells.len(), n[0] * n[1] * n[2]);
+        for d in 0..3 {
+            let mut m = n;
+            m[d] += 1;
+            for k in 0..m[2] {
+                for j in 0..m[1] {
+                    for i in 0..m[0] {
+                        let cell = |shift: isize| {
+                            let mut c = [i, j, k];
+                            let v = c[d] as isize + shift;
+                            c[d] = match axes[d] {
+                                AxisKind::Periodic => v.rem_euclid(n[d] as isize) as usize,
+                                _ => v.clamp(0, n[d] as isize - 1) as usize,
+                            };
+                            cells[c[0] + n[0] * (c[1] + n[1] * c[2])]
+                        };
+                        let (lo, hi) = (cell(-1), cell(0));
+                        let fi = self.face_index(d, i, j, k);
+                        self.beta[d][fi] = 2.0 * lo * hi / (lo + hi);
+                    }
+                }
+            }
+        }
+    }
+
     /// `out = ∇·(β∇p)` (the negative of `A p`).
     pub fn apply(&self, p: &[f64], out: &mut [f64]) {
         let [n0, n1, _] = self.n;
@@ -317,6 +347,7 @@ impl VariablePoisson {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fluid::coefficient_fields::{comparison_beta, seeded_uniform};
     use std::f64::consts::PI;
 
     /// Manufactured problem: a smooth `β` between 0.4 and 1 (a fluid fraction), a smooth
@@ -447,101 +478,6 @@ mod tests {
         }
     }
 
-    /// Seeded uniform numbers in [0, 1) (64-bit LCG, high bits).
-    fn uniform(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
-    /// The three coefficient fields of the preconditioner comparison, per cell (x fastest).
-    fn cell_beta(case: &str, n: [usize; 3], seed: u64) -> Vec<f64> {
-        let mut next = uniform(seed);
-        // Four random Fourier modes of wavenumber ≤ 2 for the smooth field.
-        let modes: Vec<([f64; 3], f64)> = (0..4)
-            .map(|_| {
-                (
-                    std::array::from_fn(|_| (3.0 * next()).floor()),
-                    2.0 * PI * next(),
-                )
-            })
-            .collect();
-        let mut beta = vec![0.0; n[0] * n[1] * n[2]];
-        for k in 0..n[2] {
-            for j in 0..n[1] {
-                for i in 0..n[0] {
-                    let x = [
-                        (i as f64 + 0.5) / n[0] as f64,
-                        (j as f64 + 0.5) / n[1] as f64,
-                        (k as f64 + 0.5) / n[2] as f64,
-                    ];
-                    beta[i + n[0] * (j + n[1] * k)] = match case {
-                        "smooth" => {
-                            let s: f64 = modes
-                                .iter()
-                                .map(|(q, phase)| {
-                                    (2.0 * PI * (q[0] * x[0] + q[1] * x[1] + q[2] * x[2]) + phase)
-                                        .sin()
-                                })
-                                .sum();
-                            0.7 + 0.3 * s / 4.0
-                        }
-                        "bed" => {
-                            if x[1] < 0.5 {
-                                0.36
-                            } else {
-                                1.0
-                            }
-                        }
-                        "jump" => {
-                            let block = |v: f64| (v * 4.0).floor() as usize;
-                            if (block(x[0]) + block(x[1]) + block(x[2])) % 2 == 1 {
-                                0.01
-                            } else {
-                                1.0
-                            }
-                        }
-                        _ => unreachable!(),
-                    };
-                }
-            }
-        }
-        beta
-    }
-
-    /// Face coefficients: the harmonic mean of the two cells a face joins (the cell's own
-    /// value on a boundary face), the series conductance across a jump.
-    fn set_faces(solver: &mut VariablePoisson, cells: &[f64], axes: [AxisKind; 3]) {
-        let n = solver.n;
-        for d in 0..3 {
-            let mut m = n;
-            m[d] += 1;
-            for k in 0..m[2] {
-                for j in 0..m[1] {
-                    for i in 0..m[0] {
-                        let idx = [i, j, k];
-                        let cell = |mut c: [usize; 3], shift: isize| {
-                            let v = c[d] as isize + shift;
-                            c[d] = match axes[d] {
-                                AxisKind::Periodic => v.rem_euclid(n[d] as isize) as usize,
-                                _ => v.clamp(0, n[d] as isize - 1) as usize,
-                            };
-                            cells[c[0] + n[0] * (c[1] + n[1] * c[2])]
-                        };
-                        let lo = cell(idx, -1);
-                        let hi = cell(idx, 0);
-                        let fi = solver.face_index(d, i, j, k);
-                        solver.beta_mut()[d][fi] = 2.0 * lo * hi / (lo + hi);
-                    }
-                }
-            }
-        }
-    }
-
     /// PCG with the multigrid V-cycle converges to 1e-10 on smooth, bed-surface and 100×
     /// jump coefficients under periodic, closed and outlet boundaries, and agrees with the
     /// spectrally preconditioned solution to 1e-8 (relative to its largest value).
@@ -572,8 +508,8 @@ mod tests {
         let len = n[0] * n[1] * n[2];
         for (bc, axes) in boundary_sets {
             for case in ["smooth", "bed", "jump"] {
-                let cells = cell_beta(case, n, 3);
-                let mut next = uniform(5);
+                let cells = comparison_beta(case, n, 3);
+                let mut next = seeded_uniform(5);
                 let mut f: Vec<f64> = (0..len).map(|_| next() - 0.5).collect();
                 let mean = f.iter().sum::<f64>() / len as f64;
                 f.iter_mut().for_each(|x| *x -= mean);
@@ -581,7 +517,7 @@ mod tests {
                 for kind in [Preconditioner::Spectral, Preconditioner::Multigrid] {
                     let mut solver = VariablePoisson::with_preconditioner(n, h, axes, kind);
                     assert_eq!(solver.preconditioner(), kind);
-                    set_faces(&mut solver, &cells, axes);
+                    solver.set_beta_harmonic(&cells);
                     let mut p = vec![0.0; len];
                     let report = solver.solve(&f, &mut p, 1e-10, 2000);
                     eprintln!(
@@ -628,15 +564,15 @@ mod tests {
         for (n, axes) in cases {
             let h = [0.02, 0.03, 0.025];
             let len = n[0] * n[1] * n[2];
-            let cells = cell_beta("bed", n, 9);
-            let mut next = uniform(13);
+            let cells = comparison_beta("bed", n, 9);
+            let mut next = seeded_uniform(13);
             let mut f: Vec<f64> = (0..len).map(|_| next() - 0.5).collect();
             let mean = f.iter().sum::<f64>() / len as f64;
             f.iter_mut().for_each(|x| *x -= mean);
             let mut solutions = Vec::new();
             for kind in [Preconditioner::Spectral, Preconditioner::Multigrid] {
                 let mut solver = VariablePoisson::with_preconditioner(n, h, axes, kind);
-                set_faces(&mut solver, &cells, axes);
+                solver.set_beta_harmonic(&cells);
                 let mut p = vec![0.0; len];
                 let report = solver.solve(&f, &mut p, 1e-10, 2000);
                 eprintln!(
