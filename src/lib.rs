@@ -5,6 +5,7 @@
 
 pub mod case;
 pub mod cli;
+pub mod coupling;
 pub mod error;
 pub mod fluid;
 pub mod grid;
