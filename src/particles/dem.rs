@@ -94,11 +94,10 @@ pub struct Dem {
     inv_mass: Vec<f64>,
     inv_inertia: Vec<f64>,
     cell_size: f64,
-    /// Per-particle sums of the pair loads when the pair pass scatters (one thread).
-    acc_force: Vec<Vec3>,
-    acc_torque: Vec<Vec3>,
-    /// Whether the last pair pass scattered into the sums above.
-    scattered: bool,
+    /// Per-particle sums of the pair loads (force, torque per unit radius) added by the
+    /// particle's own block, and by the block before it (see `NeighbourList`).
+    acc_own: Vec<[f64; 6]>,
+    acc_prev: Vec<[f64; 6]>,
     time: f64,
     steps: u64,
     rebuilds: u64,
@@ -508,9 +507,8 @@ impl Dem {
             inv_mass: Vec::new(),
             inv_inertia: Vec::new(),
             cell_size,
-            acc_force: Vec::new(),
-            acc_torque: Vec::new(),
-            scattered: false,
+            acc_own: Vec::new(),
+            acc_prev: Vec::new(),
             time: 0.0,
             steps: 0,
             rebuilds: 0,
@@ -649,9 +647,8 @@ impl Dem {
         self.particles.memory_bytes()
             + 8 * (self.radius.capacity() + self.inv_mass.capacity() + self.inv_inertia.capacity())
             + self.lists.memory_bytes()
-            + 24 * (self.scratch3.capacity()
-                + self.acc_force.capacity()
-                + self.acc_torque.capacity())
+            + 24 * self.scratch3.capacity()
+            + 48 * (self.acc_own.capacity() + self.acc_prev.capacity())
             + 8 * self.scratch1.capacity()
     }
 
@@ -896,8 +893,10 @@ impl Dem {
         self.gather_contacts(None);
     }
 
-    /// Pass 1: each listed pair and wall contact once, into the per-contact buffers. The loop
-    /// is specialised per contact law and for boxes without periodic axes.
+    /// Pass 1: each listed pair and wall contact once. Blocks of particles run in parallel;
+    /// each scatters its pair loads into the sums it owns (its own particles, and the
+    /// "from the previous block" sums of the next block), far pairs into their load records.
+    /// The loop is specialised per contact law and for boxes without periodic axes.
     fn evaluate_contacts(&mut self, dt: f64) {
         let n = self.particles.len();
         let pair_law = self.pair_law;
@@ -921,50 +920,48 @@ impl Dem {
             wall_history: wall_law.map(|l| l.keeps_history(true)).unwrap_or(false),
             dt,
         };
-        // On one thread the pass scatters each pair load straight into per-particle sums, in
-        // pair order; the gather below then adds, for each particle, its reverse rows before
-        // its own rows, so both paths add the same terms in the same order: bit-identical
-        // results for any thread count. On several threads, rows of a chunk are contiguous,
-        // so the per-pair buffers split into disjoint slices, one per chunk.
-        let serial = rayon::current_num_threads() == 1;
-        self.scattered = serial;
-        let chunk = if serial { n.max(1) } else { CHUNK };
-        let mut scatter = if serial {
-            self.acc_force.clear();
-            self.acc_force.resize(n, [0.0; 3]);
-            self.acc_torque.clear();
-            self.acc_torque.resize(n, [0.0; 3]);
-            Some((&mut self.acc_force[..], &mut self.acc_torque[..]))
-        } else {
-            None
-        };
-        let mut work = Vec::with_capacity(n.div_ceil(chunk));
+        let block = lists.block.max(1);
+        // every entry is overwritten by its owning block before it is added to
+        self.acc_own.resize(n, [0.0; 6]);
+        self.acc_prev.resize(n, [0.0; 6]);
+        let mut own: Vec<_> = self.acc_own.chunks_mut(block).collect();
+        let mut next: Vec<Option<&mut [[f64; 6]]>> =
+            self.acc_prev.chunks_mut(block).skip(1).map(Some).collect();
+        next.push(None);
+        let mut work = Vec::with_capacity(n.div_ceil(block));
         {
-            let (mut hist, mut load) = (&mut lists.history[..], &mut lists.pair_load[..]);
+            let (mut hist, mut far) = (&mut lists.history[..], &mut lists.far_load[..]);
             let (mut whist, mut wforce, mut wtorque) = (
                 &mut lists.wall_history[..],
                 &mut lists.wall_force[..],
                 &mut lists.wall_torque[..],
             );
-            for c in 0..n.div_ceil(chunk) {
-                let (p0, p1) = (c * chunk, ((c + 1) * chunk).min(n));
+            let mut far_done = 0;
+            for (b, (own, next)) in own.drain(..).zip(next.drain(..)).enumerate() {
+                let (p0, p1) = (b * block, ((b + 1) * block).min(n));
                 let np = (ctx.row_start[p1] - ctx.row_start[p0]) as usize;
                 let nw = (ctx.wall_start[p1] - ctx.wall_start[p0]) as usize;
+                let far_end = lists.far_pair[far_done..]
+                    .partition_point(|&k| k < ctx.row_start[p1])
+                    + far_done;
                 let (h0, h1) = std::mem::take(&mut hist).split_at_mut(np);
-                let (l0, l1) = std::mem::take(&mut load).split_at_mut(np);
+                let (f0, f1) = std::mem::take(&mut far).split_at_mut(far_end - far_done);
                 let (wh0, wh1) = std::mem::take(&mut whist).split_at_mut(nw);
                 let (wf0, wf1) = std::mem::take(&mut wforce).split_at_mut(nw);
                 let (wt0, wt1) = std::mem::take(&mut wtorque).split_at_mut(nw);
-                (hist, load, whist, wforce, wtorque) = (h1, l1, wh1, wf1, wt1);
+                (hist, far, whist, wforce, wtorque) = (h1, f1, wh1, wf1, wt1);
+                far_done = far_end;
                 work.push(ContactWork {
                     p0,
                     p1,
+                    block,
                     hist: h0,
-                    load: l0,
+                    far: f0,
                     whist: wh0,
                     wforce: wf0,
                     wtorque: wt0,
-                    scatter: scatter.take(),
+                    own,
+                    next,
                 });
             }
         }
@@ -992,7 +989,7 @@ impl Dem {
                 })
             }
         };
-        if serial {
+        if rayon::current_num_threads() == 1 {
             work.iter_mut().for_each(run);
         } else {
             work.par_iter_mut().for_each(run);
@@ -1002,8 +999,7 @@ impl Dem {
     /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
     /// `contact_force`/`contact_torque`, then, within a step, takes its second half-kick.
     fn gather_contacts(&mut self, kick: Option<f64>) {
-        let scattered = self.scattered;
-        let (acc_f, acc_t) = (&self.acc_force, &self.acc_torque);
+        let (own, prev) = (&self.acc_own, &self.acc_prev);
         let g = self.config.gravity;
         let rho_f = self.config.fluid_density;
         let half = 0.5 * kick.unwrap_or(0.0);
@@ -1021,30 +1017,18 @@ impl Dem {
                 let base = c * CHUNK;
                 for k in 0..fo.len() {
                     let i = base + k;
-                    let (mut f, mut t) = if scattered {
-                        (acc_f[i], acc_t[i])
-                    } else {
-                        let mut f = [0.0; 3];
-                        let mut t = [0.0; 3];
-                        // reverse rows first: the order in which the scattering pass adds them
-                        for &q in &lists.rev_pair
-                            [lists.rev_start[i] as usize..lists.rev_start[i + 1] as usize]
-                        {
-                            let l = lists.pair_load[q as usize];
-                            for a in 0..3 {
-                                f[a] -= l[a];
-                                t[a] += l[a + 3];
-                            }
+                    let (a, b) = (own[i], prev[i]);
+                    let mut f = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+                    let mut t = [a[3] + b[3], a[4] + b[4], a[5] + b[5]];
+                    for &q in &lists.far_rev
+                        [lists.far_rev_start[i] as usize..lists.far_rev_start[i + 1] as usize]
+                    {
+                        let l = lists.far_load[q as usize];
+                        for a in 0..3 {
+                            f[a] -= l[a];
+                            t[a] += l[a + 3];
                         }
-                        for q in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
-                            let l = lists.pair_load[q];
-                            for a in 0..3 {
-                                f[a] += l[a];
-                                t[a] += l[a + 3];
-                            }
-                        }
-                        (f, t)
-                    };
+                    }
                     let ri = radius[i];
                     t = scale(t, ri);
                     for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
@@ -1174,17 +1158,19 @@ struct ContactContext<'a> {
     dt: f64,
 }
 
-/// The per-contact buffers of one chunk of particles `p0..p1`.
+/// What one block of particles `p0..p1` writes: its contacts' springs and wall loads, its far
+/// pairs' loads, its particles' sums and the next block's "from the previous block" sums.
 struct ContactWork<'a> {
     p0: usize,
     p1: usize,
+    block: usize,
     hist: &'a mut [Vec3],
-    load: &'a mut [[f64; 6]],
+    far: &'a mut [[f64; 6]],
     whist: &'a mut [Vec3],
     wforce: &'a mut [Vec3],
     wtorque: &'a mut [Vec3],
-    /// Per-particle sums to scatter into (single-chunk, one-thread pass), else `None`.
-    scatter: Option<(&'a mut [Vec3], &'a mut [Vec3])>,
+    own: &'a mut [[f64; 6]],
+    next: Option<&'a mut [[f64; 6]]>,
 }
 
 /// Pair and wall contacts of one chunk. `PERIODIC = false` skips the minimum image.
@@ -1197,11 +1183,20 @@ where
     let k0 = c.row_start[wk.p0] as usize;
     let w0 = c.wall_start[wk.p0] as usize;
     let dt = c.dt;
-    for i in wk.p0..wk.p1 {
+    let (p0, p1) = (wk.p0, wk.p1);
+    // partners at or beyond `far_from` are far (the rule `NeighbourList::build` uses)
+    let far_from = p0 + 2 * wk.block;
+    wk.own.fill([0.0; 6]);
+    if let Some(next) = wk.next.as_deref_mut() {
+        next.fill([0.0; 6]);
+    }
+    let mut far_k = 0;
+    for i in p0..p1 {
         let (xi, vi, wi, ri) = (x[i], v[i], w[i], radius[i]);
         for k in c.row_start[i] as usize..c.row_start[i + 1] as usize {
             let j = c.partner[k] as usize;
             let kk = k - k0;
+            let far = j >= far_from;
             let mut d = [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]];
             if PERIODIC {
                 d = minimum_image(d, c.length, c.inv_l);
@@ -1211,8 +1206,11 @@ where
             let dist2 = dot(d, d);
             if dist2 >= reach * reach {
                 // most listed pairs stay apart: read before writing saves bandwidth
-                if wk.scatter.is_none() && wk.load[kk] != [0.0; 6] {
-                    wk.load[kk] = [0.0; 6];
+                if far {
+                    if wk.far[far_k] != [0.0; 6] {
+                        wk.far[far_k] = [0.0; 6];
+                    }
+                    far_k += 1;
                 }
                 if wk.hist[kk] != [0.0; 3] {
                     wk.hist[kk] = [0.0; 3];
@@ -1239,16 +1237,16 @@ where
             let r_eff = ri * rj / reach;
             let (f, ft) = pair_force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
             let tq = cross(nrm, ft);
-            match &mut wk.scatter {
-                Some((acc_f, acc_t)) => {
-                    for a in 0..3 {
-                        acc_f[i][a] += f[a];
-                        acc_t[i][a] += -tq[a];
-                        acc_f[j][a] -= f[a];
-                        acc_t[j][a] += -tq[a];
-                    }
-                }
-                None => wk.load[kk] = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]],
+            let load = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
+            add_load(&mut wk.own[i - p0], load, 1.0);
+            if j < p1 {
+                add_load(&mut wk.own[j - p0], load, -1.0);
+            } else if !far {
+                let next = wk.next.as_deref_mut().expect("a partner in the next block");
+                add_load(&mut next[j - p1], load, -1.0);
+            } else {
+                wk.far[far_k] = load;
+                far_k += 1;
             }
         }
         if let Some(law) = c.wall_law {
@@ -1287,6 +1285,16 @@ where
                 wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
             }
         }
+    }
+}
+
+/// Adds a pair load to a particle's sum: the force with `sign` (+ owner, − partner), the
+/// torque per unit radius `−n × F_t` as it is (the same for both).
+#[inline(always)]
+fn add_load(sum: &mut [f64; 6], load: [f64; 6], sign: f64) {
+    for a in 0..3 {
+        sum[a] += sign * load[a];
+        sum[a + 3] += load[a + 3];
     }
 }
 
@@ -1886,6 +1894,65 @@ mod tests {
             }
         }
         assert!(contacts > 10, "contacts {contacts}");
+        let one = run(1);
+        assert_eq!(one.particles(), dem.particles());
+    }
+
+    /// The block-scattered force pass on a fully periodic box large enough for several blocks
+    /// and pairs across the seams (far pairs): contact forces balance to round-off (a load
+    /// routed to the wrong sum would break it) and 1 and 2 threads give the same bits.
+    #[test]
+    fn block_scatter_balances_forces_across_blocks_and_seams() {
+        let size = [0.02, 0.02, 0.02];
+        let mut dom = DomainBox::walled([0.0; 3], size);
+        dom.faces = [FaceCondition::Periodic; 6];
+        let centres = random_packing([0.0; 3], size, 1e-3, 0.3, 11).unwrap();
+        let mut rng = crate::particles::SplitMix64::new(5);
+        let mut p = ParticleState::default();
+        for (k, x) in centres.iter().enumerate() {
+            p.push(k as u64, *x, 1e-3, 2500.0);
+            p.velocity[k] = [
+                0.2 * (rng.next_f64() - 0.5),
+                0.2 * (rng.next_f64() - 0.5),
+                0.2 * (rng.next_f64() - 0.5),
+            ];
+        }
+        let mut cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), WallModel::None);
+        cfg.gravity = [0.0; 3];
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
+                let h = dem.collision_time_step();
+                for _ in 0..300 {
+                    dem.step(h);
+                }
+                dem
+            })
+        };
+        let dem = run(2);
+        let n = dem.particles().len();
+        assert!(
+            n / dem.lists.block >= 3,
+            "{n} particles, block {}",
+            dem.lists.block
+        );
+        assert!(!dem.lists.far_pair.is_empty(), "no far pairs");
+        let f = &dem.particles().contact_force;
+        let total: Vec3 = (0..3)
+            .map(|a| f.iter().map(|x| x[a]).sum())
+            .collect::<Vec<f64>>()
+            .try_into()
+            .unwrap();
+        let scale_f: f64 = f.iter().map(|x| norm(*x)).sum();
+        assert!(scale_f > 0.0, "no contacts");
+        assert!(
+            norm(total) < 1e-12 * scale_f,
+            "net force {total:?} of {scale_f}"
+        );
         let one = run(1);
         assert_eq!(one.particles(), dem.particles());
     }

@@ -4,12 +4,16 @@
 //! * a *half* pair list in compressed rows: particle `i` owns the partners
 //!   `partner[row_start[i]..row_start[i+1]]`, all with index `> i`, so each pair is stored
 //!   and evaluated once;
-//! * per pair: the tangential spring `history` (from the owner's side) and an output
-//!   record, the force on the owner and the torque per unit radius `−n × F_t`;
-//! * the reverse rows `rev_pair[rev_start[j]..rev_start[j+1]]`: the pairs in which `j` is the
-//!   partner. A second pass sums, for each particle, its own rows with `+` and its reverse
-//!   rows with `−`, so forces are accumulated without atomics or races and in a fixed order
-//!   (the same bits on 1 or 2 threads);
+//! * per pair: the tangential spring `history` (from the owner's side);
+//! * a *block* partition of the (cell-sorted) particles for the parallel force pass: blocks of
+//!   `block` consecutive indices, sized so that nearly every partner lies in its owner's
+//!   block or the next one. A block owns the per-particle sums of its own particles and the
+//!   "from the previous block" sums of the next block, so even blocks run in parallel, then
+//!   odd blocks, each scattering straight into sums nobody else touches. The few remaining
+//!   *far* pairs (across the periodic seam, or spanning more than a block) write their load
+//!   into `far_load` and are gathered through the reverse rows
+//!   `far_rev[far_rev_start[j]..far_rev_start[j+1]]`. Every sum is added in an order fixed by
+//!   the lists alone, so 1 and 2 threads give the same bits;
 //! * a wall list: for each particle, the wall faces within reach, with their history.
 //!
 //! Lists hold every pair closer than `r_i + r_j + skin`; they stay valid until some particle
@@ -23,8 +27,11 @@ use super::cell_grid::CellGrid;
 use super::domain_box::{minimum_image, DomainBox, FaceCondition};
 use super::vec3::{dot, Vec3};
 
-/// Particles per parallel work unit.
+/// Particles per parallel work unit of the per-particle passes.
 pub(crate) const CHUNK: usize = 512;
+
+/// The smallest block of the force pass.
+const MIN_BLOCK: usize = 256;
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct NeighbourList {
@@ -36,11 +43,15 @@ pub(crate) struct NeighbourList {
     pub(crate) row_start: Vec<u32>,
     pub(crate) partner: Vec<u32>,
     pub(crate) history: Vec<Vec3>,
-    /// Per pair: force on the owner (0..3) and torque per unit radius `−n × F_t` (3..6), in
-    /// one record so the gather streams one array.
-    pub(crate) pair_load: Vec<[f64; 6]>,
-    pub(crate) rev_start: Vec<u32>,
-    pub(crate) rev_pair: Vec<u32>,
+    /// Particles per block of the force pass (see the module doc).
+    pub(crate) block: usize,
+    /// The far pairs, ascending, and their loads: force on the owner (0..3) and torque per
+    /// unit radius `−n × F_t` (3..6).
+    pub(crate) far_pair: Vec<u32>,
+    pub(crate) far_load: Vec<[f64; 6]>,
+    /// For each particle, the far pairs in which it is the partner (indices into `far_pair`).
+    pub(crate) far_rev_start: Vec<u32>,
+    pub(crate) far_rev: Vec<u32>,
     pub(crate) wall_start: Vec<u32>,
     pub(crate) wall_face: Vec<u8>,
     pub(crate) wall_history: Vec<Vec3>,
@@ -156,24 +167,34 @@ impl NeighbourList {
         let np = self.partner.len();
         self.history.clear();
         self.history.resize(np, [0.0; 3]);
-        self.pair_load.clear();
-        self.pair_load.resize(np, [0.0; 6]);
 
-        // reverse rows by counting sort of partners; pairs enter in ascending pair index
-        self.rev_start.clear();
-        self.rev_start.resize(n + 1, 0);
-        for &j in &self.partner {
-            self.rev_start[j as usize + 1] += 1;
+        self.block = block_size(&self.row_start, &self.partner);
+        self.far_pair.clear();
+        for i in 0..n {
+            let limit = (i / self.block + 2) * self.block;
+            for k in self.row_start[i] as usize..self.row_start[i + 1] as usize {
+                if self.partner[k] as usize >= limit {
+                    self.far_pair.push(k as u32);
+                }
+            }
         }
-        for k in 0..n {
-            self.rev_start[k + 1] += self.rev_start[k];
+        self.far_load.clear();
+        self.far_load.resize(self.far_pair.len(), [0.0; 6]);
+        // reverse rows of the far pairs by a counting sort; ascending within each row
+        self.far_rev_start.clear();
+        self.far_rev_start.resize(n + 1, 0);
+        for &k in &self.far_pair {
+            self.far_rev_start[self.partner[k as usize] as usize + 1] += 1;
         }
-        self.rev_pair.clear();
-        self.rev_pair.resize(np, 0);
-        let mut cursor: Vec<u32> = self.rev_start[..n].to_vec();
-        for (k, &j) in self.partner.iter().enumerate() {
-            let slot = &mut cursor[j as usize];
-            self.rev_pair[*slot as usize] = k as u32;
+        for i in 0..n {
+            self.far_rev_start[i + 1] += self.far_rev_start[i];
+        }
+        self.far_rev.clear();
+        self.far_rev.resize(self.far_pair.len(), 0);
+        let mut cursor: Vec<u32> = self.far_rev_start[..n].to_vec();
+        for (f, &k) in self.far_pair.iter().enumerate() {
+            let slot = &mut cursor[self.partner[k as usize] as usize];
+            self.far_rev[*slot as usize] = f as u32;
             *slot += 1;
         }
 
@@ -319,20 +340,41 @@ impl NeighbourList {
             + self.order.capacity()
             + self.row_start.capacity()
             + self.partner.capacity()
-            + self.rev_start.capacity()
-            + self.rev_pair.capacity()
+            + self.far_pair.capacity()
+            + self.far_rev_start.capacity()
+            + self.far_rev.capacity()
             + self.wall_start.capacity())
             + self.wall_face.capacity()
             + std::mem::size_of::<(u32, u32, Vec3)>() * self.carry_pairs.capacity()
             + std::mem::size_of::<(u32, u8, Vec3)>() * self.carry_walls.capacity()
             + 4 * self.inverse.capacity()
             + v3 * (self.history.capacity()
-                + 2 * self.pair_load.capacity()
+                + 2 * self.far_load.capacity()
                 + self.wall_history.capacity()
                 + self.wall_force.capacity()
                 + self.wall_torque.capacity()
                 + self.reference.capacity())
     }
+}
+
+/// The block size of the force pass: the 99th percentile of the index span `j − i` of the
+/// listed pairs (so at most about 1% of pairs are far), at least [`MIN_BLOCK`] particles.
+/// It depends on the lists only, never on the thread count.
+fn block_size(row_start: &[u32], partner: &[u32]) -> usize {
+    let n = row_start.len().saturating_sub(1);
+    let mut spans: Vec<u32> = Vec::with_capacity(partner.len());
+    for i in 0..n {
+        for &j in &partner[row_start[i] as usize..row_start[i + 1] as usize] {
+            spans.push(j - i as u32);
+        }
+    }
+    if spans.is_empty() {
+        return MIN_BLOCK.max(n).max(1);
+    }
+    let q = (spans.len() * 99) / 100;
+    let last = spans.len() - 1;
+    let (_, &mut p99, _) = spans.select_nth_unstable(q.min(last));
+    (p99 as usize + 1).max(MIN_BLOCK)
 }
 
 /// Distance from a point to face `f` (positive inside the box).
