@@ -541,32 +541,17 @@ pub(crate) fn fraction_name(phase: &str) -> String {
     }
 }
 
-/// Forces OpenFOAM v1912 offers that fsim does not compute, with the reason given.
+/// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
 const REFUSED_FORCES: [(&str, &str); 9] = [
-    (
-        "nonSphereDrag",
-        "the drag of non-spherical particles is not supported by fsim",
-    ),
-    (
-        "distortedSphereDrag",
-        "the drag of distorted droplets is not supported by fsim",
-    ),
-    (
-        "virtualMass",
-        "the added-mass force is not supported by fsim",
-    ),
-    (
-        "SaffmanMeiLiftForce",
-        "lift forces are not supported by fsim",
-    ),
-    ("TomiyamaLiftForce", "lift forces are not supported by fsim"),
-    ("paramagnetic", "magnetic forces are not supported by fsim"),
-    (
-        "nonInertialFrame",
-        "a non-inertial frame is not supported by fsim",
-    ),
-    ("SRF", "a rotating frame is not supported by fsim"),
-    ("interface", "interface forces are not supported by fsim"),
+    ("nonSphereDrag", "the drag of non-spherical particles"),
+    ("distortedSphereDrag", "the drag of distorting droplets"),
+    ("virtualMass", "the added-mass force"),
+    ("SaffmanMeiLiftForce", "a lift force"),
+    ("TomiyamaLiftForce", "a lift force"),
+    ("paramagnetic", "a magnetic force"),
+    ("nonInertialFrame", "the forces of a non-inertial frame"),
+    ("SRF", "the forces of a rotating frame"),
+    ("interface", "an interface force"),
 ];
 
 /// The forces of `particleForces`, checked.
@@ -637,18 +622,33 @@ impl ParticleForces {
             } else if let Some((_, why)) = REFUSED_FORCES.iter().find(|(n, _)| *n == name) {
                 return Err(CaseError::at(
                     &e.key_loc,
-                    format!("particle force '{name}': {why}"),
+                    format!("particle force '{name}' is not supported by fsim ({why})"),
                 ));
             } else {
-                let what = if name.to_ascii_lowercase().contains("drag") {
+                let others = ["gravity", "pressureGradient"];
+                let known = DragClosure::NAMES.iter().chain(&others);
+                let nearest = known
+                    .map(|k| {
+                        (
+                            edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
+                            *k,
+                        )
+                    })
+                    .min()
+                    .filter(|(d, _)| *d <= 3)
+                    .map(|(_, k)| k);
+                let drag_like = name.to_ascii_lowercase().contains("drag")
+                    || nearest.is_some_and(|k| !others.contains(&k));
+                let what = if drag_like {
                     "unknown drag model"
                 } else {
                     "unknown particle force"
                 };
+                let hint = nearest.map_or(String::new(), |k| format!(" (did you mean '{k}'?)"));
                 return Err(CaseError::at(
                     &e.key_loc,
                     format!(
-                        "{what} '{name}' in particleForces: expected a drag model ({}), \
+                        "{what} '{name}' in particleForces{hint}: expected a drag model ({}), \
                          gravity or pressureGradient",
                         DragClosure::NAMES.join(", ")
                     ),
@@ -657,6 +657,24 @@ impl ParticleForces {
         }
         Ok(forces)
     }
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions), for spelling hints.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
 }
 
 /// Whether OpenFOAM v1912 knows the closure (the others are fsim's names: a case using them
@@ -821,6 +839,23 @@ subModels
             );
             assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
         }
+        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", "ErgunWenYuDarg"));
+        assert!(
+            e.message.starts_with(
+                "unknown drag model 'ErgunWenYuDarg' in particleForces (did you mean \
+                 'ErgunWenYuDrag'?)"
+            ),
+            "{e}"
+        );
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "gravty;"));
+        assert!(
+            e.message.starts_with(
+                "unknown particle force 'gravty' in particleForces (did you mean 'gravity'?)"
+            ),
+            "{e}"
+        );
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "magnus;"));
         assert!(
             e.message.starts_with("unknown particle force 'magnus'"),

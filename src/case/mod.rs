@@ -16,11 +16,13 @@ pub mod drag_law_options;
 pub mod error;
 pub mod expression;
 pub mod fields;
+pub mod fraction_field;
 pub mod fv_options;
 mod packed;
 pub mod parser;
 pub mod source;
 pub mod transport;
+pub mod turbulence;
 pub mod value;
 
 pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};
