@@ -367,7 +367,6 @@ fn source_treatment(
     let Some(terms) = solution.opt_dict("sourceTerms")? else {
         return Ok(SourceTreatment::Explicit);
     };
-    terms.lookup("resetOnStartup");
     let Some(schemes) = terms.opt_dict("schemes")? else {
         return Ok(SourceTreatment::Explicit);
     };
@@ -542,7 +541,7 @@ pub(crate) fn fraction_name(phase: &str) -> String {
 }
 
 /// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
-const REFUSED_FORCES: [(&str, &str); 9] = [
+const REFUSED_FORCES: [(&str, &str); 8] = [
     ("nonSphereDrag", "the drag of non-spherical particles"),
     ("distortedSphereDrag", "the drag of distorting droplets"),
     ("virtualMass", "the added-mass force"),
@@ -551,7 +550,6 @@ const REFUSED_FORCES: [(&str, &str); 9] = [
     ("paramagnetic", "a magnetic force"),
     ("nonInertialFrame", "the forces of a non-inertial frame"),
     ("SRF", "the forces of a rotating frame"),
-    ("interface", "an interface force"),
 ];
 
 /// The forces of `particleForces`, checked.
