@@ -98,7 +98,10 @@ impl DragModel {
     pub fn is_openfoam(self) -> bool {
         matches!(
             self,
-            DragModel::Sphere | DragModel::WenYu | DragModel::ErgunWenYu | DragModel::PlessisMasliyah
+            DragModel::Sphere
+                | DragModel::WenYu
+                | DragModel::ErgunWenYu
+                | DragModel::PlessisMasliyah
         )
     }
 
@@ -285,11 +288,11 @@ impl DragLawSettings {
                     };
                 }
                 if own.contains("voidFraction") {
-                    void_fraction =
-                        match choice(own, "voidFraction", &["cell", "trilinear"], None)? {
-                            0 => VoidFraction::Cell,
-                            _ => VoidFraction::Trilinear,
-                        };
+                    void_fraction = match choice(own, "voidFraction", &["cell", "trilinear"], None)?
+                    {
+                        0 => VoidFraction::Cell,
+                        _ => VoidFraction::Trilinear,
+                    };
                 }
                 for (key, loc) in own.unused() {
                     let (line, col) = loc.line_col();
@@ -398,7 +401,9 @@ fn source_treatment(
             ))
         }
     };
-    let c = coefficient.as_scalar().ok_or_else(|| bad(&coefficient.loc))?;
+    let c = coefficient
+        .as_scalar()
+        .ok_or_else(|| bad(&coefficient.loc))?;
     if c != 1.0 {
         let (line, col) = coefficient.loc.line_col();
         notes.push(format!(
@@ -547,8 +552,14 @@ const REFUSED_FORCES: [(&str, &str); 9] = [
         "distortedSphereDrag",
         "the drag of distorted droplets is not supported by fsim",
     ),
-    ("virtualMass", "the added-mass force is not supported by fsim"),
-    ("SaffmanMeiLiftForce", "lift forces are not supported by fsim"),
+    (
+        "virtualMass",
+        "the added-mass force is not supported by fsim",
+    ),
+    (
+        "SaffmanMeiLiftForce",
+        "lift forces are not supported by fsim",
+    ),
     ("TomiyamaLiftForce", "lift forces are not supported by fsim"),
     ("paramagnetic", "magnetic forces are not supported by fsim"),
     (
@@ -556,10 +567,7 @@ const REFUSED_FORCES: [(&str, &str); 9] = [
         "a non-inertial frame is not supported by fsim",
     ),
     ("SRF", "a rotating frame is not supported by fsim"),
-    (
-        "interface",
-        "interface forces are not supported by fsim",
-    ),
+    ("interface", "interface forces are not supported by fsim"),
 ];
 
 /// The forces of `particleForces`, checked.
@@ -761,7 +769,10 @@ subModels
         );
         assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "magnus;"));
-        assert!(e.message.starts_with("unknown particle force 'magnus'"), "{e}");
+        assert!(
+            e.message.starts_with("unknown particle force 'magnus'"),
+            "{e}"
+        );
         assert_eq!((e.line, e.col), (14, 9), "{e}");
     }
 
@@ -794,11 +805,8 @@ subModels
         ));
         assert!(e.message.contains("cellValueSourceCorrection on"), "{e}");
         assert_eq!(e.line, 3);
-        let (s, notes) = read(&GOLDSCHMIDT_LIKE.replace(
-            "U semiImplicit 1;",
-            "U explicit 0.5;",
-        ))
-        .unwrap();
+        let (s, notes) =
+            read(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 0.5;")).unwrap();
         assert_eq!(s.source, SourceTreatment::Explicit);
         assert!(notes[0].contains("relaxation coefficient 0.5"), "{notes:?}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U implicit 1;"));

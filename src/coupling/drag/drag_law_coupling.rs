@@ -61,21 +61,18 @@ pub struct DragLawCoupling {
     beta: Vec<f64>,
     hydro: Vec<[f64; 3]>,
     pub last: ExchangeReport,
+    /// The fluid's report of the last step.
+    pub last_fluid: Option<VolumeAveragedReport>,
 }
 
 impl DragLawCoupling {
     /// The model for `fluid` and the particles of `dem`: checks the particle size against the
-    /// grid (no particle larger than two cells) and the initial ε against `alphaMax`, and sets
-    /// the pressure consistent with the initial state.
-    pub fn new(
-        settings: DragLawSettings,
-        fluid: &mut FluidSolver,
-        dem: &Dem,
-        dt: f64,
-    ) -> Result<Self, String> {
-        if !(settings.alpha_max > 0.0 && settings.alpha_max < 1.0) {
+    /// grid (no particle larger than two cells) and the initial ε against `alphaMax`. A fresh
+    /// run then calls [`Self::initialise_pressure`], a continued one [`Self::restore`].
+    pub fn new(settings: DragLawSettings, fluid: &FluidSolver, dem: &Dem) -> Result<Self, String> {
+        if !(settings.alpha_max > 0.0 && settings.alpha_max <= 1.0) {
             return Err(format!(
-                "alphaMax = {}: expected a value in (0, 1)",
+                "alphaMax = {}: expected a value in (0, 1]",
                 settings.alpha_max
             ));
         }
@@ -111,11 +108,11 @@ impl DragLawCoupling {
             drag: Vec::new(),
             beta: Vec::new(),
             hydro: Vec::new(),
+            last_fluid: None,
             last: ExchangeReport::default(),
         };
         coupling.compute_fluid_fraction(dem.particles())?;
         coupling.fluid.reset_fluid_fraction(&coupling.cells);
-        coupling.initialise_pressure(fluid, dt);
         Ok(coupling)
     }
 
@@ -128,8 +125,9 @@ impl DragLawCoupling {
         Ok(())
     }
 
-    /// The pressure of the initial velocity and ε: one step taken and undone but for `p`.
-    fn initialise_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) {
+    /// The pressure of the initial velocity and ε (so that the first particle forces see the
+    /// fluid's weight in it): one step taken and undone but for `p` and `∇p`.
+    pub fn initialise_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) {
         let saved = fluid.velocity().clone();
         let t = fluid.time();
         self.fluid.step(fluid, dt);
@@ -170,7 +168,7 @@ impl DragLawCoupling {
                 }
             }
         }
-        if min < floor {
+        if min < floor || min <= 0.0 {
             return Err(format!(
                 "the fluid fraction of cell ({} {} {}) is {min:.6}, below 1 − alphaMax = \
                  {floor} (alphaMax {}): the particles are packed beyond alphaMax there (a \
@@ -206,8 +204,13 @@ impl DragLawCoupling {
         let eps_cells = self.fluid.fluid_fraction();
         let gradient = self.fluid.pressure_gradient();
         let g_fluid = self.fluid.gravity();
-        let (closure, form, interpolation, averaging) =
-            (s.closure, s.form, s.interpolation, s.averaging);
+        let (closure, form, interpolation, averaging, analytical) = (
+            s.closure,
+            s.form,
+            s.interpolation,
+            s.averaging,
+            s.analytical,
+        );
         // Particle loop: reads only, each particle writes its own slots.
         {
             let p = dem.particles();
@@ -232,7 +235,7 @@ impl DragLawCoupling {
                         rho,
                         mu,
                     };
-                    let b = closure.coefficient_as(&q, want);
+                    let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
                     let volume = q.volume();
                     let pressure = match form {
                         VolumeAveragedForm::Paper => {
@@ -242,11 +245,20 @@ impl DragLawCoupling {
                         VolumeAveragedForm::DpmFoam => [0.0; 3],
                     };
                     let mass = density[i] * volume;
+                    // The fraction of the force imbalance the implicit drag relaxes in one step:
+                    // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
                     let x_imp = if fixed[i] { 0.0 } else { dt * b / mass };
+                    let relax = if x_imp == 0.0 {
+                        1.0
+                    } else if analytical {
+                        -(-x_imp).exp_m1() / x_imp
+                    } else {
+                        1.0 / (1.0 + x_imp)
+                    };
                     let buoyant = 1.0 - rho_cloud / density[i];
                     *drag = std::array::from_fn(|a| {
                         let other = mass * buoyant * g_cloud[a] + pressure[a];
-                        (b * slip[a] - x_imp * other) / (1.0 + x_imp)
+                        relax * (b * slip[a] + other) - other
                     });
                     *beta = b;
                     *hydro = std::array::from_fn(|a| drag[a] + pressure[a]);
@@ -277,11 +289,15 @@ impl DragLawCoupling {
             a.iter_mut().for_each(|x| *x = 0.0);
         }
         let mut on_particles = [0.0; 3];
-        for i in 0..p.len() {
-            let f = self.drag[i];
+        for f in &self.drag {
             for a in 0..3 {
                 on_particles[a] += f[a];
             }
+        }
+        // One-way coupling: the fluid does not feel the particles' drag.
+        let count = if self.settings.coupled { p.len() } else { 0 };
+        for i in 0..count {
+            let f = self.drag[i];
             let x = p.position[i];
             self.transfer.spread_to_faces(
                 source,
@@ -312,7 +328,9 @@ impl DragLawCoupling {
 
     /// Step part 3: the volume-averaged fluid.
     pub fn step_fluid(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
-        self.fluid.step(fluid, dt)
+        let report = self.fluid.step(fluid, dt);
+        self.last_fluid = Some(report);
+        report
     }
 
     /// Cell ε, unpadded x-fastest (for output).
@@ -351,7 +369,7 @@ impl DragLawCoupling {
         let s = &self.settings;
         format!(
             "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}",
-            s.closure.name(),
+            s.closure.map_or("no", |c| c.name()),
             s.form.name(),
             s.interpolation.name(),
             s.averaging.name(),

@@ -1,6 +1,7 @@
 //! Everything the drag-law model needs from a case, as plain values.
 
 use super::drag_closure::DragClosure;
+use crate::case;
 use crate::fluid::VolumeAveragedForm;
 
 /// How a particle reads the grid and writes back to it (paper eq. 14–16, or DPMFoam's own).
@@ -27,7 +28,12 @@ impl Stencil {
 /// Settings of the drag-law model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DragLawSettings {
-    pub closure: DragClosure,
+    /// The drag closure; `None`: no drag (`particleForces` without one).
+    pub closure: Option<DragClosure>,
+    /// Two-way coupling (`solution.coupled`): the reaction enters the fluid.
+    pub coupled: bool,
+    /// OpenFOAM's `analytical` integration of the drag over a step (else `Euler`).
+    pub analytical: bool,
     /// Which volume-averaged equations the fluid solves (paper's eq. 7 or DPMFoam's).
     pub form: VolumeAveragedForm,
     /// Fluid velocity and pressure gradient at a particle.
@@ -53,7 +59,9 @@ impl DragLawSettings {
     /// source, `alphaMax` 0.99 (fluid and gravity given).
     pub fn paper(rho: f64, nu: f64, gravity: [f64; 3]) -> Self {
         DragLawSettings {
-            closure: DragClosure::Paper,
+            closure: Some(DragClosure::Paper),
+            coupled: true,
+            analytical: false,
             form: VolumeAveragedForm::Paper,
             interpolation: Stencil::Trilinear,
             averaging: Stencil::Trilinear,
@@ -68,5 +76,50 @@ impl DragLawSettings {
     /// Dynamic viscosity `μ = ρ ν`.
     pub fn mu(&self) -> f64 {
         self.rho * self.nu
+    }
+}
+
+impl DragLawSettings {
+    /// The settings of a case (read by [`case::DragLawSettings`]), with the fluid's density,
+    /// viscosity and gravity. The form follows `particleForces`: with `pressureGradient` the
+    /// particles feel the pressure gradient, so the fluid solves the paper's eq. 7; without it
+    /// DPMFoam's form (whose `gravity` force carries the buoyancy).
+    pub fn from_case(
+        read: &case::DragLawSettings,
+        rho: f64,
+        nu: f64,
+        gravity: [f64; 3],
+    ) -> Result<Self, String> {
+        let closure = match read.drag {
+            Some(model) => Some(DragClosure::from_name(model.keyword(), "particleForces")?),
+            None => None,
+        };
+        Ok(DragLawSettings {
+            closure,
+            coupled: read.coupled,
+            analytical: read.integration == case::ParticleIntegration::Analytical,
+            form: if read.pressure_gradient {
+                VolumeAveragedForm::Paper
+            } else {
+                VolumeAveragedForm::DpmFoam
+            },
+            interpolation: match read.velocity_interpolation {
+                case::Interpolation::Cell => Stencil::Cell,
+                // cellPoint interpolates linearly on a tetrahedral decomposition of the cell;
+                // on uniform hexahedra the trilinear stencil is its counterpart.
+                case::Interpolation::CellPoint | case::Interpolation::Trilinear => {
+                    Stencil::Trilinear
+                }
+            },
+            averaging: match read.void_fraction {
+                case::VoidFraction::Cell => Stencil::Cell,
+                case::VoidFraction::Trilinear => Stencil::Trilinear,
+            },
+            semi_implicit: read.source == case::SourceTreatment::SemiImplicit,
+            alpha_max: read.alpha_max,
+            rho,
+            nu,
+            gravity,
+        })
     }
 }
