@@ -400,8 +400,15 @@ fn drag_law(
     let settings =
         DragLawSettings::from_case(read, case.transport.rho, case.transport.nu, case.gravity)
             .map_err(FsimError::input)?;
-    let coupling = DragLawCoupling::new(settings, fluid, dem)
+    let mut coupling = DragLawCoupling::new(settings, fluid, dem)
         .map_err(|e| FsimError::input(format!("drag-law model: {e}")))?;
+    let superficial = std::array::from_fn(|face| {
+        matches!(
+            case.fields.u_bc[case.mesh.face_patch[face]],
+            VelocityBc::InterstitialInletVelocity { .. }
+        )
+    });
+    coupling.fluid.set_superficial_inlets(superficial);
     Ok(Some(coupling))
 }
 

@@ -333,6 +333,23 @@ impl DragLawCoupling {
         report
     }
 
+    /// The fluid velocity a particle at `x` reads (the interpolation stencil of the settings).
+    pub fn fluid_velocity_at(&self, fluid: &FluidSolver, x: [f64; 3]) -> [f64; 3] {
+        self.transfer
+            .interpolate_faces(fluid.velocity(), x, self.settings.interpolation)
+    }
+
+    /// The fluid fraction a particle at `x` reads (the averaging stencil of the settings).
+    pub fn fluid_fraction_at(&self, x: [f64; 3]) -> f64 {
+        self.transfer
+            .interpolate_cells(self.fluid.fluid_fraction(), x, self.settings.averaging)
+    }
+
+    /// Per particle (the cloud's current order), the drag `f_d` of the last force evaluation.
+    pub fn drag_forces(&self) -> &[[f64; 3]] {
+        &self.drag
+    }
+
     /// Cell ε, unpadded x-fastest (for output).
     pub fn cell_fluid_fraction(&self) -> Vec<f64> {
         let mut out = vec![0.0; self.fluid.grid().cell_count()];
