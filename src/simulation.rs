@@ -9,7 +9,7 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
-use crate::coupling::drag::{DragLawCoupling, DragLawSettings};
+use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -397,9 +397,7 @@ fn drag_law(
              flow with an inlet, or with constant/g)",
         ));
     }
-    let settings =
-        DragLawSettings::from_case(read, case.transport.rho, case.transport.nu, case.gravity)
-            .map_err(FsimError::input)?;
+    let settings = read.settings(&case.transport, case.gravity);
     let mut coupling = DragLawCoupling::new(settings, fluid, dem)
         .map_err(|e| FsimError::input(format!("drag-law model: {e}")))?;
     let superficial = std::array::from_fn(|face| {

@@ -12,9 +12,9 @@
 //! * `constantProperties { rho0; youngsModulus; poissonsRatio; }`.
 //! * `subModels.particleForces`: `gravity` (with buoyancy `1 − ρ_f/ρ_p`, as OpenFOAM's
 //!   `gravity` force), one drag closure and `pressureGradient`, checked by
-//!   [`super::drag_law_settings`] (an unknown or unsupported force is an error at its keyword)
+//!   [`super::drag_law_options`] (an unknown or unsupported force is an error at its keyword)
 //!   and kept for the coupling models (no effect with `model none`). With `model dragLaw` the
-//!   drag-law settings ([`DragLawSettings`]: solution schemes, `alphaMax`, forces) are read
+//!   drag-law options ([`DragLawOptions`]: solution schemes, `alphaMax`, forces) are read
 //!   into [`Cloud::drag_law`].
 //! * `injectionModels`: `manualInjection` (`positionsFile`, `U0`, `sizeDistribution`,
 //!   `parcelBasisType fixed`, `nParticle 1`, `SOI` not after the start) and fsim's
@@ -51,7 +51,7 @@ use super::case::Case;
 use super::control_dict::{at_value, choice};
 use super::coupling::CouplingModel;
 use super::dictionary::Dict;
-use super::drag_law_settings::{DragLawSettings, ParticleForces};
+use super::drag_law_options::{DragLawOptions, ParticleForces};
 use super::error::CaseError;
 use super::source::Location;
 use super::value::Value;
@@ -74,7 +74,7 @@ pub struct Cloud {
     /// `solution.coupled`.
     pub coupled: bool,
     /// The drag-law model's settings, when the case runs that model.
-    pub drag_law: Option<DragLawSettings>,
+    pub drag_law: Option<DragLawOptions>,
     /// One line per injection model: name, type, count.
     pub injections: Vec<String>,
     /// Where each particle (input index) was defined: its line of the positions file, or its
@@ -166,7 +166,7 @@ impl Cloud {
         // ----- forces -----
         let forces = ParticleForces::read(sub, &case.transport.phase)?.names;
         let drag_law = if case.coupling.model == CouplingModel::DragLaw {
-            Some(DragLawSettings::read(
+            Some(DragLawOptions::read(
                 dict,
                 case.coupling.dict.as_ref(),
                 &case.transport.phase,

@@ -12,7 +12,7 @@ pub mod cloud_properties;
 pub mod control_dict;
 pub mod coupling;
 pub mod dictionary;
-pub mod drag_law_settings;
+pub mod drag_law_options;
 pub mod error;
 pub mod expression;
 pub mod fields;
@@ -29,8 +29,8 @@ pub use cloud_properties::Cloud;
 pub use control_dict::{time_name, ControlDict, StartFrom, WriteControl};
 pub use coupling::{Coupling, CouplingModel};
 pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
-pub use drag_law_settings::{
-    DragLawSettings, DragModel, Interpolation, ParticleIntegration, SourceTreatment, VoidFraction,
+pub use drag_law_options::{
+    DragLawOptions, Interpolation, ParticleIntegration, SourceTreatment, VoidFraction,
 };
 pub use error::CaseError;
 pub use fields::{Fields, InternalField, PressureBc, VelocityBc};

@@ -94,11 +94,11 @@ impl DragClosure {
         "WenYuDrag",
         "ErgunWenYuDrag",
         "PlessisMasliyahDrag",
-        "DiFeliceDrag",
-        "BeetstraDrag",
-        "TennetiDrag",
-        "KochHillDrag",
-        "GidaspowDrag",
+        "DiFelice",
+        "Beetstra",
+        "Tenneti",
+        "KochHill",
+        "Gidaspow",
     ];
 
     /// The closure of a name; an unknown name gives a message naming `keyword` and the list.
@@ -109,11 +109,11 @@ impl DragClosure {
             "WenYuDrag" => DragClosure::WenYu,
             "ErgunWenYuDrag" => DragClosure::ErgunWenYu,
             "PlessisMasliyahDrag" => DragClosure::PlessisMasliyah,
-            "DiFeliceDrag" => DragClosure::DiFelice,
-            "BeetstraDrag" => DragClosure::Beetstra,
-            "TennetiDrag" => DragClosure::Tenneti,
-            "KochHillDrag" => DragClosure::KochHill,
-            "GidaspowDrag" => DragClosure::Gidaspow,
+            "DiFelice" => DragClosure::DiFelice,
+            "Beetstra" => DragClosure::Beetstra,
+            "Tenneti" => DragClosure::Tenneti,
+            "KochHill" => DragClosure::KochHill,
+            "Gidaspow" => DragClosure::Gidaspow,
             _ => {
                 return Err(format!(
                     "{keyword} '{name}': unknown drag model (known: {})",

@@ -1,7 +1,6 @@
 //! Everything the drag-law model needs from a case, as plain values.
 
 use super::drag_closure::DragClosure;
-use crate::case;
 use crate::fluid::VolumeAveragedForm;
 
 /// How a particle reads the grid and writes back to it (paper eq. 14–16, or DPMFoam's own).
@@ -79,47 +78,3 @@ impl DragLawSettings {
     }
 }
 
-impl DragLawSettings {
-    /// The settings of a case (read by [`case::DragLawSettings`]), with the fluid's density,
-    /// viscosity and gravity. The form follows `particleForces`: with `pressureGradient` the
-    /// particles feel the pressure gradient, so the fluid solves the paper's eq. 7; without it
-    /// DPMFoam's form (whose `gravity` force carries the buoyancy).
-    pub fn from_case(
-        read: &case::DragLawSettings,
-        rho: f64,
-        nu: f64,
-        gravity: [f64; 3],
-    ) -> Result<Self, String> {
-        let closure = match read.drag {
-            Some(model) => Some(DragClosure::from_name(model.keyword(), "particleForces")?),
-            None => None,
-        };
-        Ok(DragLawSettings {
-            closure,
-            coupled: read.coupled,
-            analytical: read.integration == case::ParticleIntegration::Analytical,
-            form: if read.pressure_gradient {
-                VolumeAveragedForm::Paper
-            } else {
-                VolumeAveragedForm::DpmFoam
-            },
-            interpolation: match read.velocity_interpolation {
-                case::Interpolation::Cell => Stencil::Cell,
-                // cellPoint interpolates linearly on a tetrahedral decomposition of the cell;
-                // on uniform hexahedra the trilinear stencil is its counterpart.
-                case::Interpolation::CellPoint | case::Interpolation::Trilinear => {
-                    Stencil::Trilinear
-                }
-            },
-            averaging: match read.void_fraction {
-                case::VoidFraction::Cell => Stencil::Cell,
-                case::VoidFraction::Trilinear => Stencil::Trilinear,
-            },
-            semi_implicit: read.source == case::SourceTreatment::SemiImplicit,
-            alpha_max: read.alpha_max,
-            rho,
-            nu,
-            gravity,
-        })
-    }
-}

@@ -1,16 +1,16 @@
-//! The drag-law model's settings, read from DPMFoam's `constant/kinematicCloudProperties` (and
+//! The drag-law model's options, read from DPMFoam's `constant/kinematicCloudProperties` (and
 //! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`), typed for the coupling
 //! code.
 //!
 //! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
 //! README, section "DPMFoam cases"):
 //!
-//! * `solution.coupled` → [`DragLawSettings::coupled`]: two-way coupling (the particles'
+//! * `solution.coupled` → [`DragLawOptions::coupled`]: two-way coupling (the particles'
 //!   reaction force and volume enter the fluid) or one-way.
 //! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`]. OpenFOAM
 //!   reads `c` as an under-relaxation factor that only steady clouds use; fsim's clouds are
 //!   transient, so any `c` is accepted and a value other than 1 is noted.
-//! * `solution.interpolationSchemes.U.<phase>` → [`DragLawSettings::velocity_interpolation`]:
+//! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
 //!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
 //!   interpolation); fsim's `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`.
 //!   `rho.<phase>` and `mu.<phase>` are constants of fsim's fluid, so any of OpenFOAM's schemes is
@@ -21,9 +21,10 @@
 //!   (point) mesh, is taken as fsim's closest equivalent, the trilinear spreading of paper
 //!   eq. 16. Absent: `basic`, as DPMFoam does.
 //! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`].
-//! * `constantProperties.alphaMax` → [`DragLawSettings::alpha_max`]: the fluid fraction never
+//! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
 //!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
-//! * `subModels.particleForces`: one drag closure ([`DragModel`]), `gravity`,
+//! * `subModels.particleForces`: one drag closure ([`DragClosure`], by the names of
+//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`,
 //!   `pressureGradient`. DPMFoam's `pressureGradient` force is `m (ρ_c/ρ_p) DU_c/Dt`, the
 //!   fluid's material acceleration at the particle, which equals −∇p/ρ_c + ν∇²u_c + g for the
 //!   fluid (paper eq. 10 up to the viscous term).
@@ -35,82 +36,9 @@
 use super::control_dict::{at_value, choice};
 use super::dictionary::{Dict, Entry};
 use super::error::CaseError;
-
-/// The drag closures fsim knows: OpenFOAM v1912's four, as DPMFoam computes them, and the
-/// modern ones CFD-DEM codes offer (fsim's own keywords).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DragModel {
-    /// `sphereDrag`: the single-sphere law (Schiller–Naumann form), no ε dependence.
-    Sphere,
-    /// `WenYuDrag`: Wen & Yu (1966), the single-sphere law times `ε^-2.65`.
-    WenYu,
-    /// `ErgunWenYuDrag`: Ergun (1952) for `ε < 0.8`, Wen & Yu above (the paper's eq. 11–12).
-    ErgunWenYu,
-    /// `PlessisMasliyahDrag`: du Plessis & Masliyah (1988).
-    PlessisMasliyah,
-    /// `DiFeliceDrag` (fsim): Di Felice (1994).
-    DiFelice,
-    /// `BeetstraDrag` (fsim): Beetstra, van der Hoef & Kuipers (2007).
-    Beetstra,
-    /// `TennetiDrag` (fsim): Tenneti, Garg & Subramaniam (2011).
-    Tenneti,
-    /// `KochHillDrag` (fsim): Koch & Hill (2001).
-    KochHill,
-    /// `GidaspowDrag` (fsim): Gidaspow (1994), Ergun below ε = 0.8, Wen & Yu above.
-    Gidaspow,
-}
-
-impl DragModel {
-    /// Every closure, in the order of [`DragModel::keyword`]'s list.
-    pub const ALL: [DragModel; 9] = [
-        DragModel::Sphere,
-        DragModel::WenYu,
-        DragModel::ErgunWenYu,
-        DragModel::PlessisMasliyah,
-        DragModel::DiFelice,
-        DragModel::Beetstra,
-        DragModel::Tenneti,
-        DragModel::KochHill,
-        DragModel::Gidaspow,
-    ];
-
-    /// The keyword naming the closure in `particleForces`.
-    pub fn keyword(self) -> &'static str {
-        match self {
-            DragModel::Sphere => "sphereDrag",
-            DragModel::WenYu => "WenYuDrag",
-            DragModel::ErgunWenYu => "ErgunWenYuDrag",
-            DragModel::PlessisMasliyah => "PlessisMasliyahDrag",
-            DragModel::DiFelice => "DiFeliceDrag",
-            DragModel::Beetstra => "BeetstraDrag",
-            DragModel::Tenneti => "TennetiDrag",
-            DragModel::KochHill => "KochHillDrag",
-            DragModel::Gidaspow => "GidaspowDrag",
-        }
-    }
-
-    pub fn from_keyword(word: &str) -> Option<DragModel> {
-        DragModel::ALL.into_iter().find(|m| m.keyword() == word)
-    }
-
-    /// Whether OpenFOAM v1912 knows the closure (the others are fsim's keywords: a case using
-    /// them no longer runs under DPMFoam).
-    pub fn is_openfoam(self) -> bool {
-        matches!(
-            self,
-            DragModel::Sphere
-                | DragModel::WenYu
-                | DragModel::ErgunWenYu
-                | DragModel::PlessisMasliyah
-        )
-    }
-
-    /// Whether the closure depends on the fluid fraction (all but `sphereDrag`); OpenFOAM's
-    /// closures of this kind name the fraction field with `alphac`.
-    pub fn uses_fluid_fraction(self) -> bool {
-        self != DragModel::Sphere
-    }
-}
+use super::transport::Transport;
+use crate::coupling::drag::{DragClosure, DragLawSettings, Stencil};
+use crate::fluid::VolumeAveragedForm;
 
 /// How the fluid velocity is taken at a particle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -172,24 +100,29 @@ pub enum ParticleIntegration {
     Analytical,
 }
 
-/// Everything the drag-law model needs from the case, besides the particles and the fluid.
+/// The drag-law model as the case states it: DPMFoam's keywords and fsim's `dragLawCoeffs`.
+/// [`DragLawOptions::settings`] turns it into the coupling code's [`DragLawSettings`].
 #[derive(Clone, Debug, PartialEq)]
-pub struct DragLawSettings {
+pub struct DragLawOptions {
     /// The continuous phase's name (`air`), from `transportProperties`.
     pub phase: String,
-    /// The drag closure of `particleForces`; `None` when none is listed (no drag).
-    pub drag: Option<DragModel>,
+    /// The drag closure of `particleForces` (the drag-law model needs exactly one).
+    pub drag: DragClosure,
+    /// Which volume-averaged equations the fluid solves: DPMFoam's (the default, so that a
+    /// DPMFoam case gives DPMFoam's physics) or the paper's eq. 7 (`dragLawCoeffs { form
+    /// paper; }`).
+    pub form: VolumeAveragedForm,
     /// `gravity` listed in `particleForces` (gravity with buoyancy `1 − ρ_f/ρ_p`).
     pub gravity: bool,
     /// `pressureGradient` listed in `particleForces`.
     pub pressure_gradient: bool,
-    /// `solution.coupled`: the fluid feels the particles (two-way) or not (one-way).
+    /// `solution.coupled`: the fluid feels the particles (two-way).
     pub coupled: bool,
     /// `sourceTerms.schemes.U`.
     pub source: SourceTreatment,
     /// `constantProperties.alphaMax`: ε ≥ 1 − alphaMax.
     pub alpha_max: f64,
-    /// The fluid velocity at a particle.
+    /// The fluid velocity at a particle, as the case names it.
     pub velocity_interpolation: Interpolation,
     /// ε from the particles.
     pub void_fraction: VoidFraction,
@@ -197,30 +130,39 @@ pub struct DragLawSettings {
     pub integration: ParticleIntegration,
 }
 
-impl DragLawSettings {
-    /// DPMFoam's Goldschmidt choices: no drag closure yet, explicit source, cell ε,
-    /// `cellPoint` velocity, `alphaMax 0.99`. For tests and programmatic set-ups.
-    pub fn new(phase: &str) -> DragLawSettings {
-        DragLawSettings {
-            phase: phase.to_string(),
-            drag: None,
-            gravity: true,
-            pressure_gradient: false,
-            coupled: true,
-            source: SourceTreatment::Explicit,
-            alpha_max: 0.99,
-            velocity_interpolation: Interpolation::CellPoint,
-            void_fraction: VoidFraction::Cell,
-            integration: ParticleIntegration::Euler,
-        }
-    }
-
+impl DragLawOptions {
     /// The lower bound of the fluid fraction, `1 − alphaMax` (DPMFoam's `alphacMin`).
     pub fn min_fluid_fraction(&self) -> f64 {
         1.0 - self.alpha_max
     }
 
-    /// Reads the settings from the cloud file `cloud` (DPMFoam's `kinematicCloudProperties`)
+    /// The coupling code's settings, with the fluid's properties and gravity from the case.
+    /// `cellPoint` and `trilinear` both map to the trilinear stencil (see
+    /// [`Interpolation::CellPoint`]).
+    pub fn settings(&self, transport: &Transport, gravity: [f64; 3]) -> DragLawSettings {
+        let stencil = |trilinear: bool| {
+            if trilinear {
+                Stencil::Trilinear
+            } else {
+                Stencil::Cell
+            }
+        };
+        DragLawSettings {
+            closure: Some(self.drag),
+            coupled: self.coupled,
+            analytical: self.integration == ParticleIntegration::Analytical,
+            form: self.form,
+            interpolation: stencil(self.velocity_interpolation != Interpolation::Cell),
+            averaging: stencil(self.void_fraction == VoidFraction::Trilinear),
+            semi_implicit: self.source == SourceTreatment::SemiImplicit,
+            alpha_max: self.alpha_max,
+            rho: transport.rho,
+            nu: transport.nu,
+            gravity,
+        }
+    }
+
+    /// Reads the options from the cloud file `cloud` (DPMFoam's `kinematicCloudProperties`)
     /// and fsim's `couplingProperties` when present; `phase` is the continuous phase's name.
     /// Settings fsim reads but that have no effect go to `notes`; settings that would change
     /// the physics in a way fsim cannot honour are errors at their place.
@@ -229,9 +171,17 @@ impl DragLawSettings {
         coupling: Option<&Dict>,
         phase: &str,
         notes: &mut Vec<String>,
-    ) -> Result<DragLawSettings, CaseError> {
+    ) -> Result<DragLawOptions, CaseError> {
         let solution = cloud.get_dict("solution")?;
-        let coupled = solution.get_bool_or("coupled", false)?;
+        if !solution.get_bool_or("coupled", false)? {
+            return Err(at_value(
+                solution,
+                "coupled",
+                "coupled false (one-way coupling) is not supported by fsim's drag-law model: \
+                 the fluid always feels the particles; use coupled true"
+                    .to_string(),
+            ));
+        }
         if solution.get_bool_or("cellValueSourceCorrection", false)? {
             return Err(at_value(
                 solution,
@@ -252,6 +202,17 @@ impl DragLawSettings {
         let mut velocity_interpolation = interpolation_schemes(solution, phase)?;
         let mut void_fraction = averaging_method(solution, notes)?;
         let integration = particle_integration(solution)?;
+        if solution.peek("integrationSchemes").is_some() {
+            notes.push(format!(
+                "{}: integrationSchemes U {}: fsim advances the particles with its DEM \
+                 integrator (velocity Verlet in the collision sub-steps), the drag included",
+                place(solution, "integrationSchemes"),
+                match integration {
+                    ParticleIntegration::Euler => "Euler",
+                    ParticleIntegration::Analytical => "analytical",
+                }
+            ));
+        }
 
         let props = cloud.get_dict("constantProperties")?;
         let alpha_max = props.get_scalar("alphaMax")?;
@@ -268,49 +229,95 @@ impl DragLawSettings {
 
         let sub = cloud.get_dict("subModels")?;
         let forces = ParticleForces::read(sub, phase)?;
+        let list = sub.peek("particleForces");
+        let Some(drag) = forces.drag else {
+            let message = format!(
+                "no drag closure in particleForces: the drag-law model needs one of {}",
+                DragClosure::NAMES.join(", ")
+            );
+            return Err(match list {
+                Some(e) => CaseError::at(&e.key_loc, message),
+                None => CaseError::at(&sub.loc, message),
+            });
+        };
 
+        let mut form = VolumeAveragedForm::DpmFoam;
         if let Some(own) = coupling
             .map(|c| c.opt_dict("dragLawCoeffs"))
             .transpose()?
             .flatten()
         {
-            {
-                if own.contains("velocityInterpolation") {
-                    velocity_interpolation = match choice(
-                        own,
-                        "velocityInterpolation",
-                        &["cell", "cellPoint", "trilinear"],
-                        None,
-                    )? {
-                        0 => Interpolation::Cell,
-                        1 => Interpolation::CellPoint,
-                        _ => Interpolation::Trilinear,
-                    };
-                }
-                if own.contains("voidFraction") {
-                    void_fraction = match choice(own, "voidFraction", &["cell", "trilinear"], None)?
-                    {
-                        0 => VoidFraction::Cell,
-                        _ => VoidFraction::Trilinear,
-                    };
-                }
-                for (key, loc) in own.unused() {
-                    let (line, col) = loc.line_col();
-                    notes.push(format!(
-                        "{}:{line}:{col}: ignored keyword 'dragLawCoeffs.{key}' (fsim does not \
-                         use it)",
-                        loc.file.display
-                    ));
-                }
+            if own.contains("form") {
+                form = match choice(own, "form", &["DPMFoam", "paper"], None)? {
+                    0 => VolumeAveragedForm::DpmFoam,
+                    _ => VolumeAveragedForm::Paper,
+                };
+            }
+            if own.contains("velocityInterpolation") {
+                velocity_interpolation = match choice(
+                    own,
+                    "velocityInterpolation",
+                    &["cell", "cellPoint", "trilinear"],
+                    None,
+                )? {
+                    0 => Interpolation::Cell,
+                    1 => Interpolation::CellPoint,
+                    _ => Interpolation::Trilinear,
+                };
+            }
+            if own.contains("voidFraction") {
+                void_fraction = match choice(own, "voidFraction", &["cell", "trilinear"], None)? {
+                    0 => VoidFraction::Cell,
+                    _ => VoidFraction::Trilinear,
+                };
+            }
+            for (key, loc) in own.unused() {
+                let (line, col) = loc.line_col();
+                notes.push(format!(
+                    "{}:{line}:{col}: ignored keyword 'dragLawCoeffs.{key}' (fsim does not use \
+                     it)",
+                    loc.file.display
+                ));
             }
         }
+        if velocity_interpolation == Interpolation::CellPoint {
+            notes.push(format!(
+                "{}: U.{phase} cellPoint: fsim interpolates the fluid velocity trilinearly from \
+                 the 8 nearest cell centres (OpenFOAM's cellPoint is linear on the tetrahedra \
+                 of each cell; both are exact for linear fields)",
+                cloud.file()
+            ));
+        }
+        match (form, forces.pressure_gradient) {
+            (VolumeAveragedForm::DpmFoam, true) => {
+                let at = list
+                    .and_then(|l| l.as_dict())
+                    .and_then(|d| d.peek("pressureGradient"))
+                    .map(|e| e.key_loc.clone())
+                    .unwrap_or_else(|| sub.loc.clone());
+                return Err(CaseError::at(
+                    &at,
+                    "pressureGradient (DPMFoam's force m (rho_c/rho_p) DU_c/Dt) is not \
+                     supported by fsim with DPMFoam's equations; fsim's paper form \
+                     (constant/couplingProperties: dragLawCoeffs { form paper; }) gives every \
+                     particle the pressure-gradient force -V grad p of paper eq. 10",
+                ));
+            }
+            (VolumeAveragedForm::Paper, false) => notes.push(format!(
+                "{}: the paper form gives every particle the pressure-gradient force -V grad p \
+                 (paper eq. 10), whether or not particleForces lists pressureGradient",
+                cloud.file()
+            )),
+            _ => {}
+        }
 
-        Ok(DragLawSettings {
+        Ok(DragLawOptions {
             phase: phase.to_string(),
-            drag: forces.drag,
+            drag,
+            form,
             gravity: forces.gravity,
             pressure_gradient: forces.pressure_gradient,
-            coupled,
+            coupled: true,
             source,
             alpha_max,
             velocity_interpolation,
@@ -321,10 +328,7 @@ impl DragLawSettings {
 
     /// One line for the log and `-dry-run`.
     pub fn summary(&self) -> String {
-        let mut forces = Vec::new();
-        if let Some(d) = self.drag {
-            forces.push(d.keyword());
-        }
+        let mut forces = vec![self.drag.name()];
         if self.pressure_gradient {
             forces.push("pressureGradient");
         }
@@ -332,13 +336,10 @@ impl DragLawSettings {
             forces.push("gravity");
         }
         format!(
-            "forces {}; {}; source {}; U interpolation {}; void fraction {}; alphaMax {}",
-            if forces.is_empty() {
-                "none".to_string()
-            } else {
-                forces.join(" + ")
-            },
-            if self.coupled { "two-way" } else { "one-way" },
+            "forces {}; {} equations; source {}; U interpolation {}; void fraction {}; \
+             alphaMax {}",
+            forces.join(" + "),
+            self.form.name(),
             match self.source {
                 SourceTreatment::Explicit => "explicit",
                 SourceTreatment::SemiImplicit => "semiImplicit",
@@ -572,7 +573,7 @@ const REFUSED_FORCES: [(&str, &str); 9] = [
 
 /// The forces of `particleForces`, checked.
 pub(crate) struct ParticleForces {
-    pub drag: Option<DragModel>,
+    pub drag: Option<DragClosure>,
     pub gravity: bool,
     pub pressure_gradient: bool,
     /// Every force listed, in file order.
@@ -597,7 +598,7 @@ impl ParticleForces {
             let name = e.keyword();
             e.mark_used();
             forces.names.push(name.to_string());
-            if let Some(model) = DragModel::from_keyword(name) {
+            if let Ok(model) = DragClosure::from_name(name, "particleForces") {
                 if let Some(first) = drag_at {
                     let (line, _) = first.key_loc.line_col();
                     return Err(CaseError::at(
@@ -611,8 +612,8 @@ impl ParticleForces {
                 }
                 drag_at = Some(e);
                 if let Some(coeffs) = e.as_dict() {
-                    if model.uses_fluid_fraction() {
-                        fraction_field(coeffs, "alphac", phase, model.is_openfoam())?;
+                    if model != DragClosure::SphereDrag {
+                        fraction_field(coeffs, "alphac", phase, is_openfoam(model))?;
                     }
                 }
                 forces.drag = Some(model);
@@ -641,7 +642,6 @@ impl ParticleForces {
                     format!("particle force '{name}': {why}"),
                 ));
             } else {
-                let drags: Vec<&str> = DragModel::ALL.iter().map(|m| m.keyword()).collect();
                 let what = if name.to_ascii_lowercase().contains("drag") {
                     "unknown drag model"
                 } else {
@@ -652,13 +652,25 @@ impl ParticleForces {
                     format!(
                         "{what} '{name}' in particleForces: expected a drag model ({}), \
                          gravity or pressureGradient",
-                        drags.join(", ")
+                        DragClosure::NAMES.join(", ")
                     ),
                 ));
             }
         }
         Ok(forces)
     }
+}
+
+/// Whether OpenFOAM v1912 knows the closure (the others are fsim's names: a case using them
+/// no longer runs under DPMFoam, and their `alphac` is optional).
+fn is_openfoam(closure: DragClosure) -> bool {
+    matches!(
+        closure,
+        DragClosure::SphereDrag
+            | DragClosure::WenYu
+            | DragClosure::ErgunWenYu
+            | DragClosure::PlessisMasliyah
+    )
 }
 
 /// A fraction-field name (`alphac alpha.air;`) that must be the continuous phase's;
@@ -695,8 +707,7 @@ mod tests {
 solution
 {
     active true; coupled true; transient yes; cellValueSourceCorrection off;
-    interpolationSchemes { rho.air cell; U.air cellPoint; mu.air cell; }
-    integrationSchemes { U Euler; }
+    interpolationSchemes { rho.air cell; U.air cell; mu.air cell; }
     sourceTerms { schemes { U semiImplicit 1; } }
 }
 constantProperties { rho0 2526; alphaMax 0.99; }
@@ -710,10 +721,18 @@ subModels
 }
 ";
 
-    fn read(text: &str) -> Result<(DragLawSettings, Vec<String>), CaseError> {
+    fn read(text: &str) -> Result<(DragLawOptions, Vec<String>), CaseError> {
+        read_with(text, None)
+    }
+
+    fn read_with(
+        text: &str,
+        coupling: Option<&str>,
+    ) -> Result<(DragLawOptions, Vec<String>), CaseError> {
         let d = parse_dict(text, "constant/kinematicCloudProperties").unwrap();
+        let c = coupling.map(|c| parse_dict(c, "constant/couplingProperties").unwrap());
         let mut notes = Vec::new();
-        DragLawSettings::read(&d, None, "air", &mut notes).map(|s| (s, notes))
+        DragLawOptions::read(&d, c.as_ref(), "air", &mut notes).map(|s| (s, notes))
     }
 
     fn err(text: &str) -> CaseError {
@@ -721,19 +740,20 @@ subModels
     }
 
     #[test]
-    fn goldschmidt_settings() {
+    fn goldschmidt_like_options_and_their_coupling_settings() {
         let (s, notes) = read(GOLDSCHMIDT_LIKE).unwrap();
         assert_eq!(
             s,
-            DragLawSettings {
+            DragLawOptions {
                 phase: "air".into(),
-                drag: Some(DragModel::ErgunWenYu),
+                drag: DragClosure::ErgunWenYu,
+                form: VolumeAveragedForm::DpmFoam,
                 gravity: true,
                 pressure_gradient: false,
                 coupled: true,
                 source: SourceTreatment::SemiImplicit,
                 alpha_max: 0.99,
-                velocity_interpolation: Interpolation::CellPoint,
+                velocity_interpolation: Interpolation::Cell,
                 void_fraction: VoidFraction::Cell,
                 integration: ParticleIntegration::Euler,
             }
@@ -742,59 +762,119 @@ subModels
         assert!((s.min_fluid_fraction() - 0.01).abs() < 1e-15);
         assert_eq!(
             s.summary(),
-            "forces ErgunWenYuDrag + gravity; two-way; source semiImplicit; U interpolation \
-             cellPoint; void fraction cell; alphaMax 0.99"
+            "forces ErgunWenYuDrag + gravity; DPMFoam equations; source semiImplicit; U \
+             interpolation cell; void fraction cell; alphaMax 0.99"
+        );
+        let transport = Transport {
+            phase: "air".into(),
+            rho: 1.2,
+            nu: 1e-5,
+        };
+        let engine = s.settings(&transport, [0.0, 0.0, -9.81]);
+        assert_eq!(
+            engine,
+            DragLawSettings {
+                closure: Some(DragClosure::ErgunWenYu),
+                coupled: true,
+                analytical: false,
+                form: VolumeAveragedForm::DpmFoam,
+                interpolation: Stencil::Cell,
+                averaging: Stencil::Cell,
+                semi_implicit: true,
+                alpha_max: 0.99,
+                rho: 1.2,
+                nu: 1e-5,
+                gravity: [0.0, 0.0, -9.81],
+            }
+        );
+        // cellPoint: trilinear, with a note saying so
+        let (s, notes) =
+            read(&GOLDSCHMIDT_LIKE.replace("U.air cell;", "U.air cellPoint;")).unwrap();
+        assert_eq!(s.velocity_interpolation, Interpolation::CellPoint);
+        assert_eq!(
+            s.settings(&transport, [0.0; 3]).interpolation,
+            Stencil::Trilinear
+        );
+        assert!(
+            notes[0].contains("U.air cellPoint: fsim interpolates"),
+            "{notes:?}"
         );
     }
 
     #[test]
-    fn every_closure_keyword_round_trips() {
-        for m in DragModel::ALL {
-            assert_eq!(DragModel::from_keyword(m.keyword()), Some(m));
-            let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", m.keyword());
-            assert_eq!(read(&text).unwrap().0.drag, Some(m));
+    fn every_closure_name_round_trips() {
+        for name in DragClosure::NAMES {
+            let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", name);
+            assert_eq!(read(&text).unwrap().0.drag.name(), name);
         }
-        assert_eq!(DragModel::from_keyword("ergunWenYuDrag"), None);
+        // fsim's own closures need no alphac; if given it must be the phase's
+        let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", "DiFelice;");
+        assert_eq!(read(&text).unwrap().0.drag, DragClosure::DiFelice);
     }
 
     #[test]
     fn unknown_drag_model_names_keyword_file_and_line() {
-        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", "ErgunWenYuDrag2"));
-        assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
-        assert_eq!((e.line, e.col), (13, 9), "{e}");
-        assert!(
-            e.message
-                .starts_with("unknown drag model 'ErgunWenYuDrag2' in particleForces"),
-            "{e}"
-        );
-        assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
+        for wrong in ["ErgunWenYuDrag2", "ergunWenYuDrag"] {
+            let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", wrong));
+            assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
+            assert_eq!((e.line, e.col), (12, 9), "{e}");
+            assert!(
+                e.message
+                    .starts_with(&format!("unknown drag model '{wrong}' in particleForces")),
+                "{e}"
+            );
+            assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
+        }
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "magnus;"));
         assert!(
             e.message.starts_with("unknown particle force 'magnus'"),
             "{e}"
         );
-        assert_eq!((e.line, e.col), (14, 9), "{e}");
+        assert_eq!((e.line, e.col), (13, 9), "{e}");
     }
 
     #[test]
     fn forces_fsim_cannot_compute_are_refused_at_their_keyword() {
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "virtualMass { Cvm 0.5; }"));
-        assert_eq!((e.line, e.col), (14, 9), "{e}");
+        assert_eq!((e.line, e.col), (13, 9), "{e}");
         assert!(e.message.contains("added-mass"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "WenYuDrag { alphac alpha.air; }"));
         assert!(e.message.contains("a second drag model 'WenYuDrag'"), "{e}");
-        assert!(e.message.contains("line 13"), "{e}");
+        assert!(e.message.contains("line 12"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", ""));
+        assert!(
+            e.message.starts_with("no drag closure in particleForces"),
+            "{e}"
+        );
+        assert_eq!(e.line, 10, "{e}");
+        // DPMFoam's pressureGradient (DUc/Dt) only with the paper form
+        let text = GOLDSCHMIDT_LIKE.replace("gravity;", "gravity; pressureGradient { U U.air; }");
+        let e = err(&text);
+        assert!(
+            e.message.starts_with("pressureGradient (DPMFoam's force"),
+            "{e}"
+        );
+        assert_eq!((e.line, e.col), (13, 18), "{e}");
+        let (s, notes) = read_with(&text, Some("dragLawCoeffs { form paper; }")).unwrap();
+        assert!(s.pressure_gradient && s.form == VolumeAveragedForm::Paper);
+        assert!(notes.is_empty(), "{notes:?}");
+        let e = err(&text.replace("U U.air", "U U.water"));
+        assert!(
+            e.message
+                .contains("expected the continuous phase's velocity U.air"),
+            "{e}"
+        );
     }
 
     #[test]
     fn fraction_field_must_be_the_continuous_phases() {
         let e = err(&GOLDSCHMIDT_LIKE.replace("alphac alpha.air", "alphac alpha.water"));
-        assert_eq!((e.line, e.col), (13, 33), "{e}");
+        assert_eq!((e.line, e.col), (12, 33), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("{ alphac alpha.air; }", "{ }"));
         assert!(e.message.contains("missing keyword 'alphac'"), "{e}");
         // sphereDrag has no fraction: no keyword needed
         let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", "sphereDrag;");
-        assert_eq!(read(&text).unwrap().0.drag, Some(DragModel::Sphere));
+        assert_eq!(read(&text).unwrap().0.drag, DragClosure::SphereDrag);
     }
 
     #[test]
@@ -805,13 +885,16 @@ subModels
         ));
         assert!(e.message.contains("cellValueSourceCorrection on"), "{e}");
         assert_eq!(e.line, 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true", "coupled false"));
+        assert!(e.message.contains("one-way coupling"), "{e}");
+        assert_eq!((e.line, e.col), (3, 26), "{e}");
         let (s, notes) =
             read(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 0.5;")).unwrap();
         assert_eq!(s.source, SourceTreatment::Explicit);
         assert!(notes[0].contains("relaxation coefficient 0.5"), "{notes:?}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U implicit 1;"));
         assert!(e.message.contains("found the word 'implicit'"), "{e}");
-        let e = err(&GOLDSCHMIDT_LIKE.replace("U.air cellPoint", "U.air cellPointFace"));
+        let e = err(&GOLDSCHMIDT_LIKE.replace("U.air cell", "U.air cellPointFace"));
         assert!(e.message.contains("cellPointFace"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("mu.air cell", "mu.air cubic"));
         assert!(e.message.contains("unknown interpolation scheme"), "{e}");
@@ -824,8 +907,16 @@ subModels
         assert_eq!(notes.len(), 2, "{notes:?}");
         let e = err(&text.replace("averagingMethod dual", "averagingMethod moment"));
         assert!(e.message.contains("moment"), "{e}");
-        let (s, _) = read(&GOLDSCHMIDT_LIKE.replace("U Euler", "U analytical")).unwrap();
+        let text = GOLDSCHMIDT_LIKE.replace(
+            "sourceTerms",
+            "integrationSchemes { U analytical; } sourceTerms",
+        );
+        let (s, notes) = read(&text).unwrap();
         assert_eq!(s.integration, ParticleIntegration::Analytical);
+        assert!(
+            notes[0].contains("integrationSchemes U analytical"),
+            "{notes:?}"
+        );
     }
 
     #[test]
@@ -834,23 +925,29 @@ subModels
         assert!(e.message.contains("missing keyword 'alphaMax'"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("alphaMax 0.99", "alphaMax 1.5"));
         assert!(e.message.contains("'alphaMax' = 1.5"), "{e}");
-        assert_eq!((e.line, e.col), (8, 42), "{e}");
+        assert_eq!((e.line, e.col), (7, 42), "{e}");
     }
 
     #[test]
-    fn coupling_properties_override_the_interpolation_and_void_fraction() {
-        let cloud = parse_dict(GOLDSCHMIDT_LIKE, "constant/kinematicCloudProperties").unwrap();
-        let coupling = parse_dict(
-            "model dragLaw;\ndragLawCoeffs { velocityInterpolation trilinear; voidFraction \
-             trilinear; colour red; }",
-            "constant/couplingProperties",
+    fn coupling_properties_choose_the_form_interpolation_and_void_fraction() {
+        let (s, notes) = read_with(
+            GOLDSCHMIDT_LIKE,
+            Some(
+                "model dragLaw;\ndragLawCoeffs { form paper; velocityInterpolation trilinear; \
+                 voidFraction trilinear; colour red; }",
+            ),
         )
         .unwrap();
-        let mut notes = Vec::new();
-        let s = DragLawSettings::read(&cloud, Some(&coupling), "air", &mut notes).unwrap();
+        assert_eq!(s.form, VolumeAveragedForm::Paper);
         assert_eq!(s.velocity_interpolation, Interpolation::Trilinear);
         assert_eq!(s.void_fraction, VoidFraction::Trilinear);
-        assert_eq!(notes.len(), 1);
+        assert_eq!(notes.len(), 2, "{notes:?}");
         assert!(notes[0].contains("dragLawCoeffs.colour"), "{notes:?}");
+        assert!(
+            notes[1].contains("the paper form gives every particle"),
+            "{notes:?}"
+        );
+        let e = read_with(GOLDSCHMIDT_LIKE, Some("dragLawCoeffs { form DPM; }")).unwrap_err();
+        assert!(e.message.contains("expected one of DPMFoam, paper"), "{e}");
     }
 }
