@@ -148,7 +148,9 @@ impl DragLawOptions {
             }
         };
         DragLawSettings {
-            closure: self.drag,
+            closure: Some(self.drag),
+            coupled: self.coupled,
+            analytical: self.integration == ParticleIntegration::Analytical,
             form: self.form,
             interpolation: stencil(self.velocity_interpolation != Interpolation::Cell),
             averaging: stencil(self.void_fraction == VoidFraction::Trilinear),
@@ -788,7 +790,9 @@ subModels
         assert_eq!(
             engine,
             DragLawSettings {
-                closure: DragClosure::ErgunWenYu,
+                closure: Some(DragClosure::ErgunWenYu),
+                coupled: true,
+                analytical: false,
                 form: VolumeAveragedForm::DpmFoam,
                 interpolation: Stencil::Cell,
                 averaging: Stencil::Cell,

@@ -93,6 +93,9 @@ pub struct VolumeAveragedFluid {
     rhs: Vec<f64>,
     p_work: Vec<f64>,
     outlet_pressure: Option<f64>,
+    /// Inlet faces whose velocity is superficial (DPMFoam's `interstitialInletVelocity`: the
+    /// face carries `U_in/ε_f`, so the volume flux is `U_in` whatever the bed next to it).
+    superficial_inlets: [bool; 6],
     /// Relative residual at which the pressure CG stops.
     pub tolerance: f64,
     pub max_iterations: usize,
@@ -150,6 +153,7 @@ impl VolumeAveragedFluid {
             rhs: vec![0.0; cells],
             p_work: vec![0.0; cells],
             outlet_pressure,
+            superficial_inlets: [false; 6],
             tolerance: 1e-10,
             max_iterations: 500,
             grid,
@@ -176,6 +180,38 @@ impl VolumeAveragedFluid {
     /// Padded index ranges where component `c`'s momentum is advanced (per direction).
     pub fn momentum_ranges(&self) -> &[[(usize, usize); 3]; 3] {
         &self.momentum_ranges
+    }
+
+    /// Marks inlet faces (order x−, x+, y−, y+, z−, z+) whose velocity is superficial.
+    pub fn set_superficial_inlets(&mut self, faces: [bool; 6]) {
+        self.superficial_inlets = faces;
+    }
+
+    /// Ghost layers and boundary faces from the conditions, then superficial inlets divided
+    /// by the face's ε.
+    fn fill_ghosts(&self, u: &mut [Vec<f64>; 3]) {
+        fill_velocity_ghosts(&self.layout, &self.bc, u);
+        for d in 0..3 {
+            for side in 0..2 {
+                if !self.superficial_inlets[2 * d + side] {
+                    continue;
+                }
+                if !matches!(self.bc.face(d, side), FaceCondition::Inlet { .. }) {
+                    continue;
+                }
+                let l = &self.layout;
+                let slot = if side == 0 { 1 } else { l.n[d] + 1 };
+                let cell = if side == 0 { 1 } else { l.n[d] };
+                let (d1, d2) = ((d + 1) % 3, (d + 2) % 3);
+                let s = l.stride;
+                for b in 1..=l.n[d2] {
+                    for c in 1..=l.n[d1] {
+                        let base = c * s[d1] + b * s[d2];
+                        u[d][base + slot * s[d]] /= self.eps[base + cell * s[d]];
+                    }
+                }
+            }
+        }
     }
 
     /// Fluid fraction per cell, padded (ghosts filled).
@@ -283,7 +319,7 @@ impl VolumeAveragedFluid {
     /// Advances `fluid` by `dt` (see the module notes); `εⁿ⁺¹` and the sources must be set.
     pub fn step(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
         let t0 = fluid.time();
-        fill_velocity_ghosts(&self.layout, &self.bc, fluid.velocity_mut());
+        self.fill_ghosts(fluid.velocity_mut());
         self.predict(fluid.velocity(), dt);
         {
             let u = fluid.velocity_mut();
@@ -300,8 +336,8 @@ impl VolumeAveragedFluid {
                 }
             }
             extrapolate_outlets(&self.layout, &self.bc, u);
-            fill_velocity_ghosts(&self.layout, &self.bc, u);
         }
+        self.fill_ghosts(fluid.velocity_mut());
         let pressure = self.solve_pressure(fluid, dt);
         self.correct(fluid);
         fluid.set_time(t0 + dt);
@@ -515,7 +551,7 @@ impl VolumeAveragedFluid {
                 }
             });
         }
-        fill_velocity_ghosts(l, &self.bc, u);
+        self.fill_ghosts(u);
     }
 
     /// `max |∇·(ε_f u) + ∂ε/∂t|` for the current velocity.

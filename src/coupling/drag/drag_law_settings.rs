@@ -27,7 +27,12 @@ impl Stencil {
 /// Settings of the drag-law model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DragLawSettings {
-    pub closure: DragClosure,
+    /// The drag closure; `None`: no drag (`particleForces` without one).
+    pub closure: Option<DragClosure>,
+    /// Two-way coupling (`solution.coupled`): the reaction enters the fluid.
+    pub coupled: bool,
+    /// OpenFOAM's `analytical` integration of the drag over a step (else `Euler`).
+    pub analytical: bool,
     /// Which volume-averaged equations the fluid solves (paper's eq. 7 or DPMFoam's).
     pub form: VolumeAveragedForm,
     /// Fluid velocity and pressure gradient at a particle.
@@ -53,7 +58,9 @@ impl DragLawSettings {
     /// source, `alphaMax` 0.99 (fluid and gravity given).
     pub fn paper(rho: f64, nu: f64, gravity: [f64; 3]) -> Self {
         DragLawSettings {
-            closure: DragClosure::Paper,
+            closure: Some(DragClosure::Paper),
+            coupled: true,
+            analytical: false,
             form: VolumeAveragedForm::Paper,
             interpolation: Stencil::Trilinear,
             averaging: Stencil::Trilinear,
@@ -70,3 +77,4 @@ impl DragLawSettings {
         self.rho * self.nu
     }
 }
+
