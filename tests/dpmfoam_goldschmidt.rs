@@ -141,6 +141,19 @@ fn unknown_drag_model_is_named_with_file_and_line() {
     }) else {
         return;
     };
+    // fsimFoam: exit 2, the place, nothing written
+    let before = listing(&case);
+    let out = fsim(&case, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "fsimFoam: error: constant/kinematicCloudProperties:66:9: unknown drag model \
+             'ErgunWenYuDarg'"
+        ),
+        "{stderr}"
+    );
+    assert_eq!(listing(&case), before);
     let case = Case::load(&case).unwrap_or_else(|e| panic!("{}", e.report()));
     let e = Cloud::from_case(&case).unwrap_err();
     assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
@@ -266,4 +279,48 @@ fn boundary_conditions_fsim_cannot_honour_are_refused() {
         .warnings
         .iter()
         .any(|w| w.starts_with("0/alpha.air:3:1: internalField: the fluid fraction is computed")));
+}
+
+/// The issue's acceptance test: the installed tutorial, copied unchanged but for `endTime`,
+/// runs its first 0.02 s (1000 steps) under fsimFoam without error.
+#[test]
+fn goldschmidt_runs_its_first_1000_steps_under_fsimfoam() {
+    let Some((_s, case)) = broken_copy("dpm-run", |c| {
+        replace(
+            &c.join("system/controlDict"),
+            "endTime         5;",
+            "endTime         0.02;",
+        )
+    }) else {
+        return;
+    };
+    let out = fsim(&case, &["-threads", "2"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    // writeInterval 0.01 (runTime): the start, 0.01 and 0.02, each whole
+    for t in ["0.01", "0.02"] {
+        for f in ["fluid.vtk", "particles.vtu", "restart.bin"] {
+            assert!(case.join(t).join(f).is_file(), "{t}/{f} missing");
+        }
+    }
+    let monitor = fs::read_to_string(case.join("postProcessing/cloud/0/cloud.dat")).unwrap();
+    let header: Vec<&str> = monitor.lines().next().unwrap()[1..]
+        .split_whitespace()
+        .collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<f64>> = monitor
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 1000);
+    assert!(rows.iter().all(|r| r[column("particles")] == 24_750.0));
+    assert!(rows.iter().flatten().all(|x| x.is_finite()));
+    // The bed starts at rest and falls, held back by the 1.875 m/s inflow's drag: after
+    // 0.02 s its mean velocity is downwards and slower than free fall with buoyancy
+    // (g t (1 - 1.2/2526) = 0.1961 m/s). DPMFoam v1912 gives -0.124 m/s here.
+    let last = rows.last().unwrap();
+    assert!((last[column("Time")] - 0.02).abs() < 1e-12);
+    let w = last[column("Uz")];
+    assert!(w < -0.05 && w > -0.1961, "mean vertical velocity {w}");
 }
