@@ -208,6 +208,15 @@ fn boundary_conditions_fsim_cannot_honour_are_refused() {
     }) else {
         return;
     };
+    let before = listing(&case);
+    let out = fsim(&case, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("fsim cannot honour U 'interstitialInletVelocity'"),
+        "{stderr}"
+    );
+    assert_eq!(listing(&case), before);
     let loaded = Case::load(&case).unwrap_or_else(|e| panic!("{}", e.report()));
     let e = boundary_conditions(&loaded).unwrap_err().to_string();
     assert!(

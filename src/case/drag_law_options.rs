@@ -173,7 +173,8 @@ impl DragLawOptions {
         notes: &mut Vec<String>,
     ) -> Result<DragLawOptions, CaseError> {
         let solution = cloud.get_dict("solution")?;
-        if !solution.get_bool_or("coupled", false)? {
+        // Required by DPMFoam too (cloudSolution reads it without a default).
+        if !solution.get_bool("coupled")? {
             return Err(at_value(
                 solution,
                 "coupled",
@@ -918,6 +919,8 @@ subModels
         ));
         assert!(e.message.contains("cellValueSourceCorrection on"), "{e}");
         assert_eq!(e.line, 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true;", ""));
+        assert!(e.message.contains("missing keyword 'coupled'"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true", "coupled false"));
         assert!(e.message.contains("one-way coupling"), "{e}");
         assert_eq!((e.line, e.col), (3, 26), "{e}");
