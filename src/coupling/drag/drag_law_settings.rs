@@ -77,4 +77,3 @@ impl DragLawSettings {
         self.rho * self.nu
     }
 }
-
