@@ -199,7 +199,7 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
         .next_time_step()
         .unwrap_or(sim.dt)
         .max(f64::MIN_POSITIVE);
-    let bound = sim.fluid.stability_bound();
+    let bound = sim.stability_bound();
     let steps = (span / dt).ceil().max(0.0);
     println!(
         "Steps   : about {steps} of {dt:e} s from t = {} to {} s (stability bound {bound:e} s{})",

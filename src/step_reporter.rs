@@ -38,7 +38,7 @@ const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
 ];
 
 /// Columns of the drag-law monitor `postProcessing/dragLaw/<startTime>/dragLaw.dat`: the
-/// smallest ε, the pressure drop along gravity (Pa, with the fluid's weight), the drag on the
+/// smallest ε, the pressure drop along gravity less the fluid's weight (Pa), the drag on the
 /// particles and its reaction on the fluid (N; equal and opposite), the total hydrodynamic
 /// force, the mean particle velocity, the pressure CG's iterations and the continuity error.
 const DRAG_MONITOR_COLUMNS: [&str; 17] = [
@@ -165,10 +165,15 @@ impl StepReporter {
         if let (Some(d), Some(m)) = (sim.drag.as_ref(), self.drag.as_mut()) {
             let e = &d.last;
             let g = d.settings.gravity;
-            let axis = (0..3)
-                .max_by(|&a, &b| g[a].abs().total_cmp(&g[b].abs()))
-                .unwrap_or(2);
-            // Low minus high along gravity: positive when gravity points to the low side.
+            let axis = if g == [0.0; 3] {
+                2
+            } else {
+                (0..3)
+                    .max_by(|&a, &b| g[a].abs().total_cmp(&g[b].abs()))
+                    .unwrap_or(2)
+            };
+            // Measured against the flow that holds the bed up: upstream (the side gravity
+            // points to) minus downstream.
             let drop = d.pressure_drop(&sim.fluid, axis) * if g[axis] > 0.0 { -1.0 } else { 1.0 };
             let up = cloud.map_or([0.0; 3], |c| c.mean_velocity);
             let (iterations, continuity) = d.last_fluid.map_or((0.0, 0.0), |r| {
