@@ -1,37 +1,42 @@
 //! The drag-law model's options, read from DPMFoam's `constant/kinematicCloudProperties` (and
-//! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`), typed for the coupling
-//! code.
+//! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`); [`DragLawOptions::settings`]
+//! gives the coupling code's [`DragLawSettings`].
 //!
 //! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
 //! README, section "DPMFoam cases"):
 //!
-//! * `solution.coupled` → [`DragLawOptions::coupled`]: two-way coupling (the particles'
-//!   reaction force and volume enter the fluid) or one-way.
+//! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
+//!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
+//!   refused; `maxCo` is noted as unused.
 //! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`]. OpenFOAM
 //!   reads `c` as an under-relaxation factor that only steady clouds use; fsim's clouds are
 //!   transient, so any `c` is accepted and a value other than 1 is noted.
 //! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
 //!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
-//!   interpolation); fsim's `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`.
-//!   `rho.<phase>` and `mu.<phase>` are constants of fsim's fluid, so any of OpenFOAM's schemes is
-//!   accepted for them (interpolating a constant gives the constant).
+//!   interpolation, which fsim replaces by trilinear interpolation, with a note); fsim's
+//!   `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`. `rho.<phase>`, `mu.<phase>`
+//!   and `alpha.<phase>` may name any of OpenFOAM's schemes: the first two are constants of
+//!   fsim's fluid, and ε at a particle follows [`VoidFraction`].
 //! * `solution.averagingMethod basic|dual` → [`VoidFraction`]: `basic` is DPMFoam's own rule
 //!   (a particle's volume counts in its cell only, which DPMFoam applies whatever this keyword
 //!   says: the keyword is read by MPPICFoam's models); `dual`, OpenFOAM's averaging on the dual
 //!   (point) mesh, is taken as fsim's closest equivalent, the trilinear spreading of paper
-//!   eq. 16. Absent: `basic`, as DPMFoam does.
-//! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`].
+//!   eq. 16 (noted). Absent: `basic`, as DPMFoam does. `moment` is refused.
+//! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`] (noted: fsim
+//!   integrates with its own scheme).
 //! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
 //!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
-//! * `subModels.particleForces`: one drag closure ([`DragClosure`], by the names of
-//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`,
-//!   `pressureGradient`. DPMFoam's `pressureGradient` force is `m (ρ_c/ρ_p) DU_c/Dt`, the
-//!   fluid's material acceleration at the particle, which equals −∇p/ρ_c + ν∇²u_c + g for the
-//!   fluid (paper eq. 10 up to the viscous term).
+//! * `subModels.particleForces`: exactly one drag closure ([`DragClosure`], by the names of
+//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`, and
+//!   `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
+//!   `m (ρ_c/ρ_p) DU_c/Dt`, the fluid's material acceleration at the particle, which fsim's
+//!   DPMFoam form does not compute. Other OpenFOAM forces are refused; an unknown name is an
+//!   error with a spelling hint.
 //!
-//! fsim's own `dragLawCoeffs { velocityInterpolation cell|cellPoint|trilinear; voidFraction
-//! cell|trilinear; }` in `constant/couplingProperties` overrides the interpolation and the ε
-//! rule, so that the same case runs with DPMFoam's choices or with the paper's.
+//! fsim's own `dragLawCoeffs { form DPMFoam|paper; velocityInterpolation
+//! cell|cellPoint|trilinear; voidFraction cell|trilinear; }` in `constant/couplingProperties`
+//! chooses the equations and overrides the interpolation and the ε rule, so that the same case
+//! runs with DPMFoam's choices or with the paper's.
 
 use super::control_dict::{at_value, choice};
 use super::dictionary::{Dict, Entry};
