@@ -1,4 +1,6 @@
 //! Unresolved coupling (paper §2.2): declares and re-exports the drag-law model's parts.
+// Component loops index several per-component arrays at once.
+#![allow(clippy::needless_range_loop)]
 
 mod drag_closure;
 mod drag_law_coupling;
