@@ -5,9 +5,11 @@
 //! build the simulation: grid, fluid, initial or restart state
 //! while time remains:
 //!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
-//!     evolve the fluid                        (momentum predictor, pressure projection)
-//!     evolve the cloud                        (DEM collision sub-steps; model none: gravity
+//!     evolve the cloud                        (drag law: forces from the fluid, eq. 10–16;
+//!                                              DEM collision sub-steps; model none: gravity
 //!                                              and buoyancy, no fluid forces)
+//!     evolve the fluid                        (drag law: update ε; momentum predictor,
+//!                                              pressure correction)
 //!     check the solution                      (a diverged run stops, keeping its last time)
 //!     monitor, log
 //!     write the time directory when due       (whole or not at all)
@@ -79,7 +81,12 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     )
     .map_err(output_error)?;
     let start_name = output.time_name(sim.time.time);
-    let mut reporter = StepReporter::open(&case.dir, &start_name, sim.particles.is_some())?;
+    let mut reporter = StepReporter::open(
+        &case.dir,
+        &start_name,
+        sim.particles.is_some(),
+        sim.drag.is_some(),
+    )?;
     reporter.log.banner(&banner(case, &sim, threads))?;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
         // The start time gets its VTK files and restart state too, so the series opens at t0.
@@ -91,8 +98,8 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     while sim.time.running() {
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
-        let fluid = sim.evolve_fluid(dt);
         let cloud = sim.evolve_cloud(dt);
+        let fluid = sim.evolve_fluid(dt)?;
         let write_due = sim.time.advance(dt);
         let health = sim.check_health()?;
         let name = output.time_name(sim.time.time);
@@ -132,16 +139,16 @@ fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimE
     let pressure = sim.fluid.pressure().to_vec();
     let dir = output.begin(sim.time.time).map_err(output_error)?;
     let title = format!("fsim t = {}", output.time_name(sim.time.time));
-    write_fluid(
-        dir.path(),
-        &grid,
-        &title,
-        &[
-            CellData::Vector("U", &velocity),
-            CellData::Scalar("p", &pressure),
-        ],
-    )
-    .map_err(output_error)?;
+    let mut fields = vec![
+        CellData::Vector("U", &velocity),
+        CellData::Scalar("p", &pressure),
+    ];
+    // The drag-law model's fluid fraction ε (DPMFoam's alpha.<phase>).
+    let alpha = sim.drag.as_ref().map(|d| d.cell_fluid_fraction());
+    if let Some(alpha) = &alpha {
+        fields.push(CellData::Scalar("alpha", alpha));
+    }
+    write_fluid(dir.path(), &grid, &title, &fields).map_err(output_error)?;
     sim.write_particles(&dir.file(PARTICLE_FILE_NAME))?;
     sim.write_restart(&dir.file(RESTART_FILE_NAME))?;
     output.commit(dir).map_err(output_error)?;
@@ -156,6 +163,9 @@ fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
         ),
         ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
     ];
+    if let Some(d) = &sim.drag {
+        extra.push(("Drag law".to_string(), d.describe()));
+    }
     if let Some(p) = &sim.particles {
         extra.push((
             "Particles".to_string(),
@@ -189,7 +199,7 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
         .next_time_step()
         .unwrap_or(sim.dt)
         .max(f64::MIN_POSITIVE);
-    let bound = sim.fluid.stability_bound();
+    let bound = sim.stability_bound();
     let steps = (span / dt).ceil().max(0.0);
     println!(
         "Steps   : about {steps} of {dt:e} s from t = {} to {} s (stability bound {bound:e} s{})",

@@ -9,6 +9,7 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
+use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -40,6 +41,8 @@ pub struct Simulation {
     pub rho: f64,
     /// The particles, when the case has an active cloud.
     pub particles: Option<Particles>,
+    /// The drag-law model (paper §2.2), when the case runs it with a cloud.
+    pub drag: Option<DragLawCoupling>,
 }
 
 /// The cloud of a run: the DEM engine and what the log says about it.
@@ -70,10 +73,13 @@ impl Simulation {
     /// Builds the simulation from a validated case, starting from the case's initial fields,
     /// or from the restart state of `restart` when continuing (`startFrom latestTime`).
     pub fn new(case: &Case, restart: Option<&TimeEntry>) -> Result<Self, FsimError> {
-        if case.coupling.model != CouplingModel::None {
+        if !matches!(
+            case.coupling.model,
+            CouplingModel::None | CouplingModel::DragLaw
+        ) {
             return Err(FsimError::input(format!(
                 "constant/couplingProperties: model '{}' is not available yet in this fsim \
-                 (only the fluid alone, model none, runs)",
+                 (model none and dragLaw run)",
                 case.coupling.model.name()
             )));
         }
@@ -123,6 +129,7 @@ impl Simulation {
             model: case.coupling.model,
             rho: case.transport.rho,
             particles: None,
+            drag: None,
         };
         let cloud = Cloud::from_case(case)?;
         match restart {
@@ -130,7 +137,14 @@ impl Simulation {
                 let dir = case.dir.join(&entry.name);
                 let state = sim.restore(&dir, write_control, control)?;
                 if let Some(cloud) = cloud {
-                    sim.particles = Some(restore_particles(cloud, &state, &dir)?);
+                    let cloud_settings = cloud.clone();
+                    let particles = restore_particles(cloud, &state, &dir)?;
+                    sim.drag = drag_law(case, &cloud_settings, &sim.fluid, &particles.dem)?;
+                    if let Some(drag) = sim.drag.as_mut() {
+                        drag.restore(&sim.fluid, &particles.dem)
+                            .map_err(FsimError::input)?;
+                    }
+                    sim.particles = Some(particles);
                 }
             }
             None => {
@@ -142,6 +156,7 @@ impl Simulation {
                         cloud.particles.clone(),
                     )
                     .map_err(|e| cloud.locate(&e))?;
+                    sim.drag = drag_law(case, &cloud, &sim.fluid, &dem)?;
                     sim.particles = Some(Particles {
                         dem,
                         pair_model: cloud.pair_model_name,
@@ -149,6 +164,9 @@ impl Simulation {
                         substeps: 0,
                         notes: cloud.warnings,
                     });
+                }
+                if let Some(drag) = sim.drag.as_mut() {
+                    drag.initialise_pressure(&mut sim.fluid, sim.dt);
                 }
             }
         }
@@ -208,7 +226,7 @@ impl Simulation {
     pub fn next_time_step(&mut self) -> Result<f64, FsimError> {
         let allowed = match self.sizing {
             StepSizing::Fixed(dt) => {
-                let bound = self.fluid.stability_bound();
+                let bound = self.stability_bound();
                 if dt > bound {
                     return Err(FsimError::run(format!(
                         "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the {} \
@@ -230,23 +248,59 @@ impl Simulation {
                 } else {
                     self.dt
                 };
-                self.fluid.adaptive_dt(previous, max_co, max_delta_t)
+                self.fluid
+                    .adaptive_dt(previous, max_co, max_delta_t)
+                    .min(self.stability_bound())
             }
         };
         Ok(self.time.step_size(allowed))
     }
 
-    /// Advances the fluid by `dt`: momentum predictor, pressure projection, bulk driving.
-    pub fn evolve_fluid(&mut self, dt: f64) -> StepReport {
-        let report = self.fluid.step(dt);
+    /// The bound on `Δt` of the fluid's scheme (paper eq. 3 for Euler), or of the drag-law
+    /// model's explicit predictor.
+    pub fn stability_bound(&self) -> f64 {
+        match &self.drag {
+            Some(drag) => drag.fluid.stability_bound(&self.fluid),
+            None => self.fluid.stability_bound(),
+        }
+    }
+
+    /// Advances the fluid by `dt`. Alone: momentum predictor, pressure projection, bulk
+    /// driving. Drag-law model: ε from the particles' new positions (a cell packed beyond
+    /// `alphaMax` stops the run), then the volume-averaged momentum predictor with the
+    /// particles' reaction and the variable-coefficient pressure correction.
+    pub fn evolve_fluid(&mut self, dt: f64) -> Result<StepReport, FsimError> {
         self.dt = dt;
-        report
+        let Some(drag) = self.drag.as_mut() else {
+            return Ok(self.fluid.step(dt));
+        };
+        let dem = &self
+            .particles
+            .as_ref()
+            .expect("the drag-law model has a cloud")
+            .dem;
+        drag.update_fluid_fraction(dem).map_err(|e| {
+            FsimError::run(format!(
+                "drag-law model at t = {} s: {e}",
+                self.time.time + dt
+            ))
+        })?;
+        drag.step_fluid(&mut self.fluid, dt);
+        Ok(StepReport {
+            dt,
+            time: self.fluid.time(),
+            driving_gradient: None,
+        })
     }
 
     /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`
-    /// without particles.
+    /// without particles. With the drag-law model the hydrodynamic forces come first, from
+    /// the fluid as it is (DPMFoam's order: the cloud moves before the fluid).
     pub fn evolve_cloud(&mut self, dt: f64) -> Option<CloudReport> {
         let p = self.particles.as_mut()?;
+        if let Some(drag) = self.drag.as_mut() {
+            drag.particle_forces(&self.fluid, &mut p.dem, dt);
+        }
         p.substeps = p.dem.advance(dt);
         Some(CloudReport {
             count: p.dem.particles().len(),
@@ -327,6 +381,35 @@ fn restore_particles(
     })
 }
 
+/// The drag-law model of a case with `model dragLaw` and a cloud (`None` otherwise).
+fn drag_law(
+    case: &Case,
+    cloud: &Cloud,
+    fluid: &FluidSolver,
+    dem: &Dem,
+) -> Result<Option<DragLawCoupling>, FsimError> {
+    let Some(read) = &cloud.drag_law else {
+        return Ok(None);
+    };
+    if !case.mean_velocity_forces.is_empty() {
+        return Err(FsimError::input(
+            "fvOptions: meanVelocityForce is not supported with the drag-law model (drive the \
+             flow with an inlet, or with constant/g)",
+        ));
+    }
+    let settings = read.settings(&case.transport, case.gravity);
+    let mut coupling = DragLawCoupling::new(settings, fluid, dem)
+        .map_err(|e| FsimError::input(format!("drag-law model: {e}")))?;
+    let superficial = std::array::from_fn(|face| {
+        matches!(
+            case.fields.u_bc[case.mesh.face_patch[face]],
+            VelocityBc::InterstitialInletVelocity { .. }
+        )
+    });
+    coupling.fluid.set_superficial_inlets(superficial);
+    Ok(Some(coupling))
+}
+
 /// Whether the case starts from the latest time directory.
 pub fn continues(case: &Case) -> bool {
     case.control.start_from == StartFrom::LatestTime
@@ -359,7 +442,15 @@ fn mean_velocity_force(case: &Case) -> Result<Option<MeanVelocityForce>, FsimErr
 
 /// The solver's condition on each box face, from the patch type and the `U`/`p` conditions
 /// the case gives it.
-fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
+///
+/// DPMFoam's pairs: `noSlip` + `fixedFluxPressure` is a wall; `interstitialInletVelocity` +
+/// `fixedFluxPressure` an [`FaceCondition::Inlet`] whose velocity is the *superficial*
+/// `inletVelocity` (the volumetric flux per area; the interstitial velocity on the face is
+/// `inletVelocity / ε`, see [`interstitial_inlets`]); `pressureInletOutletVelocity` +
+/// `fixedValue` p an [`FaceCondition::Outlet`] at that pressure, which lets the flow enter as
+/// well as leave (its normal velocity follows the pressure; on back-flow the tangential
+/// velocity stays zero-gradient where OpenFOAM takes `inletValue`'s); `symmetry` a slip face.
+pub fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
     let mesh = &case.mesh;
     let fields = &case.fields;
     let mut faces: [FaceCondition; 6] = std::array::from_fn(|_| FaceCondition::Periodic);
@@ -413,6 +504,21 @@ fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
         };
     }
     Ok(BoundaryConditions { faces })
+}
+
+/// The superficial inlet velocity (`inletVelocity` of an `interstitialInletVelocity`) of each
+/// box face that has one. The face's [`FaceCondition::Inlet`] carries the same vector; a
+/// volume-averaged fluid imposes `ε_f u·n = inletVelocity·n` there, i.e. the interstitial
+/// velocity `inletVelocity / ε_f` with `ε_f` the fraction of the adjacent cell (DPMFoam's
+/// `alpha.air` is zero-gradient on patches).
+pub fn interstitial_inlets(case: &Case) -> [Option<[f64; 3]>; 6] {
+    std::array::from_fn(|face| {
+        let index = case.mesh.face_patch[face];
+        match &case.fields.u_bc[index] {
+            VelocityBc::InterstitialInletVelocity { inlet_velocity, .. } => Some(*inlet_velocity),
+            _ => None,
+        }
+    })
 }
 
 fn velocity_bc_name(bc: &VelocityBc) -> &'static str {

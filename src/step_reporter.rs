@@ -37,11 +37,36 @@ const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
     "subSteps",
 ];
 
+/// Columns of the drag-law monitor `postProcessing/dragLaw/<startTime>/dragLaw.dat`: the
+/// smallest ε, the pressure drop along gravity less the fluid's weight (Pa), the drag on the
+/// particles and its reaction on the fluid (N; equal and opposite), the total hydrodynamic
+/// force, the mean particle velocity, the pressure CG's iterations and the continuity error.
+const DRAG_MONITOR_COLUMNS: [&str; 17] = [
+    "Time",
+    "alphaMin",
+    "pressureDrop",
+    "FdParticlesX",
+    "FdParticlesY",
+    "FdParticlesZ",
+    "FdFluidX",
+    "FdFluidY",
+    "FdFluidZ",
+    "FhX",
+    "FhY",
+    "FhZ",
+    "UpX",
+    "UpY",
+    "UpZ",
+    "pIterations",
+    "continuityError",
+];
+
 /// The log and the monitors of one run.
 pub struct StepReporter {
     pub log: Log<Stdout>,
     fluid: Monitor,
     cloud: Option<Monitor>,
+    drag: Option<Monitor>,
 }
 
 fn output_error(e: OutputError) -> FsimError {
@@ -51,7 +76,12 @@ fn output_error(e: OutputError) -> FsimError {
 impl StepReporter {
     /// Opens the monitors of a run starting at time `start_name` (a continued run gets its own
     /// `<startTime>` directories, as OpenFOAM's function objects do).
-    pub fn open(case_dir: &Path, start_name: &str, has_cloud: bool) -> Result<Self, FsimError> {
+    pub fn open(
+        case_dir: &Path,
+        start_name: &str,
+        has_cloud: bool,
+        has_drag: bool,
+    ) -> Result<Self, FsimError> {
         let fluid = Monitor::create(case_dir, "fluid", start_name, &FLUID_MONITOR_COLUMNS)
             .map_err(output_error)?;
         let cloud = if has_cloud {
@@ -62,10 +92,19 @@ impl StepReporter {
         } else {
             None
         };
+        let drag = if has_drag {
+            Some(
+                Monitor::create(case_dir, "dragLaw", start_name, &DRAG_MONITOR_COLUMNS)
+                    .map_err(output_error)?,
+            )
+        } else {
+            None
+        };
         Ok(StepReporter {
             log: Log::stdout(),
             fluid,
             cloud,
+            drag,
         })
     }
 
@@ -123,6 +162,49 @@ impl StepReporter {
             ])
             .map_err(output_error)?;
         }
+        if let (Some(d), Some(m)) = (sim.drag.as_ref(), self.drag.as_mut()) {
+            let e = &d.last;
+            let g = d.settings.gravity;
+            let axis = if g == [0.0; 3] {
+                2
+            } else {
+                (0..3)
+                    .max_by(|&a, &b| g[a].abs().total_cmp(&g[b].abs()))
+                    .unwrap_or(2)
+            };
+            // Measured against the flow that holds the bed up: upstream (the side gravity
+            // points to) minus downstream.
+            let drop = d.pressure_drop(&sim.fluid, axis) * if g[axis] > 0.0 { -1.0 } else { 1.0 };
+            let up = cloud.map_or([0.0; 3], |c| c.mean_velocity);
+            let (iterations, continuity) = d.last_fluid.map_or((0.0, 0.0), |r| {
+                (r.pressure.iterations as f64, r.continuity_error)
+            });
+            self.log.line(&format!(
+                "Drag law: alpha min = {:.6}, pressure drop = {:.6e} Pa, p CG iterations = \
+                 {iterations}, continuity error = {continuity:.3e}",
+                e.min_fluid_fraction, drop
+            ))?;
+            m.row(&[
+                sim.time.time,
+                e.min_fluid_fraction,
+                drop,
+                e.drag_on_particles[0],
+                e.drag_on_particles[1],
+                e.drag_on_particles[2],
+                e.drag_on_fluid[0],
+                e.drag_on_fluid[1],
+                e.drag_on_fluid[2],
+                e.hydrodynamic_force[0],
+                e.hydrodynamic_force[1],
+                e.hydrodynamic_force[2],
+                up[0],
+                up[1],
+                up[2],
+                iterations,
+                continuity,
+            ])
+            .map_err(output_error)?;
+        }
         Ok(())
     }
 
@@ -136,7 +218,7 @@ impl StepReporter {
     /// Flushes the monitors and ends the log.
     pub fn finish(mut self) -> Result<(), FsimError> {
         self.fluid.flush().map_err(output_error)?;
-        if let Some(m) = self.cloud.as_mut() {
+        for m in self.cloud.iter_mut().chain(self.drag.iter_mut()) {
             m.flush().map_err(output_error)?;
         }
         self.log.end()?;

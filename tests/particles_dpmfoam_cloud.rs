@@ -90,11 +90,13 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
     assert!(cloud
         .warnings
         .iter()
-        .any(|w| w.contains("ignored keyword 'solution.interpolationSchemes'")));
-    assert!(cloud
+        .any(|w| w.contains("ignored keyword 'constantProperties.parcelTypeId'")));
+    // the drag-law settings (model dragLaw: no couplingProperties) are read, not listed
+    assert!(cloud.drag_law.is_some());
+    assert!(!cloud
         .warnings
         .iter()
-        .any(|w| w.contains("ignored keyword 'constantProperties.alphaMax'")));
+        .any(|w| w.contains("interpolationSchemes") || w.contains("alphaMax")));
     // the particles are a valid engine input: no overlaps, all inside (3 mm spacing, d 2.5 mm)
     let dem = Dem::new(
         cloud.config.clone(),

@@ -6,10 +6,16 @@
 //! What fsim reads, and what it adds of its own:
 //!
 //! * `solution { active; coupled; transient; }`; `active false` means no cloud.
+//! * `subModels`: `dispersionModel`, `heatTransferModel`, `surfaceFilmModel`,
+//!   `stochasticCollisionModel` and MPPICFoam's `packingModel`, `dampingModel`,
+//!   `isotropyModel` must be `none`; `radiation off`.
 //! * `constantProperties { rho0; youngsModulus; poissonsRatio; }`.
 //! * `subModels.particleForces`: `gravity` (with buoyancy `1 − ρ_f/ρ_p`, as OpenFOAM's
-//!   `gravity` force), and the fluid forces `sphereDrag`, `ErgunWenYuDrag`, `WenYuDrag`,
-//!   `pressureGradient`, kept for the coupling models (no effect with `model none`).
+//!   `gravity` force), one drag closure and `pressureGradient`, checked by
+//!   [`super::drag_law_options`] (an unknown or unsupported force is an error at its keyword)
+//!   and kept for the coupling models (no effect with `model none`). With `model dragLaw` the
+//!   drag-law options ([`DragLawOptions`]: solution schemes, `alphaMax`, forces) are read
+//!   into [`Cloud::drag_law`].
 //! * `injectionModels`: `manualInjection` (`positionsFile`, `U0`, `sizeDistribution`,
 //!   `parcelBasisType fixed`, `nParticle 1`, `SOI` not after the start) and fsim's
 //!   `randomPacking` (`box (lo) (hi); volumeFraction; sizeDistribution; U0; seed;`).
@@ -45,6 +51,7 @@ use super::case::Case;
 use super::control_dict::{at_value, choice};
 use super::coupling::CouplingModel;
 use super::dictionary::Dict;
+use super::drag_law_options::{DragLawOptions, ParticleForces};
 use super::error::CaseError;
 use super::source::Location;
 use super::value::Value;
@@ -52,15 +59,6 @@ use crate::particles::{
     random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, FaceCondition, PairModel,
     ParticleState, SplitMix64, TangentialRule, WallModel,
 };
-
-/// Forces of `particleForces` fsim accepts; all but `gravity` act through the coupling.
-pub const PARTICLE_FORCES: [&str; 5] = [
-    "gravity",
-    "sphereDrag",
-    "ErgunWenYuDrag",
-    "WenYuDrag",
-    "pressureGradient",
-];
 
 /// A cloud ready for [`crate::particles::Dem::new`], with what the banner and errors need.
 #[derive(Clone, Debug)]
@@ -75,6 +73,8 @@ pub struct Cloud {
     pub forces: Vec<String>,
     /// `solution.coupled`.
     pub coupled: bool,
+    /// The drag-law model's settings, when the case runs that model.
+    pub drag_law: Option<DragLawOptions>,
     /// One line per injection model: name, type, count.
     pub injections: Vec<String>,
     /// Where each particle (input index) was defined: its line of the positions file, or its
@@ -164,27 +164,17 @@ impl Cloud {
         let sub = dict.get_dict("subModels")?;
 
         // ----- forces -----
-        let mut forces = Vec::new();
-        if let Some(f) = sub.opt_dict("particleForces")? {
-            for e in f.entries() {
-                let name = e.keyword();
-                if !PARTICLE_FORCES.contains(&name) {
-                    return Err(CaseError::at(
-                        &e.key_loc,
-                        format!(
-                            "particle force '{name}' is not supported by fsim (supported: {})",
-                            PARTICLE_FORCES.join(", ")
-                        ),
-                    ));
-                }
-                e.mark_used();
-                if let Some(d) = e.as_dict() {
-                    // the coupling models read their own settings
-                    d.mark_all_used();
-                }
-                forces.push(name.to_string());
-            }
-        }
+        let forces = ParticleForces::read(sub, &case.transport.phase)?.names;
+        let drag_law = if case.coupling.model == CouplingModel::DragLaw {
+            Some(DragLawOptions::read(
+                dict,
+                case.coupling.dict.as_ref(),
+                &case.transport.phase,
+                &mut warnings,
+            )?)
+        } else {
+            None
+        };
         let gravity = if forces.iter().any(|f| f == "gravity") {
             case.gravity
         } else {
@@ -220,6 +210,19 @@ impl Cloud {
             (
                 "stochasticCollisionModel",
                 "stochastic collisions are not supported by fsim",
+            ),
+            (
+                "packingModel",
+                "MPPIC packing models are not supported by fsim (use DPMFoam's cases, not \
+                 MPPICFoam's)",
+            ),
+            (
+                "dampingModel",
+                "MPPIC damping models are not supported by fsim",
+            ),
+            (
+                "isotropyModel",
+                "MPPIC isotropy models are not supported by fsim",
             ),
         ] {
             only(sub, keyword, &["none"], what)?;
@@ -462,6 +465,7 @@ impl Cloud {
             wall_model_name,
             forces,
             coupled,
+            drag_law,
             injections,
             origins,
             warnings,

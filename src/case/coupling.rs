@@ -54,7 +54,15 @@ impl Coupling {
             2 => CouplingModel::DragLaw,
             _ => CouplingModel::Auto,
         };
-        d.mark_all_used();
+        // The coupling code reads the rest; `dragLawCoeffs` is read (and its unknown keywords
+        // noted) with the drag-law settings.
+        for e in d.entries() {
+            e.mark_used();
+            match e.as_dict() {
+                Some(sub) if e.keyword() != "dragLawCoeffs" => sub.mark_all_used(),
+                _ => {}
+            }
+        }
         Ok(Coupling {
             model,
             dict: Some(d),

@@ -64,6 +64,7 @@ mod spectral_poisson;
 mod staggered_transfer;
 mod time_scheme;
 mod variable_poisson;
+mod volume_averaged_fluid;
 
 pub use boundary_conditions::{BoundaryConditions, FaceCondition};
 pub use coefficient_fields::{comparison_beta, seeded_uniform};
@@ -75,3 +76,4 @@ pub use padded_layout::PaddedLayout;
 pub use spectral_poisson::{AxisKind, PressureBoundary, SpectralPoisson};
 pub use time_scheme::TimeScheme;
 pub use variable_poisson::{PcgReport, Preconditioner, VariablePoisson};
+pub use volume_averaged_fluid::{VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};

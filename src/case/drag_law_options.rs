@@ -1,0 +1,994 @@
+//! The drag-law model's options, read from DPMFoam's `constant/kinematicCloudProperties` (and
+//! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`); [`DragLawOptions::settings`]
+//! gives the coupling code's [`DragLawSettings`].
+//!
+//! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
+//! README, section "DPMFoam cases"):
+//!
+//! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
+//!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
+//!   refused; `maxCo` is noted as unused.
+//! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`]. OpenFOAM
+//!   reads `c` as an under-relaxation factor that only steady clouds use; fsim's clouds are
+//!   transient, so any `c` is accepted and a value other than 1 is noted.
+//! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
+//!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
+//!   interpolation, which fsim replaces by trilinear interpolation, with a note); fsim's
+//!   `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`. `rho.<phase>`, `mu.<phase>`
+//!   and `alpha.<phase>` may name any of OpenFOAM's schemes: the first two are constants of
+//!   fsim's fluid, and ε at a particle follows [`VoidFraction`].
+//! * `solution.averagingMethod basic|dual` → [`VoidFraction`]: `basic` is DPMFoam's own rule
+//!   (a particle's volume counts in its cell only, which DPMFoam applies whatever this keyword
+//!   says: the keyword is read by MPPICFoam's models); `dual`, OpenFOAM's averaging on the dual
+//!   (point) mesh, is taken as fsim's closest equivalent, the trilinear spreading of paper
+//!   eq. 16 (noted). Absent: `basic`, as DPMFoam does. `moment` is refused.
+//! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`] (noted: fsim
+//!   integrates with its own scheme).
+//! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
+//!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
+//! * `subModels.particleForces`: exactly one drag closure ([`DragClosure`], by the names of
+//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`, and
+//!   `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
+//!   `m (ρ_c/ρ_p) DU_c/Dt`, the fluid's material acceleration at the particle, which fsim's
+//!   DPMFoam form does not compute. Other OpenFOAM forces are refused; an unknown name is an
+//!   error with a spelling hint.
+//!
+//! fsim's own `dragLawCoeffs { form DPMFoam|paper; velocityInterpolation
+//! cell|cellPoint|trilinear; voidFraction cell|trilinear; }` in `constant/couplingProperties`
+//! chooses the equations and overrides the interpolation and the ε rule, so that the same case
+//! runs with DPMFoam's choices or with the paper's.
+
+use super::control_dict::{at_value, choice};
+use super::dictionary::{Dict, Entry};
+use super::error::CaseError;
+use super::transport::Transport;
+use crate::coupling::drag::{DragClosure, DragLawSettings, Stencil};
+use crate::fluid::VolumeAveragedForm;
+
+/// How the fluid velocity is taken at a particle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Interpolation {
+    /// OpenFOAM's `cell`: the value of the cell holding the particle.
+    Cell,
+    /// OpenFOAM's `cellPoint`: linear inside the tetrahedra of the cell's decomposition, from
+    /// the cell value and the point values (averages of the surrounding cells).
+    CellPoint,
+    /// fsim's `trilinear`: trilinear from the 8 nearest cell centres (paper eq. 14–15).
+    Trilinear,
+}
+
+impl Interpolation {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Interpolation::Cell => "cell",
+            Interpolation::CellPoint => "cellPoint",
+            Interpolation::Trilinear => "trilinear",
+        }
+    }
+}
+
+/// How the particles' volume makes the fluid fraction ε of the cells (and how the reaction
+/// force is spread back: with the same weights).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VoidFraction {
+    /// DPMFoam's rule: a particle's whole volume in the cell holding its centre.
+    Cell,
+    /// The paper's eq. 16: spread to the 8 nearest cell centres with trilinear weights.
+    Trilinear,
+}
+
+impl VoidFraction {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            VoidFraction::Cell => "cell",
+            VoidFraction::Trilinear => "trilinear",
+        }
+    }
+}
+
+/// How the drag's reaction enters the fluid momentum equation
+/// (`sourceTerms { schemes { U explicit|semiImplicit 1; } }`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SourceTreatment {
+    /// The whole reaction force at the old fluid velocity.
+    Explicit,
+    /// The part linear in the fluid velocity implicit (DPMFoam's `semiImplicit`).
+    SemiImplicit,
+}
+
+/// How a particle's velocity is advanced under drag (`integrationSchemes { U …; }`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParticleIntegration {
+    /// OpenFOAM's `Euler`: implicit in the drag, `v' = (v + β u Δt + a Δt)/(1 + β Δt)`.
+    Euler,
+    /// OpenFOAM's `analytical`: the exact exponential relaxation over the step.
+    Analytical,
+}
+
+/// The drag-law model as the case states it: DPMFoam's keywords and fsim's `dragLawCoeffs`.
+/// [`DragLawOptions::settings`] turns it into the coupling code's [`DragLawSettings`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct DragLawOptions {
+    /// The continuous phase's name (`air`), from `transportProperties`.
+    pub phase: String,
+    /// The drag closure of `particleForces` (the drag-law model needs exactly one).
+    pub drag: DragClosure,
+    /// Which volume-averaged equations the fluid solves: DPMFoam's (the default, so that a
+    /// DPMFoam case gives DPMFoam's physics) or the paper's eq. 7 (`dragLawCoeffs { form
+    /// paper; }`).
+    pub form: VolumeAveragedForm,
+    /// `gravity` listed in `particleForces` (gravity with buoyancy `1 − ρ_f/ρ_p`).
+    pub gravity: bool,
+    /// `pressureGradient` listed in `particleForces`.
+    pub pressure_gradient: bool,
+    /// `solution.coupled`: the fluid feels the particles (two-way).
+    pub coupled: bool,
+    /// `sourceTerms.schemes.U`.
+    pub source: SourceTreatment,
+    /// `constantProperties.alphaMax`: ε ≥ 1 − alphaMax.
+    pub alpha_max: f64,
+    /// The fluid velocity at a particle, as the case names it.
+    pub velocity_interpolation: Interpolation,
+    /// ε from the particles.
+    pub void_fraction: VoidFraction,
+    /// `integrationSchemes.U`.
+    pub integration: ParticleIntegration,
+}
+
+impl DragLawOptions {
+    /// The lower bound of the fluid fraction, `1 − alphaMax` (DPMFoam's `alphacMin`).
+    pub fn min_fluid_fraction(&self) -> f64 {
+        1.0 - self.alpha_max
+    }
+
+    /// The coupling code's settings, with the fluid's properties and gravity from the case.
+    /// `cellPoint` and `trilinear` both map to the trilinear stencil (see
+    /// [`Interpolation::CellPoint`]).
+    pub fn settings(&self, transport: &Transport, gravity: [f64; 3]) -> DragLawSettings {
+        let stencil = |trilinear: bool| {
+            if trilinear {
+                Stencil::Trilinear
+            } else {
+                Stencil::Cell
+            }
+        };
+        DragLawSettings {
+            closure: Some(self.drag),
+            coupled: self.coupled,
+            analytical: self.integration == ParticleIntegration::Analytical,
+            form: self.form,
+            interpolation: stencil(self.velocity_interpolation != Interpolation::Cell),
+            averaging: stencil(self.void_fraction == VoidFraction::Trilinear),
+            semi_implicit: self.source == SourceTreatment::SemiImplicit,
+            alpha_max: self.alpha_max,
+            rho: transport.rho,
+            nu: transport.nu,
+            gravity,
+        }
+    }
+
+    /// Reads the options from the cloud file `cloud` (DPMFoam's `kinematicCloudProperties`)
+    /// and fsim's `couplingProperties` when present; `phase` is the continuous phase's name.
+    /// Settings fsim reads but that have no effect go to `notes`; settings that would change
+    /// the physics in a way fsim cannot honour are errors at their place.
+    pub fn read(
+        cloud: &Dict,
+        coupling: Option<&Dict>,
+        phase: &str,
+        notes: &mut Vec<String>,
+    ) -> Result<DragLawOptions, CaseError> {
+        let solution = cloud.get_dict("solution")?;
+        // Required by DPMFoam too (cloudSolution reads it without a default).
+        if !solution.get_bool("coupled")? {
+            return Err(at_value(
+                solution,
+                "coupled",
+                "coupled false (one-way coupling) is not supported by fsim's drag-law model: \
+                 the fluid always feels the particles; use coupled true"
+                    .to_string(),
+            ));
+        }
+        if solution.get_bool_or("cellValueSourceCorrection", false)? {
+            return Err(at_value(
+                solution,
+                "cellValueSourceCorrection",
+                "cellValueSourceCorrection on is not supported by fsim (the fluid values a \
+                 particle sees are not corrected by the sources of the same step); use off"
+                    .to_string(),
+            ));
+        }
+        if let Some(max_co) = solution.opt_scalar("maxCo")? {
+            notes.push(format!(
+                "{}: solution.maxCo {max_co}: not used (fsim moves particles in its collision \
+                 sub-steps, not by cell-to-cell tracking)",
+                place(solution, "maxCo")
+            ));
+        }
+        let source = source_treatment(solution, notes)?;
+        let mut velocity_interpolation = interpolation_schemes(solution, phase)?;
+        let mut void_fraction = averaging_method(solution, notes)?;
+        let integration = particle_integration(solution)?;
+        if solution.peek("integrationSchemes").is_some() {
+            notes.push(format!(
+                "{}: integrationSchemes U {}: fsim advances the particles with its DEM \
+                 integrator (velocity Verlet in the collision sub-steps), the drag included",
+                place(solution, "integrationSchemes"),
+                match integration {
+                    ParticleIntegration::Euler => "Euler",
+                    ParticleIntegration::Analytical => "analytical",
+                }
+            ));
+        }
+
+        let props = cloud.get_dict("constantProperties")?;
+        let alpha_max = props.get_scalar("alphaMax")?;
+        if !(alpha_max > 0.0 && alpha_max <= 1.0) {
+            return Err(at_value(
+                props,
+                "alphaMax",
+                format!(
+                    "'alphaMax' = {alpha_max}: expected a largest particle volume fraction in \
+                     (0, 1] (the fluid fraction is kept at or above 1 - alphaMax)"
+                ),
+            ));
+        }
+
+        let sub = cloud.get_dict("subModels")?;
+        let forces = ParticleForces::read(sub, phase)?;
+        let list = sub.peek("particleForces");
+        let Some(drag) = forces.drag else {
+            let message = format!(
+                "no drag closure in particleForces: the drag-law model needs one of {}",
+                DragClosure::NAMES.join(", ")
+            );
+            return Err(match list {
+                Some(e) => CaseError::at(&e.key_loc, message),
+                None => CaseError::at(&sub.loc, message),
+            });
+        };
+
+        let mut form = VolumeAveragedForm::DpmFoam;
+        if let Some(own) = coupling
+            .map(|c| c.opt_dict("dragLawCoeffs"))
+            .transpose()?
+            .flatten()
+        {
+            if own.contains("form") {
+                form = match choice(own, "form", &["DPMFoam", "paper"], None)? {
+                    0 => VolumeAveragedForm::DpmFoam,
+                    _ => VolumeAveragedForm::Paper,
+                };
+            }
+            if own.contains("velocityInterpolation") {
+                velocity_interpolation = match choice(
+                    own,
+                    "velocityInterpolation",
+                    &["cell", "cellPoint", "trilinear"],
+                    None,
+                )? {
+                    0 => Interpolation::Cell,
+                    1 => Interpolation::CellPoint,
+                    _ => Interpolation::Trilinear,
+                };
+            }
+            if own.contains("voidFraction") {
+                void_fraction = match choice(own, "voidFraction", &["cell", "trilinear"], None)? {
+                    0 => VoidFraction::Cell,
+                    _ => VoidFraction::Trilinear,
+                };
+            }
+            for (key, loc) in own.unused() {
+                let (line, col) = loc.line_col();
+                notes.push(format!(
+                    "{}:{line}:{col}: ignored keyword 'dragLawCoeffs.{key}' (fsim does not use \
+                     it)",
+                    loc.file.display
+                ));
+            }
+        }
+        if velocity_interpolation == Interpolation::CellPoint {
+            notes.push(format!(
+                "{}: U.{phase} cellPoint: fsim interpolates the fluid velocity trilinearly from \
+                 the 8 nearest cell centres (OpenFOAM's cellPoint is linear on the tetrahedra \
+                 of each cell; both are exact for linear fields)",
+                cloud.file()
+            ));
+        }
+        match (form, forces.pressure_gradient) {
+            (VolumeAveragedForm::DpmFoam, true) => {
+                let at = list
+                    .and_then(|l| l.as_dict())
+                    .and_then(|d| d.peek("pressureGradient"))
+                    .map(|e| e.key_loc.clone())
+                    .unwrap_or_else(|| sub.loc.clone());
+                return Err(CaseError::at(
+                    &at,
+                    "pressureGradient (DPMFoam's force m (rho_c/rho_p) DU_c/Dt) is not \
+                     supported by fsim with DPMFoam's equations; fsim's paper form \
+                     (constant/couplingProperties: dragLawCoeffs { form paper; }) gives every \
+                     particle the pressure-gradient force -V grad p of paper eq. 10",
+                ));
+            }
+            (VolumeAveragedForm::Paper, false) => notes.push(format!(
+                "{}: the paper form gives every particle the pressure-gradient force -V grad p \
+                 (paper eq. 10), whether or not particleForces lists pressureGradient",
+                cloud.file()
+            )),
+            _ => {}
+        }
+
+        Ok(DragLawOptions {
+            phase: phase.to_string(),
+            drag,
+            form,
+            gravity: forces.gravity,
+            pressure_gradient: forces.pressure_gradient,
+            coupled: true,
+            source,
+            alpha_max,
+            velocity_interpolation,
+            void_fraction,
+            integration,
+        })
+    }
+
+    /// One line for the log and `-dry-run`.
+    pub fn summary(&self) -> String {
+        let mut forces = vec![self.drag.name()];
+        if self.pressure_gradient {
+            forces.push("pressureGradient");
+        }
+        if self.gravity {
+            forces.push("gravity");
+        }
+        format!(
+            "forces {}; {} equations; source {}; U interpolation {}; void fraction {}; \
+             alphaMax {}",
+            forces.join(" + "),
+            self.form.name(),
+            match self.source {
+                SourceTreatment::Explicit => "explicit",
+                SourceTreatment::SemiImplicit => "semiImplicit",
+            },
+            self.velocity_interpolation.keyword(),
+            self.void_fraction.keyword(),
+            self.alpha_max
+        )
+    }
+}
+
+/// `file:line:col` of an entry's value.
+fn place(d: &Dict, keyword: &str) -> String {
+    let loc = d
+        .peek(keyword)
+        .map(|e| e.value_loc().clone())
+        .unwrap_or_else(|| d.loc.clone());
+    let (line, col) = loc.line_col();
+    format!("{}:{line}:{col}", loc.file.display)
+}
+
+/// `sourceTerms { schemes { U explicit|semiImplicit c; } }`; absent: explicit.
+fn source_treatment(
+    solution: &Dict,
+    notes: &mut Vec<String>,
+) -> Result<SourceTreatment, CaseError> {
+    let Some(terms) = solution.opt_dict("sourceTerms")? else {
+        return Ok(SourceTreatment::Explicit);
+    };
+    let Some(schemes) = terms.opt_dict("schemes")? else {
+        return Ok(SourceTreatment::Explicit);
+    };
+    let Some(entry) = schemes.lookup("U") else {
+        return Ok(SourceTreatment::Explicit);
+    };
+    let bad = |at: &super::source::Location| {
+        CaseError::at(
+            at,
+            "expected 'U explicit <coefficient>;' or 'U semiImplicit <coefficient>;' in \
+             sourceTerms.schemes",
+        )
+    };
+    let tokens = entry.as_tokens().ok_or_else(|| bad(&entry.key_loc))?;
+    let (kind, coefficient) = match tokens {
+        [kind, c] => (kind, c),
+        [first, ..] => return Err(bad(&first.loc)),
+        [] => return Err(bad(&entry.key_loc)),
+    };
+    let treatment = match kind.as_word() {
+        Some("explicit") => SourceTreatment::Explicit,
+        Some("semiImplicit") => SourceTreatment::SemiImplicit,
+        _ => {
+            return Err(CaseError::at(
+                &kind.loc,
+                format!(
+                    "expected explicit or semiImplicit for the U source term, found {}",
+                    kind.describe()
+                ),
+            ))
+        }
+    };
+    let c = coefficient
+        .as_scalar()
+        .ok_or_else(|| bad(&coefficient.loc))?;
+    if c != 1.0 {
+        let (line, col) = coefficient.loc.line_col();
+        notes.push(format!(
+            "{}:{line}:{col}: source-term relaxation coefficient {c}: not used (OpenFOAM \
+             applies it to steady clouds only; fsim's clouds are transient)",
+            coefficient.loc.file.display
+        ));
+    }
+    Ok(treatment)
+}
+
+/// OpenFOAM's interpolation schemes, as written in `interpolationSchemes`.
+const OPENFOAM_INTERPOLATIONS: [&str; 7] = [
+    "cell",
+    "cellPoint",
+    "cellPointFace",
+    "cellPointWallModified",
+    "cellPatchConstrained",
+    "cellPointPatchConstrained",
+    "pointMVC",
+];
+
+/// `interpolationSchemes`: the velocity's scheme (`cell` when absent, OpenFOAM's default for
+/// a cloud); the density's and viscosity's are checked to be OpenFOAM's names only.
+fn interpolation_schemes(solution: &Dict, phase: &str) -> Result<Interpolation, CaseError> {
+    let Some(schemes) = solution.opt_dict("interpolationSchemes")? else {
+        return Ok(Interpolation::Cell);
+    };
+    let velocity = velocity_name(phase);
+    let mut result = Interpolation::Cell;
+    for e in schemes.entries() {
+        let field = e.keyword();
+        let constant = field == format!("rho.{phase}")
+            || field == format!("mu.{phase}")
+            || field == format!("alpha.{phase}")
+            || (phase.is_empty() && ["rho", "mu", "alpha"].contains(&field));
+        if field != velocity && !constant {
+            continue; // other fields (DUcDt, …): left to the ignored-keyword notes
+        }
+        e.mark_used();
+        let item = super::dictionary::single_token(e, "an interpolation scheme")?;
+        let word = item.as_word().unwrap_or("");
+        if field == velocity {
+            result = match word {
+                "cell" => Interpolation::Cell,
+                "cellPoint" => Interpolation::CellPoint,
+                _ => {
+                    return Err(CaseError::at(
+                        &item.loc,
+                        format!(
+                            "interpolation scheme {} for {velocity} is not supported by fsim: \
+                             expected cell or cellPoint (or fsim's trilinear, set in \
+                             constant/couplingProperties dragLawCoeffs.velocityInterpolation)",
+                            item.describe()
+                        ),
+                    ))
+                }
+            };
+        } else if !OPENFOAM_INTERPOLATIONS.contains(&word) {
+            return Err(CaseError::at(
+                &item.loc,
+                format!(
+                    "unknown interpolation scheme {} for {field}: expected one of {}",
+                    item.describe(),
+                    OPENFOAM_INTERPOLATIONS.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(result)
+}
+
+/// `averagingMethod basic|dual|moment` (MPPICFoam's keyword): the ε rule.
+fn averaging_method(solution: &Dict, notes: &mut Vec<String>) -> Result<VoidFraction, CaseError> {
+    if !solution.contains("averagingMethod") {
+        return Ok(VoidFraction::Cell);
+    }
+    let k = choice(
+        solution,
+        "averagingMethod",
+        &["basic", "dual", "moment"],
+        None,
+    )?;
+    match k {
+        0 => Ok(VoidFraction::Cell),
+        1 => {
+            notes.push(format!(
+                "{}: averagingMethod dual: fsim spreads each particle's volume and reaction \
+                 over the 8 nearest cell centres (paper eq. 16), its equivalent of OpenFOAM's \
+                 dual-mesh averaging (DPMFoam itself counts a particle in its own cell)",
+                place(solution, "averagingMethod")
+            ));
+            Ok(VoidFraction::Trilinear)
+        }
+        _ => Err(at_value(
+            solution,
+            "averagingMethod",
+            "averagingMethod moment is not supported by fsim: expected basic (ε from the \
+             particle's cell) or dual (trilinear spreading)"
+                .to_string(),
+        )),
+    }
+}
+
+/// `integrationSchemes { U Euler|analytical; }`; absent: Euler.
+fn particle_integration(solution: &Dict) -> Result<ParticleIntegration, CaseError> {
+    let Some(schemes) = solution.opt_dict("integrationSchemes")? else {
+        return Ok(ParticleIntegration::Euler);
+    };
+    if !schemes.contains("U") {
+        return Ok(ParticleIntegration::Euler);
+    }
+    Ok(
+        match choice(schemes, "U", &["Euler", "analytical"], None)? {
+            0 => ParticleIntegration::Euler,
+            _ => ParticleIntegration::Analytical,
+        },
+    )
+}
+
+/// `U.<phase>`, or `U` without a phase.
+fn velocity_name(phase: &str) -> String {
+    if phase.is_empty() {
+        "U".to_string()
+    } else {
+        format!("U.{phase}")
+    }
+}
+
+/// `alpha.<phase>`, or `alpha` without a phase.
+pub(crate) fn fraction_name(phase: &str) -> String {
+    if phase.is_empty() {
+        "alpha".to_string()
+    } else {
+        format!("alpha.{phase}")
+    }
+}
+
+/// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
+const REFUSED_FORCES: [(&str, &str); 8] = [
+    ("nonSphereDrag", "the drag of non-spherical particles"),
+    ("distortedSphereDrag", "the drag of distorting droplets"),
+    ("virtualMass", "the added-mass force"),
+    ("SaffmanMeiLiftForce", "a lift force"),
+    ("TomiyamaLiftForce", "a lift force"),
+    ("paramagnetic", "a magnetic force"),
+    ("nonInertialFrame", "the forces of a non-inertial frame"),
+    ("SRF", "the forces of a rotating frame"),
+];
+
+/// The forces of `particleForces`, checked.
+pub(crate) struct ParticleForces {
+    pub drag: Option<DragClosure>,
+    pub gravity: bool,
+    pub pressure_gradient: bool,
+    /// Every force listed, in file order.
+    pub names: Vec<String>,
+}
+
+impl ParticleForces {
+    /// Reads and checks `subModels.particleForces`: an unknown force, a force fsim cannot
+    /// compute or a second drag closure is an error at its keyword.
+    pub(crate) fn read(sub: &Dict, phase: &str) -> Result<ParticleForces, CaseError> {
+        let mut forces = ParticleForces {
+            drag: None,
+            gravity: false,
+            pressure_gradient: false,
+            names: Vec::new(),
+        };
+        let Some(list) = sub.opt_dict("particleForces")? else {
+            return Ok(forces);
+        };
+        let mut drag_at: Option<&Entry> = None;
+        for e in list.entries() {
+            let name = e.keyword();
+            e.mark_used();
+            forces.names.push(name.to_string());
+            if let Ok(model) = DragClosure::from_name(name, "particleForces") {
+                if let Some(first) = drag_at {
+                    let (line, _) = first.key_loc.line_col();
+                    return Err(CaseError::at(
+                        &e.key_loc,
+                        format!(
+                            "a second drag model '{name}' (the first, '{}', is on line {line}): \
+                             DPMFoam would add both forces; fsim takes one drag closure",
+                            first.keyword()
+                        ),
+                    ));
+                }
+                drag_at = Some(e);
+                if let Some(coeffs) = e.as_dict() {
+                    if model != DragClosure::SphereDrag {
+                        fraction_field(coeffs, "alphac", phase, is_openfoam(model))?;
+                    }
+                }
+                forces.drag = Some(model);
+            } else if name == "gravity" {
+                forces.gravity = true;
+            } else if name == "pressureGradient" {
+                if let Some(coeffs) = e.as_dict() {
+                    let velocity = velocity_name(phase);
+                    if let Some(u) = coeffs.opt_word("U")? {
+                        if u != velocity {
+                            return Err(at_value(
+                                coeffs,
+                                "U",
+                                format!(
+                                    "pressureGradient U '{u}': expected the continuous phase's \
+                                     velocity {velocity}"
+                                ),
+                            ));
+                        }
+                    }
+                }
+                forces.pressure_gradient = true;
+            } else if let Some((_, why)) = REFUSED_FORCES.iter().find(|(n, _)| *n == name) {
+                return Err(CaseError::at(
+                    &e.key_loc,
+                    format!("particle force '{name}' is not supported by fsim ({why})"),
+                ));
+            } else {
+                let others = ["gravity", "pressureGradient"];
+                let known = DragClosure::NAMES.iter().chain(&others);
+                let nearest = known
+                    .map(|k| {
+                        (
+                            edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
+                            *k,
+                        )
+                    })
+                    .min()
+                    .filter(|(d, _)| *d <= 3)
+                    .map(|(_, k)| k);
+                let drag_like = name.to_ascii_lowercase().contains("drag")
+                    || nearest.is_some_and(|k| !others.contains(&k));
+                let what = if drag_like {
+                    "unknown drag model"
+                } else {
+                    "unknown particle force"
+                };
+                let hint = nearest.map_or(String::new(), |k| format!(" (did you mean '{k}'?)"));
+                return Err(CaseError::at(
+                    &e.key_loc,
+                    format!(
+                        "{what} '{name}' in particleForces{hint}: expected a drag model ({}), \
+                         gravity or pressureGradient",
+                        DragClosure::NAMES.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(forces)
+    }
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions), for spelling hints.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+/// Whether OpenFOAM v1912 knows the closure (the others are fsim's names: a case using them
+/// no longer runs under DPMFoam, and their `alphac` is optional).
+fn is_openfoam(closure: DragClosure) -> bool {
+    matches!(
+        closure,
+        DragClosure::SphereDrag
+            | DragClosure::WenYu
+            | DragClosure::ErgunWenYu
+            | DragClosure::PlessisMasliyah
+    )
+}
+
+/// A fraction-field name (`alphac alpha.air;`) that must be the continuous phase's;
+/// `required` when OpenFOAM requires the keyword.
+fn fraction_field(d: &Dict, keyword: &str, phase: &str, required: bool) -> Result<(), CaseError> {
+    let expected = fraction_name(phase);
+    let name = if required {
+        d.get_word(keyword)?
+    } else {
+        match d.opt_word(keyword)? {
+            Some(n) => n,
+            None => return Ok(()),
+        }
+    };
+    if name != expected {
+        return Err(at_value(
+            d,
+            keyword,
+            format!(
+                "'{keyword}' names the field '{name}': expected the continuous phase's fluid \
+                 fraction {expected}"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    const GOLDSCHMIDT_LIKE: &str = "\
+solution
+{
+    active true; coupled true; transient yes; cellValueSourceCorrection off;
+    interpolationSchemes { rho.air cell; U.air cell; mu.air cell; }
+    sourceTerms { schemes { U semiImplicit 1; } }
+}
+constantProperties { rho0 2526; alphaMax 0.99; }
+subModels
+{
+    particleForces
+    {
+        ErgunWenYuDrag { alphac alpha.air; }
+        gravity;
+    }
+}
+";
+
+    fn read(text: &str) -> Result<(DragLawOptions, Vec<String>), CaseError> {
+        read_with(text, None)
+    }
+
+    fn read_with(
+        text: &str,
+        coupling: Option<&str>,
+    ) -> Result<(DragLawOptions, Vec<String>), CaseError> {
+        let d = parse_dict(text, "constant/kinematicCloudProperties").unwrap();
+        let c = coupling.map(|c| parse_dict(c, "constant/couplingProperties").unwrap());
+        let mut notes = Vec::new();
+        DragLawOptions::read(&d, c.as_ref(), "air", &mut notes).map(|s| (s, notes))
+    }
+
+    fn err(text: &str) -> CaseError {
+        read(text).unwrap_err()
+    }
+
+    #[test]
+    fn goldschmidt_like_options_and_their_coupling_settings() {
+        let (s, notes) = read(GOLDSCHMIDT_LIKE).unwrap();
+        assert_eq!(
+            s,
+            DragLawOptions {
+                phase: "air".into(),
+                drag: DragClosure::ErgunWenYu,
+                form: VolumeAveragedForm::DpmFoam,
+                gravity: true,
+                pressure_gradient: false,
+                coupled: true,
+                source: SourceTreatment::SemiImplicit,
+                alpha_max: 0.99,
+                velocity_interpolation: Interpolation::Cell,
+                void_fraction: VoidFraction::Cell,
+                integration: ParticleIntegration::Euler,
+            }
+        );
+        assert!(notes.is_empty(), "{notes:?}");
+        assert!((s.min_fluid_fraction() - 0.01).abs() < 1e-15);
+        assert_eq!(
+            s.summary(),
+            "forces ErgunWenYuDrag + gravity; DPMFoam equations; source semiImplicit; U \
+             interpolation cell; void fraction cell; alphaMax 0.99"
+        );
+        let transport = Transport {
+            phase: "air".into(),
+            rho: 1.2,
+            nu: 1e-5,
+        };
+        let engine = s.settings(&transport, [0.0, 0.0, -9.81]);
+        assert_eq!(
+            engine,
+            DragLawSettings {
+                closure: Some(DragClosure::ErgunWenYu),
+                coupled: true,
+                analytical: false,
+                form: VolumeAveragedForm::DpmFoam,
+                interpolation: Stencil::Cell,
+                averaging: Stencil::Cell,
+                semi_implicit: true,
+                alpha_max: 0.99,
+                rho: 1.2,
+                nu: 1e-5,
+                gravity: [0.0, 0.0, -9.81],
+            }
+        );
+        // cellPoint: trilinear, with a note saying so
+        let (s, notes) =
+            read(&GOLDSCHMIDT_LIKE.replace("U.air cell;", "U.air cellPoint;")).unwrap();
+        assert_eq!(s.velocity_interpolation, Interpolation::CellPoint);
+        assert_eq!(
+            s.settings(&transport, [0.0; 3]).interpolation,
+            Stencil::Trilinear
+        );
+        assert!(
+            notes[0].contains("U.air cellPoint: fsim interpolates"),
+            "{notes:?}"
+        );
+    }
+
+    #[test]
+    fn every_closure_name_round_trips() {
+        for name in DragClosure::NAMES {
+            let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", name);
+            assert_eq!(read(&text).unwrap().0.drag.name(), name);
+        }
+        // fsim's own closures need no alphac; if given it must be the phase's
+        let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", "DiFelice;");
+        assert_eq!(read(&text).unwrap().0.drag, DragClosure::DiFelice);
+    }
+
+    #[test]
+    fn unknown_drag_model_names_keyword_file_and_line() {
+        for wrong in ["ErgunWenYuDrag2", "ergunWenYuDrag"] {
+            let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", wrong));
+            assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
+            assert_eq!((e.line, e.col), (12, 9), "{e}");
+            assert!(
+                e.message
+                    .starts_with(&format!("unknown drag model '{wrong}' in particleForces")),
+                "{e}"
+            );
+            assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
+        }
+        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", "ErgunWenYuDarg"));
+        assert!(
+            e.message.starts_with(
+                "unknown drag model 'ErgunWenYuDarg' in particleForces (did you mean \
+                 'ErgunWenYuDrag'?)"
+            ),
+            "{e}"
+        );
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "gravty;"));
+        assert!(
+            e.message.starts_with(
+                "unknown particle force 'gravty' in particleForces (did you mean 'gravity'?)"
+            ),
+            "{e}"
+        );
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "magnus;"));
+        assert!(
+            e.message.starts_with("unknown particle force 'magnus'"),
+            "{e}"
+        );
+        assert_eq!((e.line, e.col), (13, 9), "{e}");
+    }
+
+    #[test]
+    fn forces_fsim_cannot_compute_are_refused_at_their_keyword() {
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "virtualMass { Cvm 0.5; }"));
+        assert_eq!((e.line, e.col), (13, 9), "{e}");
+        assert!(e.message.contains("added-mass"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "WenYuDrag { alphac alpha.air; }"));
+        assert!(e.message.contains("a second drag model 'WenYuDrag'"), "{e}");
+        assert!(e.message.contains("line 12"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", ""));
+        assert!(
+            e.message.starts_with("no drag closure in particleForces"),
+            "{e}"
+        );
+        assert_eq!(e.line, 10, "{e}");
+        // DPMFoam's pressureGradient (DUc/Dt) only with the paper form
+        let text = GOLDSCHMIDT_LIKE.replace("gravity;", "gravity; pressureGradient { U U.air; }");
+        let e = err(&text);
+        assert!(
+            e.message.starts_with("pressureGradient (DPMFoam's force"),
+            "{e}"
+        );
+        assert_eq!((e.line, e.col), (13, 18), "{e}");
+        let (s, notes) = read_with(&text, Some("dragLawCoeffs { form paper; }")).unwrap();
+        assert!(s.pressure_gradient && s.form == VolumeAveragedForm::Paper);
+        assert!(notes.is_empty(), "{notes:?}");
+        let e = err(&text.replace("U U.air", "U U.water"));
+        assert!(
+            e.message
+                .contains("expected the continuous phase's velocity U.air"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn fraction_field_must_be_the_continuous_phases() {
+        let e = err(&GOLDSCHMIDT_LIKE.replace("alphac alpha.air", "alphac alpha.water"));
+        assert_eq!((e.line, e.col), (12, 33), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("{ alphac alpha.air; }", "{ }"));
+        assert!(e.message.contains("missing keyword 'alphac'"), "{e}");
+        // sphereDrag has no fraction: no keyword needed
+        let text = GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag { alphac alpha.air; }", "sphereDrag;");
+        assert_eq!(read(&text).unwrap().0.drag, DragClosure::SphereDrag);
+    }
+
+    #[test]
+    fn solution_keywords() {
+        let e = err(&GOLDSCHMIDT_LIKE.replace(
+            "cellValueSourceCorrection off",
+            "cellValueSourceCorrection on",
+        ));
+        assert!(e.message.contains("cellValueSourceCorrection on"), "{e}");
+        assert_eq!(e.line, 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true;", ""));
+        assert!(e.message.contains("missing keyword 'coupled'"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true", "coupled false"));
+        assert!(e.message.contains("one-way coupling"), "{e}");
+        assert_eq!((e.line, e.col), (3, 26), "{e}");
+        let (s, notes) =
+            read(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 0.5;")).unwrap();
+        assert_eq!(s.source, SourceTreatment::Explicit);
+        assert!(notes[0].contains("relaxation coefficient 0.5"), "{notes:?}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U implicit 1;"));
+        assert!(e.message.contains("found the word 'implicit'"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("U.air cell", "U.air cellPointFace"));
+        assert!(e.message.contains("cellPointFace"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("mu.air cell", "mu.air cubic"));
+        assert!(e.message.contains("unknown interpolation scheme"), "{e}");
+        let text = GOLDSCHMIDT_LIKE.replace(
+            "cellValueSourceCorrection off;",
+            "cellValueSourceCorrection off; averagingMethod dual; maxCo 0.3;",
+        );
+        let (s, notes) = read(&text).unwrap();
+        assert_eq!(s.void_fraction, VoidFraction::Trilinear);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        let e = err(&text.replace("averagingMethod dual", "averagingMethod moment"));
+        assert!(e.message.contains("moment"), "{e}");
+        let text = GOLDSCHMIDT_LIKE.replace(
+            "sourceTerms",
+            "integrationSchemes { U analytical; } sourceTerms",
+        );
+        let (s, notes) = read(&text).unwrap();
+        assert_eq!(s.integration, ParticleIntegration::Analytical);
+        assert!(
+            notes[0].contains("integrationSchemes U analytical"),
+            "{notes:?}"
+        );
+    }
+
+    #[test]
+    fn alpha_max_is_required_and_checked() {
+        let e = err(&GOLDSCHMIDT_LIKE.replace("alphaMax 0.99;", ""));
+        assert!(e.message.contains("missing keyword 'alphaMax'"), "{e}");
+        let e = err(&GOLDSCHMIDT_LIKE.replace("alphaMax 0.99", "alphaMax 1.5"));
+        assert!(e.message.contains("'alphaMax' = 1.5"), "{e}");
+        assert_eq!((e.line, e.col), (7, 42), "{e}");
+    }
+
+    #[test]
+    fn coupling_properties_choose_the_form_interpolation_and_void_fraction() {
+        let (s, notes) = read_with(
+            GOLDSCHMIDT_LIKE,
+            Some(
+                "model dragLaw;\ndragLawCoeffs { form paper; velocityInterpolation trilinear; \
+                 voidFraction trilinear; colour red; }",
+            ),
+        )
+        .unwrap();
+        assert_eq!(s.form, VolumeAveragedForm::Paper);
+        assert_eq!(s.velocity_interpolation, Interpolation::Trilinear);
+        assert_eq!(s.void_fraction, VoidFraction::Trilinear);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(notes[0].contains("dragLawCoeffs.colour"), "{notes:?}");
+        assert!(
+            notes[1].contains("the paper form gives every particle"),
+            "{notes:?}"
+        );
+        let e = read_with(GOLDSCHMIDT_LIKE, Some("dragLawCoeffs { form DPM; }")).unwrap_err();
+        assert!(e.message.contains("expected one of DPMFoam, paper"), "{e}");
+    }
+}

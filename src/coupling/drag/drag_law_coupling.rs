@@ -1,0 +1,427 @@
+//! The drag-law model's step (paper §2.2), in DPMFoam's order:
+//!
+//! ```text
+//! particle forces   fluid velocity, ε and ∇p read at each particle (eq. 14–15); drag from
+//!                   the closure (eq. 11–12), pressure-gradient force (eq. 10); the reaction
+//!                   −f_d spread back to the faces (eq. 13, 16)
+//! evolve the cloud  DEM sub-steps with those forces held (the caller)
+//! update ε          particle volumes spread to the cells; ε ≥ 1 − alphaMax or the run stops
+//! fluid             momentum predictor with the source, variable-coefficient pressure
+//!                   correction (VolumeAveragedFluid)
+//! ```
+//!
+//! Forces on one particle of mass `m`, volume `V`, with the fluid's `ρ`, the fluid's gravity
+//! `g_f` and the cloud's `g` (the DEM applies `m (1 − ρ/ρ_p) g` itself):
+//! - paper's form: `f_h = f_d − V ρ (∇p − g_f)`, which with the DEM's buoyant weight is eq. 10
+//!   plus `m g` (`p` includes the fluid's weight, so `−Vρ∇p` holds the buoyancy);
+//! - DPMFoam's form: `f_h = f_d` (its `gravity` force carries the buoyancy).
+//!
+//! The drag `f_d = β (u − v)` is integrated as OpenFOAM's `Euler` scheme for `U` does: implicit
+//! in the particle's velocity over the fluid step, with `F` the other forces held:
+//! `f_d = (β (u − vⁿ) − x F)/(1 + x)`, `x = Δt β / m` (`analytical`: the factor `1/(1 + x)`
+//! becomes `(1 − e^−x)/x`). That is exactly `β (u − vⁿ⁺¹)` for the particle's implicit Euler
+//! velocity, stable for any `Δt`, and its steady state is the root of `β (u − v) + F = 0`.
+//! Unlike DPMFoam, `F` includes the particle's last contact force besides
+//! `m(1 − ρ/ρ_p) g + f_p`: for a particle resting on others (`F ≈ 0`) DPMFoam's rule adds
+//! `x` times the particle's weight to its drag (14 % of the drag in `tutorials/packedBed` at
+//! its Δt), fsim's does not; for a free particle the two are the same. The fluid gets exactly `−f_d` (momentum
+//! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
+//! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
+
+use super::drag_closure::{Convention, DragInput};
+use super::drag_law_settings::{DragLawSettings, Stencil};
+use super::grid_transfer::GridTransfer;
+use crate::fluid::{
+    FluidSolver, Preconditioner, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport,
+};
+use crate::particles::{Dem, ParticleState};
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// The momentum the particles and the fluid exchanged in one step, and the bed's state.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ExchangeReport {
+    /// `Σ f_d` over the particles, N.
+    pub drag_on_particles: [f64; 3],
+    /// `ρ V_cell Σ_faces s`, the explicit reaction the fluid received, N.
+    pub drag_on_fluid: [f64; 3],
+    /// `Σ f_h` (drag and pressure-gradient force), N.
+    pub hydrodynamic_force: [f64; 3],
+    /// Smallest cell ε.
+    pub min_fluid_fraction: f64,
+}
+
+/// The drag-law model: settings, the volume-averaged fluid, the transfer and per-particle
+/// work arrays (no allocation per step once sized).
+pub struct DragLawCoupling {
+    pub settings: DragLawSettings,
+    pub fluid: VolumeAveragedFluid,
+    transfer: GridTransfer,
+    /// Solid volume per cell, padded (ghosts unused), then the new ε.
+    solid: Vec<f64>,
+    cells: Vec<f64>,
+    /// Per particle: drag force and coefficient β of the last force evaluation.
+    drag: Vec<[f64; 3]>,
+    beta: Vec<f64>,
+    hydro: Vec<[f64; 3]>,
+    pub last: ExchangeReport,
+    /// The fluid's report of the last step.
+    pub last_fluid: Option<VolumeAveragedReport>,
+}
+
+impl DragLawCoupling {
+    /// The model for `fluid` and the particles of `dem`: checks the particle size against the
+    /// grid (no particle larger than two cells) and the initial ε against `alphaMax`. A fresh
+    /// run then calls [`Self::initialise_pressure`], a continued one [`Self::restore`].
+    pub fn new(settings: DragLawSettings, fluid: &FluidSolver, dem: &Dem) -> Result<Self, String> {
+        if !(settings.alpha_max > 0.0 && settings.alpha_max <= 1.0) {
+            return Err(format!(
+                "alphaMax = {}: expected a value in (0, 1]",
+                settings.alpha_max
+            ));
+        }
+        let grid = fluid.grid().clone();
+        let bc = fluid.boundary_conditions().clone();
+        let h_min = (0..3)
+            .filter(|&d| !matches!(bc.face(d, 0), crate::fluid::FaceCondition::Empty))
+            .map(|d| grid.h[d])
+            .fold(f64::INFINITY, f64::min);
+        let p = dem.particles();
+        if let Some(i) = (0..p.len()).find(|&i| p.diameter[i] > 2.0 * h_min) {
+            return Err(format!(
+                "particle {} (id {}) has d = {} m, larger than two cells (h = {} m): the \
+                 drag-law model averages over cells about the particle size or coarser; use \
+                 a coarser mesh or the direct model",
+                i, p.id[i], p.diameter[i], h_min
+            ));
+        }
+        let va = VolumeAveragedFluid::new(
+            fluid,
+            settings.form,
+            settings.gravity,
+            Preconditioner::DEFAULT,
+        )?;
+        let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
+        let len = va.layout().len;
+        let mut coupling = DragLawCoupling {
+            settings,
+            fluid: va,
+            transfer,
+            solid: vec![0.0; len],
+            cells: vec![0.0; grid.cell_count()],
+            drag: Vec::new(),
+            beta: Vec::new(),
+            hydro: Vec::new(),
+            last_fluid: None,
+            last: ExchangeReport::default(),
+        };
+        coupling.compute_fluid_fraction(dem.particles())?;
+        coupling.fluid.reset_fluid_fraction(&coupling.cells);
+        Ok(coupling)
+    }
+
+    /// Re-establishes `εⁿ` and `∇p` after a restart (the velocity and pressure come from the
+    /// restart file; ε is a function of the saved positions, so this is bit-identical).
+    pub fn restore(&mut self, fluid: &FluidSolver, dem: &Dem) -> Result<(), String> {
+        self.compute_fluid_fraction(dem.particles())?;
+        self.fluid.reset_fluid_fraction(&self.cells);
+        self.fluid.update_pressure_gradient(fluid);
+        Ok(())
+    }
+
+    /// The pressure of the initial velocity and ε (so that the first particle forces see the
+    /// fluid's weight in it): one step taken and undone but for `p` and `∇p`.
+    pub fn initialise_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) {
+        let saved = fluid.velocity().clone();
+        let t = fluid.time();
+        self.fluid.step(fluid, dt);
+        *fluid.velocity_mut() = saved;
+        fluid.set_time(t);
+    }
+
+    /// `ε = 1 − (solid volume)/(cell volume)` from the particles, into `self.cells`; fails
+    /// below `1 − alphaMax` naming the cell.
+    fn compute_fluid_fraction(&mut self, p: &ParticleState) -> Result<f64, String> {
+        self.solid.iter_mut().for_each(|x| *x = 0.0);
+        let stencil = self.settings.averaging;
+        for i in 0..p.len() {
+            let d = p.diameter[i];
+            self.transfer.spread_to_cells(
+                &mut self.solid,
+                p.position[i],
+                PI * d * d * d / 6.0,
+                stencil,
+            );
+        }
+        let grid = self.fluid.grid();
+        let [n0, n1, n2] = grid.n;
+        let l = self.fluid.layout();
+        let inv_volume = 1.0 / self.transfer.cell_volume();
+        let floor = 1.0 - self.settings.alpha_max;
+        let mut min = f64::INFINITY;
+        let mut worst = [0usize; 3];
+        for k in 0..n2 {
+            for j in 0..n1 {
+                for i in 0..n0 {
+                    let eps = 1.0 - self.solid[l.index(i + 1, j + 1, k + 1)] * inv_volume;
+                    self.cells[i + n0 * (j + n1 * k)] = eps;
+                    if eps < min {
+                        min = eps;
+                        worst = [i, j, k];
+                    }
+                }
+            }
+        }
+        if min < floor || min <= 0.0 {
+            return Err(format!(
+                "the fluid fraction of cell ({} {} {}) is {min:.6}, below 1 − alphaMax = \
+                 {floor} (alphaMax {}): the particles are packed beyond alphaMax there (a \
+                 cell smaller than the particles, or {} averaging of a dense bed); use a \
+                 coarser mesh or raise alphaMax",
+                worst[0],
+                worst[1],
+                worst[2],
+                self.settings.alpha_max,
+                self.settings.averaging.name()
+            ));
+        }
+        self.last.min_fluid_fraction = min;
+        Ok(min)
+    }
+
+    /// Step part 1: the hydrodynamic force on every particle into the cloud's external loads
+    /// and its reaction into the fluid's sources, from the current fluid state.
+    pub fn particle_forces(&mut self, fluid: &FluidSolver, dem: &mut Dem, dt: f64) {
+        let n = dem.particles().len();
+        self.drag.resize(n, [0.0; 3]);
+        self.beta.resize(n, 0.0);
+        self.hydro.resize(n, [0.0; 3]);
+        let s = &self.settings;
+        let want = match s.form {
+            VolumeAveragedForm::Paper => Convention::DragOnly,
+            VolumeAveragedForm::DpmFoam => Convention::Total,
+        };
+        let (g_cloud, rho_cloud) = (dem.config().gravity, dem.config().fluid_density);
+        let (rho, mu) = (s.rho, s.mu());
+        let transfer = &self.transfer;
+        let velocity = fluid.velocity();
+        let eps_cells = self.fluid.fluid_fraction();
+        let gradient = self.fluid.pressure_gradient();
+        let g_fluid = self.fluid.gravity();
+        let (closure, form, interpolation, averaging, analytical) = (
+            s.closure,
+            s.form,
+            s.interpolation,
+            s.averaging,
+            s.analytical,
+        );
+        // Particle loop: reads only, each particle writes its own slots.
+        {
+            let p = dem.particles();
+            let (position, vel, diameter, density, fixed, contact) = (
+                &p.position,
+                &p.velocity,
+                &p.diameter,
+                &p.density,
+                &p.fixed,
+                &p.contact_force,
+            );
+            self.hydro
+                .par_iter_mut()
+                .zip(self.drag.par_iter_mut())
+                .zip(self.beta.par_iter_mut())
+                .enumerate()
+                .for_each(|(i, ((hydro, drag), beta))| {
+                    let x = position[i];
+                    let u = transfer.interpolate_faces(velocity, x, interpolation);
+                    let eps = transfer.interpolate_cells(eps_cells, x, averaging);
+                    let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
+                    let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+                    let d = diameter[i];
+                    let q = DragInput {
+                        d,
+                        eps,
+                        slip: speed,
+                        rho,
+                        mu,
+                    };
+                    let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
+                    let volume = q.volume();
+                    let pressure = match form {
+                        VolumeAveragedForm::Paper => {
+                            let gp = transfer.interpolate_faces(gradient, x, interpolation);
+                            std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
+                        }
+                        VolumeAveragedForm::DpmFoam => [0.0; 3],
+                    };
+                    let mass = density[i] * volume;
+                    // The fraction of the force imbalance the implicit drag relaxes in one step:
+                    // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
+                    let x_imp = if fixed[i] { 0.0 } else { dt * b / mass };
+                    let relax = if x_imp == 0.0 {
+                        1.0
+                    } else if analytical {
+                        -(-x_imp).exp_m1() / x_imp
+                    } else {
+                        1.0 / (1.0 + x_imp)
+                    };
+                    let buoyant = 1.0 - rho_cloud / density[i];
+                    *drag = std::array::from_fn(|a| {
+                        let other = mass * buoyant * g_cloud[a] + pressure[a] + contact[i][a];
+                        relax * (b * slip[a] + other) - other
+                    });
+                    *beta = b;
+                    *hydro = std::array::from_fn(|a| drag[a] + pressure[a]);
+                });
+        }
+        {
+            let (force, _) = dem.external_loads_mut();
+            force.copy_from_slice(&self.hydro);
+            let mut total = [0.0; 3];
+            for f in &self.hydro {
+                for a in 0..3 {
+                    total[a] += f[a];
+                }
+            }
+            self.last.hydrodynamic_force = total;
+        }
+        self.spread_reaction(dem.particles());
+    }
+
+    /// The reaction `−f_d/(ρ V_cell)` (and `β/(ρ V_cell)` for the semi-implicit source) spread
+    /// to the faces; one pass in particle order, so the sums are deterministic.
+    fn spread_reaction(&mut self, p: &ParticleState) {
+        let scale = 1.0 / (self.settings.rho * self.transfer.cell_volume());
+        let stencil = self.settings.averaging;
+        let semi_implicit = self.settings.semi_implicit;
+        let (source, coefficient) = self.fluid.sources_mut();
+        for a in source.iter_mut().chain(coefficient.iter_mut()) {
+            a.iter_mut().for_each(|x| *x = 0.0);
+        }
+        let mut on_particles = [0.0; 3];
+        for f in &self.drag {
+            for a in 0..3 {
+                on_particles[a] += f[a];
+            }
+        }
+        // One-way coupling: the fluid does not feel the particles' drag.
+        let count = if self.settings.coupled { p.len() } else { 0 };
+        for i in 0..count {
+            let f = self.drag[i];
+            let x = p.position[i];
+            self.transfer.spread_to_faces(
+                source,
+                x,
+                [-f[0] * scale, -f[1] * scale, -f[2] * scale],
+                stencil,
+            );
+            if semi_implicit {
+                let b = self.beta[i] * scale;
+                self.transfer
+                    .spread_to_faces(coefficient, x, [b, b, b], stencil);
+            }
+        }
+        let mut on_fluid = [0.0; 3];
+        for c in 0..3 {
+            on_fluid[c] = source[c].iter().sum::<f64>() / scale;
+        }
+        self.last.drag_on_particles = on_particles;
+        self.last.drag_on_fluid = on_fluid;
+    }
+
+    /// Step part 2: ε from the particles' new positions (fails below `1 − alphaMax`).
+    pub fn update_fluid_fraction(&mut self, dem: &Dem) -> Result<(), String> {
+        self.compute_fluid_fraction(dem.particles())?;
+        self.fluid.advance_fluid_fraction(&self.cells);
+        Ok(())
+    }
+
+    /// Step part 3: the volume-averaged fluid.
+    pub fn step_fluid(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
+        let report = self.fluid.step(fluid, dt);
+        self.last_fluid = Some(report);
+        report
+    }
+
+    /// The fluid velocity a particle at `x` reads (the interpolation stencil of the settings).
+    pub fn fluid_velocity_at(&self, fluid: &FluidSolver, x: [f64; 3]) -> [f64; 3] {
+        self.transfer
+            .interpolate_faces(fluid.velocity(), x, self.settings.interpolation)
+    }
+
+    /// The fluid fraction a particle at `x` reads (the averaging stencil of the settings).
+    pub fn fluid_fraction_at(&self, x: [f64; 3]) -> f64 {
+        self.transfer
+            .interpolate_cells(self.fluid.fluid_fraction(), x, self.settings.averaging)
+    }
+
+    /// Per particle (the cloud's current order), the drag `f_d` of the last force evaluation.
+    pub fn drag_forces(&self) -> &[[f64; 3]] {
+        &self.drag
+    }
+
+    /// Cell ε, unpadded x-fastest (for output).
+    pub fn cell_fluid_fraction(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.fluid.grid().cell_count()];
+        self.fluid.cell_fluid_fraction(&mut out);
+        out
+    }
+
+    /// The pressure drop across the domain along `axis` less the fluid's own weight, Pa:
+    /// `ρ (⟨p⟩_first − ⟨p⟩_last + g_axis (x_last − x_first))` between the first and the last
+    /// cell layer (the reading of a manometer across a bed: for a fluidized bed the buoyant
+    /// weight per area, for a fixed bed Ergun's drop).
+    pub fn pressure_drop(&self, fluid: &FluidSolver, axis: usize) -> f64 {
+        let grid = fluid.grid();
+        let n = grid.n;
+        let p = fluid.pressure();
+        let layer = |m: usize| {
+            let mut sum = 0.0;
+            let mut count = 0;
+            for k in 0..n[2] {
+                for j in 0..n[1] {
+                    for i in 0..n[0] {
+                        if [i, j, k][axis] == m {
+                            sum += p[i + n[0] * (j + n[1] * k)];
+                            count += 1;
+                        }
+                    }
+                }
+            }
+            sum / count as f64
+        };
+        let span = (n[axis] - 1) as f64 * grid.h[axis];
+        self.settings.rho * (layer(0) - layer(n[axis] - 1) + self.settings.gravity[axis] * span)
+    }
+
+    /// The stencil names for the banner.
+    pub fn describe(&self) -> String {
+        let s = &self.settings;
+        format!(
+            "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}",
+            s.closure.map_or("no", |c| c.name()),
+            s.form.name(),
+            s.interpolation.name(),
+            s.averaging.name(),
+            if s.semi_implicit {
+                "semi-implicit"
+            } else {
+                "explicit"
+            },
+            s.alpha_max
+        )
+    }
+}
+
+/// Whether a stencil name from DPMFoam's `interpolationSchemes` maps to one of fsim's.
+pub fn interpolation_from_name(name: &str) -> Option<Stencil> {
+    match name {
+        "cell" => Some(Stencil::Cell),
+        // DPMFoam's cellPoint interpolates linearly on a tetrahedral decomposition of the
+        // cell; on fsim's uniform hexahedra the trilinear stencil is its counterpart.
+        "cellPoint" | "cellPointFace" | "cellPointWallModified" | "trilinear" => {
+            Some(Stencil::Trilinear)
+        }
+        _ => None,
+    }
+}
