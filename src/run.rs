@@ -194,6 +194,13 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
     println!("Case    : {}", case.dir.display());
     println!("Plan    : {}", case.summary());
     println!("Scheme  : {}", sim.fluid.settings().scheme.name());
+    if !sim.time.running() {
+        println!(
+            "Steps   : none: the run already reached endTime {} s (at t = {} s)",
+            case.control.end_time, sim.time.time
+        );
+        return;
+    }
     let span = case.control.end_time - sim.time.time;
     let dt = sim
         .next_time_step()

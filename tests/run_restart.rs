@@ -66,3 +66,42 @@ fn adaptive_step_driven_channel_restarts_bit_for_bit() {
     // adjustTimeStep with maxCo, adjustableRunTime writes, meanVelocityForce state.
     assert_restart_is_exact("channel", "10", "5", "1");
 }
+
+/// A finished run continued with `startFrom latestTime` has nothing left to do: `-dry-run`
+/// says so instead of planning a sliver of a step (the saved time can sit a rounding error
+/// below `endTime`), and a real run adds no time directory.
+#[test]
+fn finished_run_continued_plans_no_step() {
+    let scratch = Scratch::new("restart-finished");
+    let case = copy_tutorial("cavity", &scratch.0, "cavity");
+    let control = case.join("system/controlDict");
+    // twenty steps of 0.005 sum to just above 0.1 in binary: the saved time is off endTime
+    set_entry(&control, "endTime", "0.1");
+    set_entry(&control, "writeInterval", "0.1");
+    let out = fsim(&case, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    set_entry(&control, "startFrom", "latestTime");
+    let out = fsim(&case, &["-dry-run"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan = String::from_utf8_lossy(&out.stdout);
+    assert!(plan.contains("Steps   : none"), "{plan}");
+    let before = listing(&case);
+    let out = fsim(&case, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        listing(&case).iter().filter(|n| n.starts_with('0')).count(),
+        before.iter().filter(|n| n.starts_with('0')).count()
+    );
+}
