@@ -442,7 +442,15 @@ fn mean_velocity_force(case: &Case) -> Result<Option<MeanVelocityForce>, FsimErr
 
 /// The solver's condition on each box face, from the patch type and the `U`/`p` conditions
 /// the case gives it.
-fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
+///
+/// DPMFoam's pairs: `noSlip` + `fixedFluxPressure` is a wall; `interstitialInletVelocity` +
+/// `fixedFluxPressure` an [`FaceCondition::Inlet`] whose velocity is the *superficial*
+/// `inletVelocity` (the volumetric flux per area; the interstitial velocity on the face is
+/// `inletVelocity / ε`, see [`interstitial_inlets`]); `pressureInletOutletVelocity` +
+/// `fixedValue` p an [`FaceCondition::Outlet`] at that pressure, which lets the flow enter as
+/// well as leave (its normal velocity follows the pressure; on back-flow the tangential
+/// velocity stays zero-gradient where OpenFOAM takes `inletValue`'s); `symmetry` a slip face.
+pub fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
     let mesh = &case.mesh;
     let fields = &case.fields;
     let mut faces: [FaceCondition; 6] = std::array::from_fn(|_| FaceCondition::Periodic);
@@ -496,6 +504,21 @@ fn boundary_conditions(case: &Case) -> Result<BoundaryConditions, FsimError> {
         };
     }
     Ok(BoundaryConditions { faces })
+}
+
+/// The superficial inlet velocity (`inletVelocity` of an `interstitialInletVelocity`) of each
+/// box face that has one. The face's [`FaceCondition::Inlet`] carries the same vector; a
+/// volume-averaged fluid imposes `ε_f u·n = inletVelocity·n` there, i.e. the interstitial
+/// velocity `inletVelocity / ε_f` with `ε_f` the fraction of the adjacent cell (DPMFoam's
+/// `alpha.air` is zero-gradient on patches).
+pub fn interstitial_inlets(case: &Case) -> [Option<[f64; 3]>; 6] {
+    std::array::from_fn(|face| {
+        let index = case.mesh.face_patch[face];
+        match &case.fields.u_bc[index] {
+            VelocityBc::InterstitialInletVelocity { inlet_velocity, .. } => Some(*inlet_velocity),
+            _ => None,
+        }
+    })
 }
 
 fn velocity_bc_name(bc: &VelocityBc) -> &'static str {

@@ -7,10 +7,13 @@ use super::block_mesh::{BlockMesh, BoxFace};
 use super::control_dict::{time_name, ControlDict, StartFrom, WriteControl};
 use super::coupling::{Coupling, CouplingModel};
 use super::dictionary::Dict;
+use super::drag_law_options::fraction_name;
 use super::error::CaseError;
 use super::fields::Fields;
+use super::fraction_field::check_fraction_field;
 use super::fv_options::{read_fv_options, MeanVelocityForce};
 use super::transport::Transport;
+use super::turbulence::{check_laminar, turbulence_file};
 
 /// A validated case directory.
 #[derive(Clone, Debug)]
@@ -103,6 +106,18 @@ impl Case {
             Fields::read(dir, &time, &transport.velocity_name(), &mesh, &mut warnings)?;
         read_dicts.push(field_dicts.u);
         read_dicts.push(field_dicts.p);
+
+        // DPMFoam's turbulence file: laminar only. The fluid fraction: its conditions only.
+        let turbulence_file = turbulence_file(&transport.phase);
+        if let Some(t) = optional(&turbulence_file)? {
+            check_laminar(&t)?;
+            read_dicts.push(t);
+        }
+        let fraction = format!("{time}/{}", fraction_name(&transport.phase));
+        if let Some(alpha) = optional(&fraction)? {
+            check_fraction_field(&alpha, &mesh, &mut warnings)?;
+            read_dicts.push(alpha);
+        }
 
         let mut mean_velocity_forces = Vec::new();
         let system_options = optional("system/fvOptions")?;

@@ -1,37 +1,42 @@
 //! The drag-law model's options, read from DPMFoam's `constant/kinematicCloudProperties` (and
-//! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`), typed for the coupling
-//! code.
+//! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`); [`DragLawOptions::settings`]
+//! gives the coupling code's [`DragLawSettings`].
 //!
 //! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
 //! README, section "DPMFoam cases"):
 //!
-//! * `solution.coupled` → [`DragLawOptions::coupled`]: two-way coupling (the particles'
-//!   reaction force and volume enter the fluid) or one-way.
+//! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
+//!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
+//!   refused; `maxCo` is noted as unused.
 //! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`]. OpenFOAM
 //!   reads `c` as an under-relaxation factor that only steady clouds use; fsim's clouds are
 //!   transient, so any `c` is accepted and a value other than 1 is noted.
 //! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
 //!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
-//!   interpolation); fsim's `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`.
-//!   `rho.<phase>` and `mu.<phase>` are constants of fsim's fluid, so any of OpenFOAM's schemes is
-//!   accepted for them (interpolating a constant gives the constant).
+//!   interpolation, which fsim replaces by trilinear interpolation, with a note); fsim's
+//!   `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`. `rho.<phase>`, `mu.<phase>`
+//!   and `alpha.<phase>` may name any of OpenFOAM's schemes: the first two are constants of
+//!   fsim's fluid, and ε at a particle follows [`VoidFraction`].
 //! * `solution.averagingMethod basic|dual` → [`VoidFraction`]: `basic` is DPMFoam's own rule
 //!   (a particle's volume counts in its cell only, which DPMFoam applies whatever this keyword
 //!   says: the keyword is read by MPPICFoam's models); `dual`, OpenFOAM's averaging on the dual
 //!   (point) mesh, is taken as fsim's closest equivalent, the trilinear spreading of paper
-//!   eq. 16. Absent: `basic`, as DPMFoam does.
-//! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`].
+//!   eq. 16 (noted). Absent: `basic`, as DPMFoam does. `moment` is refused.
+//! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`] (noted: fsim
+//!   integrates with its own scheme).
 //! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
 //!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
-//! * `subModels.particleForces`: one drag closure ([`DragClosure`], by the names of
-//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`,
-//!   `pressureGradient`. DPMFoam's `pressureGradient` force is `m (ρ_c/ρ_p) DU_c/Dt`, the
-//!   fluid's material acceleration at the particle, which equals −∇p/ρ_c + ν∇²u_c + g for the
-//!   fluid (paper eq. 10 up to the viscous term).
+//! * `subModels.particleForces`: exactly one drag closure ([`DragClosure`], by the names of
+//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`, and
+//!   `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
+//!   `m (ρ_c/ρ_p) DU_c/Dt`, the fluid's material acceleration at the particle, which fsim's
+//!   DPMFoam form does not compute. Other OpenFOAM forces are refused; an unknown name is an
+//!   error with a spelling hint.
 //!
-//! fsim's own `dragLawCoeffs { velocityInterpolation cell|cellPoint|trilinear; voidFraction
-//! cell|trilinear; }` in `constant/couplingProperties` overrides the interpolation and the ε
-//! rule, so that the same case runs with DPMFoam's choices or with the paper's.
+//! fsim's own `dragLawCoeffs { form DPMFoam|paper; velocityInterpolation
+//! cell|cellPoint|trilinear; voidFraction cell|trilinear; }` in `constant/couplingProperties`
+//! chooses the equations and overrides the interpolation and the ε rule, so that the same case
+//! runs with DPMFoam's choices or with the paper's.
 
 use super::control_dict::{at_value, choice};
 use super::dictionary::{Dict, Entry};
@@ -173,7 +178,8 @@ impl DragLawOptions {
         notes: &mut Vec<String>,
     ) -> Result<DragLawOptions, CaseError> {
         let solution = cloud.get_dict("solution")?;
-        if !solution.get_bool_or("coupled", false)? {
+        // Required by DPMFoam too (cloudSolution reads it without a default).
+        if !solution.get_bool("coupled")? {
             return Err(at_value(
                 solution,
                 "coupled",
@@ -369,7 +375,6 @@ fn source_treatment(
     let Some(terms) = solution.opt_dict("sourceTerms")? else {
         return Ok(SourceTreatment::Explicit);
     };
-    terms.lookup("resetOnStartup");
     let Some(schemes) = terms.opt_dict("schemes")? else {
         return Ok(SourceTreatment::Explicit);
     };
@@ -543,32 +548,16 @@ pub(crate) fn fraction_name(phase: &str) -> String {
     }
 }
 
-/// Forces OpenFOAM v1912 offers that fsim does not compute, with the reason given.
-const REFUSED_FORCES: [(&str, &str); 9] = [
-    (
-        "nonSphereDrag",
-        "the drag of non-spherical particles is not supported by fsim",
-    ),
-    (
-        "distortedSphereDrag",
-        "the drag of distorted droplets is not supported by fsim",
-    ),
-    (
-        "virtualMass",
-        "the added-mass force is not supported by fsim",
-    ),
-    (
-        "SaffmanMeiLiftForce",
-        "lift forces are not supported by fsim",
-    ),
-    ("TomiyamaLiftForce", "lift forces are not supported by fsim"),
-    ("paramagnetic", "magnetic forces are not supported by fsim"),
-    (
-        "nonInertialFrame",
-        "a non-inertial frame is not supported by fsim",
-    ),
-    ("SRF", "a rotating frame is not supported by fsim"),
-    ("interface", "interface forces are not supported by fsim"),
+/// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
+const REFUSED_FORCES: [(&str, &str); 8] = [
+    ("nonSphereDrag", "the drag of non-spherical particles"),
+    ("distortedSphereDrag", "the drag of distorting droplets"),
+    ("virtualMass", "the added-mass force"),
+    ("SaffmanMeiLiftForce", "a lift force"),
+    ("TomiyamaLiftForce", "a lift force"),
+    ("paramagnetic", "a magnetic force"),
+    ("nonInertialFrame", "the forces of a non-inertial frame"),
+    ("SRF", "the forces of a rotating frame"),
 ];
 
 /// The forces of `particleForces`, checked.
@@ -639,18 +628,33 @@ impl ParticleForces {
             } else if let Some((_, why)) = REFUSED_FORCES.iter().find(|(n, _)| *n == name) {
                 return Err(CaseError::at(
                     &e.key_loc,
-                    format!("particle force '{name}': {why}"),
+                    format!("particle force '{name}' is not supported by fsim ({why})"),
                 ));
             } else {
-                let what = if name.to_ascii_lowercase().contains("drag") {
+                let others = ["gravity", "pressureGradient"];
+                let known = DragClosure::NAMES.iter().chain(&others);
+                let nearest = known
+                    .map(|k| {
+                        (
+                            edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
+                            *k,
+                        )
+                    })
+                    .min()
+                    .filter(|(d, _)| *d <= 3)
+                    .map(|(_, k)| k);
+                let drag_like = name.to_ascii_lowercase().contains("drag")
+                    || nearest.is_some_and(|k| !others.contains(&k));
+                let what = if drag_like {
                     "unknown drag model"
                 } else {
                     "unknown particle force"
                 };
+                let hint = nearest.map_or(String::new(), |k| format!(" (did you mean '{k}'?)"));
                 return Err(CaseError::at(
                     &e.key_loc,
                     format!(
-                        "{what} '{name}' in particleForces: expected a drag model ({}), \
+                        "{what} '{name}' in particleForces{hint}: expected a drag model ({}), \
                          gravity or pressureGradient",
                         DragClosure::NAMES.join(", ")
                     ),
@@ -659,6 +663,24 @@ impl ParticleForces {
         }
         Ok(forces)
     }
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions), for spelling hints.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
 }
 
 /// Whether OpenFOAM v1912 knows the closure (the others are fsim's names: a case using them
@@ -825,6 +847,23 @@ subModels
             );
             assert!(e.message.contains("PlessisMasliyahDrag"), "{e}");
         }
+        let e = err(&GOLDSCHMIDT_LIKE.replace("ErgunWenYuDrag", "ErgunWenYuDarg"));
+        assert!(
+            e.message.starts_with(
+                "unknown drag model 'ErgunWenYuDarg' in particleForces (did you mean \
+                 'ErgunWenYuDrag'?)"
+            ),
+            "{e}"
+        );
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "gravty;"));
+        assert!(
+            e.message.starts_with(
+                "unknown particle force 'gravty' in particleForces (did you mean 'gravity'?)"
+            ),
+            "{e}"
+        );
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "magnus;"));
         assert!(
             e.message.starts_with("unknown particle force 'magnus'"),
@@ -885,6 +924,8 @@ subModels
         ));
         assert!(e.message.contains("cellValueSourceCorrection on"), "{e}");
         assert_eq!(e.line, 3);
+        let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true;", ""));
+        assert!(e.message.contains("missing keyword 'coupled'"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true", "coupled false"));
         assert!(e.message.contains("one-way coupling"), "{e}");
         assert_eq!((e.line, e.col), (3, 26), "{e}");

@@ -171,7 +171,7 @@ impl Fields {
             .into_iter()
             .zip(&mesh.patches)
             .map(|(d, patch)| match d {
-                Some(d) => velocity_bc(d, patch),
+                Some(d) => velocity_bc(d, patch, velocity_name, warnings),
                 None => Ok(implied_velocity(patch.kind)),
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -389,7 +389,7 @@ fn group_of(patch: &Patch) -> Option<&'static str> {
 /// A keyword naming no patch is an error; a pattern or group that matches none is noted.
 /// `None` stands for a constraint patch (cyclic, empty, symmetry) left to
 /// `#includeEtc "caseDicts/setConstraintTypes"`, which gives each its own type.
-fn conditions<'a>(
+pub(crate) fn conditions<'a>(
     d: &'a Dict,
     mesh: &BlockMesh,
     warnings: &mut Vec<String>,
@@ -475,7 +475,7 @@ fn conditions<'a>(
 }
 
 /// The condition's `type`, as an index into `types`, checked against the patch type.
-fn condition_type(
+pub(crate) fn condition_type(
     d: &Dict,
     patch: &Patch,
     types: &[&str],
@@ -528,7 +528,14 @@ fn condition_type(
     Ok(k)
 }
 
-fn velocity_bc(d: &Dict, patch: &Patch) -> Result<VelocityBc, CaseError> {
+/// One velocity condition. `velocity_name` (`U.air`) gives the phase whose fluid fraction
+/// (`alpha.air`) an `interstitialInletVelocity` must name.
+fn velocity_bc(
+    d: &Dict,
+    patch: &Patch,
+    velocity_name: &str,
+    notes: &mut Vec<String>,
+) -> Result<VelocityBc, CaseError> {
     let vector = |key: &str| patch_value(d, key, "a vector (x y z)", Item::as_vector);
     let bc = match VELOCITY_TYPES[condition_type(d, patch, &VELOCITY_TYPES, "velocity")?] {
         "noSlip" => VelocityBc::NoSlip,
@@ -539,14 +546,44 @@ fn velocity_bc(d: &Dict, patch: &Patch) -> Result<VelocityBc, CaseError> {
         "symmetryPlane" => VelocityBc::SymmetryPlane,
         "slip" => VelocityBc::Slip,
         "empty" => VelocityBc::Empty,
-        "pressureInletOutletVelocity" => VelocityBc::PressureInletOutletVelocity,
+        "pressureInletOutletVelocity" => {
+            // OpenFOAM: zero gradient where the flow leaves; where it enters, the normal part
+            // from the flux and the tangential part of `inletValue` (default zero).
+            if d.contains("inletValue") {
+                vector("inletValue")?;
+            }
+            let (line, col) = d.loc.line_col();
+            notes.push(format!(
+                "{}:{line}:{col}: patch '{}' pressureInletOutletVelocity: where the flow enters \
+                 (back-flow) fsim keeps the tangential velocity zero-gradient instead of \
+                 inletValue's; the normal velocity follows the fixed pressure either way",
+                d.file(),
+                patch.name
+            ));
+            VelocityBc::PressureInletOutletVelocity
+        }
         "inletOutlet" => VelocityBc::InletOutlet {
             inlet_value: vector("inletValue")?,
         },
-        _ => VelocityBc::InterstitialInletVelocity {
-            inlet_velocity: vector("inletVelocity")?,
-            alpha: d.get_word_or("alpha", "alpha")?,
-        },
+        _ => {
+            let phase = velocity_name.strip_prefix("U.").unwrap_or("");
+            let expected = super::drag_law_options::fraction_name(phase);
+            let alpha = d.get_word_or("alpha", "alpha")?;
+            if alpha != expected {
+                return Err(super::control_dict::at_value(
+                    d,
+                    "alpha",
+                    format!(
+                        "interstitialInletVelocity alpha '{alpha}': expected the continuous \
+                         phase's fluid fraction {expected}"
+                    ),
+                ));
+            }
+            VelocityBc::InterstitialInletVelocity {
+                inlet_velocity: vector("inletVelocity")?,
+                alpha,
+            }
+        }
     };
     quiet_bookkeeping(d);
     Ok(bc)
@@ -589,7 +626,7 @@ fn implied_pressure(kind: PatchType) -> PressureBc {
 
 /// Entries OpenFOAM writes for its own bookkeeping in boundary conditions (the current patch
 /// value, flux and density field names): not worth a note each.
-fn quiet_bookkeeping(d: &Dict) {
+pub(crate) fn quiet_bookkeeping(d: &Dict) {
     for key in ["value", "phi", "rho", "psi", "gamma"] {
         d.lookup(key);
     }

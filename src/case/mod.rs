@@ -3,7 +3,10 @@
 //! [`Case::load`] reads a case directory into typed parts ([`ControlDict`], [`BlockMesh`],
 //! [`Transport`], [`Fields`], [`MeanVelocityForce`], [`Coupling`]); every error is a
 //! [`CaseError`] naming file, line and column. The parser alone is [`read_dict_file`] /
-//! [`parse_dict`], giving a [`Dict`] with typed accessors.
+//! [`parse_dict`], giving a [`Dict`] with typed accessors. A DPMFoam case's cloud is read by
+//! [`Cloud::from_case`], with the drag-law model's [`DragLawOptions`]; its
+//! `turbulenceProperties.<phase>` ([`turbulence`]) and `0/alpha.<phase>` ([`fraction_field`])
+//! are checked by [`Case::load`].
 
 pub mod block_mesh;
 #[allow(clippy::module_inception)]
@@ -16,11 +19,13 @@ pub mod drag_law_options;
 pub mod error;
 pub mod expression;
 pub mod fields;
+pub mod fraction_field;
 pub mod fv_options;
 mod packed;
 pub mod parser;
 pub mod source;
 pub mod transport;
+pub mod turbulence;
 pub mod value;
 
 pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};

@@ -19,7 +19,8 @@ pub struct Transport {
 }
 
 impl Transport {
-    /// Reads the DPMFoam form (`continuousPhase air; rho.air 1.2; nu 1e-05;`) or the plain
+    /// Reads the DPMFoam form (`continuousPhase air; rho.air 1.2; nu 1e-05;`, or `nu.air`
+    /// in place of `nu`) or the plain
     /// icoFoam form (`nu [0 2 -1 0 0 0 0] 0.01;`).
     pub fn from_dict(d: &Dict) -> Result<Transport, CaseError> {
         let phase = d.get_word_or("continuousPhase", "")?;
@@ -40,12 +41,19 @@ impl Transport {
                 format!("expected a positive density for '{rho_key}', found {rho}"),
             ));
         }
-        let nu = d.get_scalar("nu")?;
+        // DPMFoam v1912 reads `nu`; `nu.<phase>` is accepted when `nu` is absent.
+        let phase_nu = format!("nu.{phase}");
+        let nu_key = if !phase.is_empty() && !d.contains("nu") && d.contains(&phase_nu) {
+            phase_nu.as_str()
+        } else {
+            "nu"
+        };
+        let nu = d.get_scalar(nu_key)?;
         if nu.is_nan() || nu <= 0.0 {
             return Err(at_value(
                 d,
-                "nu",
-                format!("expected a positive kinematic viscosity for 'nu', found {nu}"),
+                nu_key,
+                format!("expected a positive kinematic viscosity for '{nu_key}', found {nu}"),
             ));
         }
         if let Some(model) = d.opt_word("transportModel")? {
@@ -91,6 +99,23 @@ mod tests {
         let t = Transport::from_dict(&d).unwrap();
         assert_eq!((t.phase.as_str(), t.rho, t.nu), ("", 1.0, 0.01));
         assert_eq!(t.velocity_name(), "U");
+        let d = parse_dict("continuousPhase air; rho.air 1.2; nu.air 2e-05;", "t").unwrap();
+        assert_eq!(Transport::from_dict(&d).unwrap().nu, 2e-5);
+        // both: DPMFoam's `nu` wins (nu.air is then listed as ignored by the case)
+        let d = parse_dict(
+            "continuousPhase air; rho.air 1.2; nu 1e-5; nu.air 2e-5;",
+            "t",
+        )
+        .unwrap();
+        assert_eq!(Transport::from_dict(&d).unwrap().nu, 1e-5);
+        let d = parse_dict("continuousPhase air; rho.air 1.2; nu.air -2e-05;", "t").unwrap();
+        let e = Transport::from_dict(&d).unwrap_err();
+        assert!(e.message.contains("'nu.air'"), "{e}");
+        let d = parse_dict("continuousPhase air; rho.air 1.2;", "t").unwrap();
+        assert!(Transport::from_dict(&d)
+            .unwrap_err()
+            .message
+            .contains("'nu'"));
     }
 
     #[test]

@@ -46,6 +46,15 @@ fn copy_tree(src: &Path, dst: &Path) {
     }
 }
 
+/// Copies the input folders (`system`, `constant`, `0`) of any case directory `src` to `dst`.
+pub fn copy_case(src: &Path, dst: &Path) {
+    for sub in ["system", "constant", "0"] {
+        if src.join(sub).is_dir() {
+            copy_tree(&src.join(sub), &dst.join(sub));
+        }
+    }
+}
+
 /// Copies the input folders of `tutorials/<name>` to `<dir>/<as_name>`.
 pub fn copy_tutorial(name: &str, dir: &Path, as_name: &str) -> PathBuf {
     let src = Path::new(env!("CARGO_MANIFEST_DIR"))
