@@ -159,7 +159,11 @@ fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
     let mut extra = vec![
         (
             "Scheme".to_string(),
-            sim.fluid.settings().scheme.name().to_string(),
+            if sim.drag.is_some() {
+                "volume-averaged (explicit Euler predictor, PCG pressure)".to_string()
+            } else {
+                sim.fluid.settings().scheme.name().to_string()
+            },
         ),
         ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
     ];
@@ -193,7 +197,13 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
     let cells = grid.cell_count();
     println!("Case    : {}", case.dir.display());
     println!("Plan    : {}", case.summary());
-    println!("Scheme  : {}", sim.fluid.settings().scheme.name());
+    match &sim.drag {
+        Some(d) => println!(
+            "Scheme  : volume-averaged, explicit Euler predictor, PCG pressure ({})",
+            d.describe()
+        ),
+        None => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),
+    }
     if !sim.time.running() {
         println!(
             "Steps   : none: the run already reached endTime {} s (at t = {} s)",

@@ -21,6 +21,7 @@ DPMFoam v1912 applies gravity twice in its first step, so its particles run one 
 (DESIGN.md). The comparison is printed as measured and with DPMFoam's history moved one step
 later (`--dpmfoam-shift`, default 1 step), which aligns the release times.
 
+Run it with the venv of tools/setup_venv.sh (numpy, for the shared measuring helper).
 DPMFoam takes several minutes, so its history, wall time and memory are cached in
 `tools/bench/.cache/` (git-ignored) per step count; `--rerun-dpmfoam` runs it again.
 """

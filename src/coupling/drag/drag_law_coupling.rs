@@ -233,7 +233,8 @@ impl DragLawCoupling {
                 .enumerate()
                 .for_each(|(i, ((hydro, drag), beta))| {
                     let x = position[i];
-                    let u = transfer.interpolate_faces(velocity, x, interpolation);
+                    let (u, gp) =
+                        transfer.interpolate_faces_pair(velocity, gradient, x, interpolation);
                     let eps = transfer.interpolate_cells(eps_cells, x, averaging);
                     let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
                     let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
@@ -249,7 +250,6 @@ impl DragLawCoupling {
                     let volume = q.volume();
                     let pressure = match form {
                         VolumeAveragedForm::Paper => {
-                            let gp = transfer.interpolate_faces(gradient, x, interpolation);
                             std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
                         }
                         VolumeAveragedForm::DpmFoam => [0.0; 3],
@@ -309,16 +309,13 @@ impl DragLawCoupling {
         for i in 0..count {
             let f = self.drag[i];
             let x = p.position[i];
-            self.transfer.spread_to_faces(
-                source,
-                x,
-                [-f[0] * scale, -f[1] * scale, -f[2] * scale],
-                stencil,
-            );
+            let value = [-f[0] * scale, -f[1] * scale, -f[2] * scale];
             if semi_implicit {
                 let b = self.beta[i] * scale;
                 self.transfer
-                    .spread_to_faces(coefficient, x, [b, b, b], stencil);
+                    .spread_to_faces_pair(source, value, coefficient, b, x, stencil);
+            } else {
+                self.transfer.spread_to_faces(source, x, value, stencil);
             }
         }
         let mut on_fluid = [0.0; 3];

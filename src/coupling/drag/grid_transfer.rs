@@ -67,6 +67,7 @@ impl GridTransfer {
     }
 
     /// The two samples and weights along axis `d` for position `x_d`.
+    #[inline(always)]
     fn axis(
         &self,
         samples: Samples,
@@ -86,12 +87,12 @@ impl GridTransfer {
         let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
             Stencil::Trilinear => {
                 let s = if on_faces { xi } else { xi - 0.5 };
-                let i0 = s.floor();
-                let t = s - i0;
-                ([i0 as isize, i0 as isize + 1], [1.0 - t, t])
+                let i0 = fast_floor(s);
+                let t = s - i0 as f64;
+                ([i0, i0 + 1], [1.0 - t, t])
             }
             Stencil::Cell => {
-                let m = (xi.floor() as isize).clamp(0, n as isize - 1);
+                let m = fast_floor(xi).clamp(0, n as isize - 1);
                 if on_faces {
                     ([m, m + 1], [0.5, 0.5])
                 } else {
@@ -140,10 +141,16 @@ impl GridTransfer {
         stencil: Stencil,
         purpose: Purpose,
         x: [f64; 3],
-        mut f: impl FnMut(usize, f64),
+        f: impl FnMut(usize, f64),
     ) {
         let ax: [AxisStencil; 3] =
             std::array::from_fn(|d| self.axis(samples, stencil, purpose, d, x[d]));
+        self.for_each_in(&ax, f);
+    }
+
+    /// Calls `f(padded index, weight)` for the samples of a precomputed tensor stencil.
+    #[inline]
+    fn for_each_in(&self, ax: &[AxisStencil; 3], mut f: impl FnMut(usize, f64)) {
         let (Some(a0), Some(a1), Some(a2)) = (ax[0], ax[1], ax[2]) else {
             return;
         };
@@ -177,6 +184,54 @@ impl GridTransfer {
             });
             v
         })
+    }
+
+    /// Two staggered fields at `x` with one stencil evaluation (the velocity and the pressure
+    /// gradient a particle reads).
+    pub fn interpolate_faces_pair(
+        &self,
+        a: &[Vec<f64>; 3],
+        b: &[Vec<f64>; 3],
+        x: [f64; 3],
+        stencil: Stencil,
+    ) -> ([f64; 3], [f64; 3]) {
+        let mut va = [0.0; 3];
+        let mut vb = [0.0; 3];
+        for c in 0..3 {
+            let ax: [AxisStencil; 3] = std::array::from_fn(|d| {
+                self.axis(Samples::Face(c), stencil, Purpose::Read, d, x[d])
+            });
+            self.for_each_in(&ax, |i, w| {
+                va[c] += w * a[c][i];
+                vb[c] += w * b[c][i];
+            });
+        }
+        (va, vb)
+    }
+
+    /// Adds `value[c] · w` to `target` and `other · w` to `second` on the momentum faces of
+    /// each component, one stencil evaluation for both (the reaction and, for the
+    /// semi-implicit source, the drag coefficient).
+    pub fn spread_to_faces_pair(
+        &self,
+        target: &mut [Vec<f64>; 3],
+        value: [f64; 3],
+        second: &mut [Vec<f64>; 3],
+        other: f64,
+        x: [f64; 3],
+        stencil: Stencil,
+    ) {
+        for c in 0..3 {
+            let ax: [AxisStencil; 3] = std::array::from_fn(|d| {
+                self.axis(Samples::Face(c), stencil, Purpose::Write, d, x[d])
+            });
+            let (t, o) = (&mut target[c], &mut second[c]);
+            let v = value[c];
+            self.for_each_in(&ax, |i, w| {
+                t[i] += w * v;
+                o[i] += w * other;
+            });
+        }
     }
 
     /// The cell field `cells` (padded, ghosts filled) at `x`.
@@ -216,6 +271,17 @@ impl GridTransfer {
     }
 }
 
+/// `⌊s⌋` without a libm call (the hot loops run it 20 times per particle and step).
+#[inline]
+fn fast_floor(s: f64) -> isize {
+    let t = s as isize;
+    if (t as f64) > s {
+        t - 1
+    } else {
+        t
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -230,6 +296,13 @@ mod tests {
         let wall = FaceCondition::Wall { velocity: [0.0; 3] };
         BoundaryConditions {
             faces: std::array::from_fn(|_| wall.clone()),
+        }
+    }
+
+    #[test]
+    fn fast_floor_matches_floor() {
+        for s in [-2.5, -2.0, -0.3, 0.0, 0.7, 1.0, 3.999] {
+            assert_eq!(fast_floor(s), s.floor() as isize, "{s}");
         }
     }
 
