@@ -1,1 +1,13 @@
 //! Resolved coupling (paper §2.1): declares and re-exports the direct model's parts.
+
+mod close_pairs;
+mod lubrication;
+mod resolution_check;
+mod settling_drive;
+
+pub use close_pairs::{ClosePairs, PeriodicBox};
+pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
+pub use resolution_check::{
+    check_resolution, ResolutionReport, MIN_CELLS_PER_RADIUS, RESOLVED_GAP_CELLS,
+};
+pub use settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
