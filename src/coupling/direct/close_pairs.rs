@@ -172,8 +172,8 @@ mod tests {
                 }
             });
             fast.retain(|&(i, _, _)| i != 0);
-            fast.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
-            slow.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+            fast.sort_by_key(|a| (a.0, a.1));
+            slow.sort_by_key(|a| (a.0, a.1));
             assert!(fast.len() > 20, "only {} pairs", fast.len());
             assert_eq!(fast.len(), slow.len());
             for (f, s) in fast.iter().zip(&slow) {

@@ -36,6 +36,9 @@
 //! The gradient applies only when nothing else carries the weight: every axis along which
 //! gravity acts is periodic and no particle is fixed (fixed spheres hold the mixture).
 
+// Plain indexed loops over the particle arrays, by design.
+#![allow(clippy::needless_range_loop)]
+
 use crate::particles::{ParticleState, Vec3};
 
 /// The imposed excess mean pressure gradient of periodic sedimentation.
