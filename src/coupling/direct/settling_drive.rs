@@ -16,7 +16,8 @@
 //! which acts, as any mean pressure gradient does, on every volume element: on the fluid as a
 //! uniform body force per unit mass `b = −∇P_s/ρ_f` (an upward push: the fluid carries the
 //! particles), and on each particle as the extra buoyancy `−V_i ∇P_s` (the stress integral of
-//! the periodic pressure `p'` cannot contain this linear part).
+//! the periodic pressure `p'` cannot contain this linear part: the direct model adds it as
+//! `ρ_f b V`, the `f_h0` of paper eq. 4, from the fluid's body force).
 //!
 //! Momentum balance of the mixture (hydrodynamic forces are internal and cancel):
 //!
@@ -83,17 +84,11 @@ impl SettlingDrive {
         self.gradient.map(|g| -g / self.fluid_density)
     }
 
-    /// Adds the extra buoyancy `−V_i ∇P_s` of every free particle to `forces`.
-    pub fn add_forces(&self, p: &ParticleState, forces: &mut [Vec3]) {
-        for i in 0..p.len() {
-            if p.fixed[i] {
-                continue;
-            }
-            let volume = p.mass(i) / p.density[i];
-            for a in 0..3 {
-                forces[i][a] -= volume * self.gradient[a];
-            }
-        }
+    /// The extra buoyancy `−V ∇P_s` (N) on a particle of volume `volume`. The direct model's
+    /// stress integral already adds it, as `ρ_f b V_R` of the fluid's body force `b`
+    /// (`DirectCoupling::compute_loads`); this is the term by itself, for checks.
+    pub fn particle_force(&self, volume: f64) -> Vec3 {
+        self.gradient.map(|g| -volume * g)
     }
 
     /// The settling velocity in the frame of zero volume flux (a container's), from the
@@ -164,8 +159,7 @@ mod tests {
         let phi = n as f64 * vp / volume;
         let expected = phi * (rho_p - rho_f) * g[1];
         assert!((drive.gradient[1] - expected).abs() < 1e-12 * expected.abs());
-        let mut f = vec![[0.0; 3]; n];
-        drive.add_forces(&p, &mut f);
+        let f: Vec<Vec3> = (0..n).map(|_| drive.particle_force(vp)).collect();
         let weight: f64 = (0..n)
             .map(|i| p.mass(i) * (1.0 - rho_f / rho_p) * g[1] + f[i][1])
             .sum();
