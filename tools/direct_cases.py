@@ -344,14 +344,16 @@ def sedimentation(case):
                       title="Spheres settling in a periodic box (tutorials/sedimentation)")
 
 
-def benchmark(case, end_time=0.1):
+def benchmark(case, end_time=0.1, cells_per_radius=2.5, particles=500):
     """The paper's section 3.3 case: gas-solid, rho_f 1.2, rho_p 1500, mu_f 1.8e-5,
-    d = 100 um, box 24r x 72r x 24r periodic, 500 particles, h = 0.4 r (60 x 180 x 60)."""
+    d = 100 um, box 24r x 72r x 24r periodic, 500 particles, h = 0.4 r (60 x 180 x 60).
+    `cells_per_radius` and `particles` vary it for the scaling studies (same box)."""
     r = 50e-6
-    h = 0.4 * r
-    cells = [60, 180, 60]
+    h = r / cells_per_radius
+    cells = [int(round(24 * cells_per_radius)), int(round(72 * cells_per_radius)),
+             int(round(24 * cells_per_radius))]
     L = [c * h for c in cells]
-    centres = periodic_packing(L, 2 * r, 500, seed=3, min_gap=h)
+    centres = periodic_packing(L, 2 * r, particles, seed=3, min_gap=0.4 * r)
     return write_case(case, cells=cells, h=h, d=2 * r, rho_f=1.2, nu=1.8e-5 / 1.2,
                       rho_p=1500.0, end_time=end_time, write_interval=end_time / 5,
                       centres=centres, max_co=0.5, max_dt=1e-4, restitution=0.9,
