@@ -48,6 +48,11 @@ pub struct PredictedVelocity<'a> {
     pub time: f64,
     /// The stage's projection weight: the projection subtracts `tau ∇p`.
     pub tau: f64,
+    /// What the previous projection subtracted `tau ∇` of (cell-centred, unpadded): the
+    /// pressure for the explicit schemes, the pressure increment for `RK3CN`. The coming
+    /// projection subtracts about the same, so a hook that wants a face to end at `w` after
+    /// the projection sets it to `w + tau ∂p` (exact once the flow is steady).
+    pub pressure: &'a [f64],
     /// Velocity components, padded layout.
     pub velocity: &'a mut [Vec<f64>; 3],
 }
@@ -384,6 +389,7 @@ impl FluidSolver {
                 layout: &self.layout,
                 time: t0 + c_end * dt,
                 tau,
+                pressure: &self.p,
                 velocity: &mut self.u,
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
@@ -468,6 +474,7 @@ impl FluidSolver {
                 layout: &self.layout,
                 time: t0 + c_end * dt,
                 tau,
+                pressure: &implicit.increment,
                 velocity: &mut self.u,
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);

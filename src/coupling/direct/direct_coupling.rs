@@ -1,0 +1,159 @@
+//! The direct model's state in a run: the spheres, their forced faces, and their loads.
+
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+use super::direct_settings::DirectSettings;
+use super::field_view::FieldView;
+use super::immersed_boundary::ImmersedBoundary;
+use super::rigid_sphere::RigidSphere;
+use super::sphere_quadrature::SphereQuadrature;
+use super::stress_integral::{
+    shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum,
+};
+use crate::fluid::{BoundaryConditions, FluidSolver, PredictedVelocity};
+use crate::grid::Grid;
+use crate::particles::ParticleState;
+
+/// Resolved coupling (paper §2.1) for one run. Each fluid step:
+///
+/// 1. [`DirectCoupling::set_particles`] (or [`DirectCoupling::set_spheres`]): the spheres at
+///    their current positions and velocities; the forced faces are rebuilt;
+/// 2. `fluid.step_with(dt, &mut |stage| coupling.impose(stage))`: no-slip on every sphere
+///    in every stage ([`ImmersedBoundary`]);
+/// 3. [`DirectCoupling::compute_loads`]: force and torque on every sphere from the stress
+///    integral ([`stress_integral_force`]), in the order of the spheres handed in step 1, for
+///    the DEM's external loads.
+pub struct DirectCoupling {
+    settings: DirectSettings,
+    boundary: ImmersedBoundary,
+    h: f64,
+    spheres: Vec<RigidSphere>,
+    ids: Vec<u64>,
+    /// Quadrature per distinct radius (bit pattern of the radius).
+    quadratures: HashMap<u64, SphereQuadrature>,
+    /// Shell momentum at the last load evaluation, per particle id, with its time.
+    previous_shell: HashMap<u64, (f64, ShellMomentum)>,
+    loads: Vec<HydrodynamicLoad>,
+}
+
+impl DirectCoupling {
+    pub fn new(grid: &Grid, bc: &BoundaryConditions, settings: DirectSettings) -> Self {
+        DirectCoupling {
+            settings,
+            boundary: ImmersedBoundary::new(grid, bc),
+            h: grid.h.iter().cloned().fold(0.0, f64::max),
+            spheres: Vec::new(),
+            ids: Vec::new(),
+            quadratures: HashMap::new(),
+            previous_shell: HashMap::new(),
+            loads: Vec::new(),
+        }
+    }
+
+    pub fn settings(&self) -> &DirectSettings {
+        &self.settings
+    }
+
+    /// The forced faces of the current spheres.
+    pub fn boundary(&self) -> &ImmersedBoundary {
+        &self.boundary
+    }
+
+    /// The spheres as last set.
+    pub fn spheres(&self) -> &[RigidSphere] {
+        &self.spheres
+    }
+
+    /// Sets the spheres (ids name them across calls, for the shell's rate of change) and
+    /// rebuilds the forced faces.
+    pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
+        assert_eq!(spheres.len(), ids.len(), "one id per sphere");
+        self.spheres.clear();
+        self.spheres.extend_from_slice(spheres);
+        self.ids.clear();
+        self.ids.extend_from_slice(ids);
+        for s in spheres {
+            let h = self.h;
+            let integral = self.settings.integral;
+            self.quadratures
+                .entry(s.radius.to_bits())
+                .or_insert_with(|| integral.quadrature(s.radius, h));
+        }
+        self.boundary.update(&self.spheres);
+    }
+
+    /// The DEM's particles as spheres (same order), then as [`Self::set_spheres`].
+    pub fn set_particles(&mut self, p: &ParticleState) {
+        let spheres: Vec<RigidSphere> = (0..p.len())
+            .map(|i| RigidSphere {
+                centre: p.position[i],
+                radius: 0.5 * p.diameter[i],
+                velocity: p.velocity[i],
+                angular_velocity: p.angular_velocity[i],
+            })
+            .collect();
+        self.set_spheres(&spheres, &p.id);
+    }
+
+    /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted
+    /// velocity (pre-compensated for the coming projection).
+    pub fn impose(&self, stage: PredictedVelocity<'_>) {
+        self.boundary
+            .impose(stage.velocity, stage.pressure, stage.tau);
+    }
+
+    /// Force and torque on every sphere (order of [`Self::set_spheres`]) from the current
+    /// fluid state; `rho` the fluid density (kg/m³). The body force on the fluid (its
+    /// settings' plus the `meanVelocityForce` gradient) enters as `f_h0`; the shell term uses
+    /// the shell momentum of the previous call (none at the first).
+    pub fn compute_loads(&mut self, fluid: &FluidSolver, rho: f64) -> &[HydrodynamicLoad] {
+        let view = FieldView::of(fluid);
+        let mut body = fluid.settings().body_force;
+        if let Some(d) = fluid.mean_velocity_force() {
+            body[d.direction] += d.gradient;
+        }
+        let time = fluid.time();
+        let integral = self.settings.integral;
+        let with_shell = integral.surface_offset > 0.0;
+        let quadratures = &self.quadratures;
+        let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
+            .spheres
+            .par_iter()
+            .map(|s| {
+                let q = &quadratures[&s.radius.to_bits()];
+                let load = stress_integral_force(&view, s, rho, body, &integral, q);
+                let shell = if with_shell {
+                    shell_momentum(&view, s, &integral, q)
+                } else {
+                    ShellMomentum::default()
+                };
+                (load, shell)
+            })
+            .collect();
+        self.loads.clear();
+        for (k, (mut load, shell)) in results.into_iter().enumerate() {
+            let id = self.ids[k];
+            if let Some((t0, old)) = self.previous_shell.get(&id) {
+                let span = time - t0;
+                if span > 0.0 {
+                    for i in 0..3 {
+                        load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
+                        load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
+                    }
+                }
+            }
+            if with_shell {
+                self.previous_shell.insert(id, (time, shell));
+            }
+            self.loads.push(load);
+        }
+        &self.loads
+    }
+
+    /// The loads of the last [`Self::compute_loads`].
+    pub fn loads(&self) -> &[HydrodynamicLoad] {
+        &self.loads
+    }
+}
