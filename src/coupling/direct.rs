@@ -40,7 +40,7 @@ pub use gmres::{gmres, GmresReport};
 pub use immersed_boundary::{ForcingFace, ImmersedBoundary, InteriorFace};
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
-    LubricationSettings, ParticleMotion, SedimentationReport, MIN_DENSITY_RATIO,
+    MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,
 };
 pub use periodic_stokes_array::{PeriodicStokesArray, SteadyStokesFlow};
 pub use porous_reference::{reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUBIC};

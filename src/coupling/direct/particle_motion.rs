@@ -19,11 +19,30 @@
 //! particle (`f_h0`), so the mixture's momentum stays zero.
 //!
 //! Stability: the hydrodynamic force is lagged by one step. Its added-mass part
-//! (`−C_m ρ_f V dv/dt`, with the fluid carried inside and near the sphere) then acts like a
-//! feedback of gain `≈ C_m ρ_f/ρ_p` on the particle's acceleration: the explicit coupling
-//! needs particles clearly heavier than the fluid (measured limit in `tests/direct_motion.rs`
-//! and the README; Uhlmann 2005 reports ρ_p/ρ_f > 1.2 for his scheme). [`ParticleMotion::new`]
-//! refuses density ratios below [`MIN_DENSITY_RATIO`].
+//! (`−m_a dv/dt`, from the fluid carried inside and near the sphere, whose velocity the
+//! no-slip imposition changes at once) then feeds the particle's last acceleration back with
+//! the gain `−m_a/m_p`: the plain explicit coupling diverges, alternating in sign, once
+//! `m_a > m_p`, i.e. for particles not much heavier than the fluid (measured in
+//! `tests/direct_motion.rs`: it diverges at ρ_p/ρ_f = 2). fsim splits a virtual mass
+//! `m_v = C_v ρ_f V` off the hydrodynamic force (Schwarz, Kempe & Fröhlich, J. Comput. Phys.
+//! 281, 2015): with `a⁻` the particle's acceleration over the previous step,
+//!
+//! ```text
+//! (m_p + m_v) dv/dt = F_h + m_v a⁻ + m_p g (1 − ρ_f/ρ_p)          (contacts act on m_p alone)
+//! ```
+//!
+//! whose feedback gain is `(m_v − m_a)/(m_p + m_v)`, below one in magnitude for any
+//! `m_v > (m_a − m_p)/2`; the steady state is unchanged (`a⁻ → 0`). The DEM keeps the bare
+//! mass, so the external force handed to it is
+//! `F_ext = [m_p F_h + m_p m_v a⁻ − m_v m_p g (1 − ρ_f/ρ_p)]/(m_p + m_v)`; the torque likewise
+//! with `I_v = C_v (ρ_f/ρ_p) I_p`. `virtualMass C_v;` in `constant/couplingProperties`
+//! (default [`DEFAULT_VIRTUAL_MASS`]; 0: the plain explicit coupling). [`ParticleMotion::new`]
+//! refuses free particles lighter than [`MIN_DENSITY_RATIO`] times the fluid.
+
+// Plain indexed loops over the particle arrays, by design.
+#![allow(clippy::needless_range_loop)]
+
+use std::collections::HashMap;
 
 use super::lubrication::{Lubrication, LubricationBox, LubricationReport};
 use super::settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
@@ -32,12 +51,16 @@ use crate::fluid::{BoundaryConditions, FaceCondition};
 use crate::grid::Grid;
 use crate::particles::{Dem, ParticleState, Vec3};
 
-/// Lowest particle-to-fluid density ratio the explicit coupling accepts.
+/// Lowest particle-to-fluid density ratio the coupling accepts.
 pub const MIN_DENSITY_RATIO: f64 = 1.2;
+/// Default virtual-mass coefficient `C_v`.
+pub const DEFAULT_VIRTUAL_MASS: f64 = 2.0;
 
-/// Settings of the optional `lubrication` sub-dictionary of `constant/couplingProperties`:
+/// Settings of the moving spheres in `constant/couplingProperties`: `virtualMass C_v;` and
+/// the optional `lubrication` sub-dictionary:
 ///
 /// ```text
+/// virtualMass     2;       // C_v: virtual mass C_v ρ_f V split off the lagged force
 /// lubrication
 /// {
 ///     active      yes;     // no: contacts only
@@ -46,31 +69,44 @@ pub const MIN_DENSITY_RATIO: f64 = 1.2;
 /// }
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LubricationSettings {
+pub struct MotionSettings {
     pub active: bool,
     pub cutoff_cells: f64,
     pub min_gap_ratio: f64,
+    /// `virtualMass C_v;` at the top level of the file (stabilises the explicit coupling).
+    pub virtual_mass: f64,
 }
 
-impl Default for LubricationSettings {
+impl Default for MotionSettings {
     fn default() -> Self {
-        LubricationSettings {
+        MotionSettings {
             active: true,
             cutoff_cells: 1.0,
             min_gap_ratio: 1e-3,
+            virtual_mass: DEFAULT_VIRTUAL_MASS,
         }
     }
 }
 
 const LUBRICATION_KEYWORDS: [&str; 3] = ["active", "cutoff", "minGap"];
 
-impl LubricationSettings {
+impl MotionSettings {
     /// From the case's coupling file; the defaults when it has no `lubrication` dictionary.
     pub fn from_coupling(coupling: &Coupling) -> Result<Self, CaseError> {
-        let mut s = LubricationSettings::default();
+        let mut s = MotionSettings::default();
         let Some(dict) = coupling.dict.as_ref() else {
             return Ok(s);
         };
+        if let Some(c) = dict.opt_scalar("virtualMass")? {
+            if !(0.0..=10.0).contains(&c) {
+                let loc = dict.get_entry("virtualMass")?.value_loc();
+                return Err(CaseError::at(
+                    loc,
+                    format!("virtualMass must be between 0 and 10, got {c}"),
+                ));
+            }
+            s.virtual_mass = c;
+        }
         let Some(d) = dict.opt_dict("lubrication")? else {
             return Ok(s);
         };
@@ -141,6 +177,11 @@ pub struct ParticleMotion {
     box_volume: f64,
     forces: Vec<Vec3>,
     last_lubrication: LubricationReport,
+    virtual_mass: f64,
+    /// Velocity and angular velocity of each particle (by id) at the start of the last step,
+    /// with that step's size.
+    previous: HashMap<u64, (Vec3, Vec3)>,
+    previous_dt: f64,
 }
 
 impl ParticleMotion {
@@ -148,7 +189,7 @@ impl ParticleMotion {
     /// (m²/s) on `grid` with conditions `bc`. Fails for free particles lighter than
     /// [`MIN_DENSITY_RATIO`] times the fluid.
     pub fn new(
-        settings: LubricationSettings,
+        settings: MotionSettings,
         grid: &Grid,
         bc: &BoundaryConditions,
         dem: &Dem,
@@ -197,6 +238,9 @@ impl ParticleMotion {
             box_volume,
             forces: Vec::new(),
             last_lubrication: LubricationReport::default(),
+            virtual_mass: settings.virtual_mass,
+            previous: HashMap::new(),
+            previous_dt: 0.0,
         })
     }
 
@@ -212,12 +256,13 @@ impl ParticleMotion {
             .unwrap_or([0.0; 3])
     }
 
-    /// Sets the DEM's external loads for the coming step `dt`: the hydrodynamic `forces` and
-    /// `torques` (index order of [`Dem::particles`]) plus the lubrication correction.
+    /// Sets the DEM's external loads for the coming step `dt`: the hydrodynamic `loads`
+    /// (force, torque; index order of [`Dem::particles`]) plus the lubrication correction,
+    /// with the virtual mass split off (module documentation).
     pub fn set_loads(
         &mut self,
         dem: &mut Dem,
-        forces: impl Iterator<Item = (Vec3, Vec3)>,
+        loads: impl Iterator<Item = (Vec3, Vec3)>,
         dt: f64,
     ) -> LubricationReport {
         let n = dem.particles().len();
@@ -230,14 +275,54 @@ impl ParticleMotion {
                 min_gap_ratio: f64::INFINITY,
             },
         };
-        let (f_ext, t_ext) = dem.external_loads_mut();
-        for (i, (f, t)) in forces.take(n).enumerate() {
+        let mut torques = vec![[0.0; 3]; n];
+        for (i, (f, t)) in loads.take(n).enumerate() {
             for a in 0..3 {
-                f_ext[i][a] = f[a] + self.forces[i][a];
-                t_ext[i][a] = t[a];
+                self.forces[i][a] += f[a];
             }
+            torques[i] = t;
         }
+        if self.virtual_mass > 0.0 {
+            self.split_virtual_mass(dem.particles(), &mut torques, dt);
+        }
+        let (f_ext, t_ext) = dem.external_loads_mut();
+        f_ext.copy_from_slice(&self.forces);
+        t_ext.copy_from_slice(&torques);
         self.last_lubrication
+    }
+
+    /// Turns the hydrodynamic loads in `self.forces`, `torques` into the external loads that
+    /// give the virtual-mass update with the DEM's bare masses, and records the velocities.
+    fn split_virtual_mass(&mut self, p: &ParticleState, torques: &mut [Vec3], dt: f64) {
+        let (rho_f, c_v, g) = (self.fluid_density, self.virtual_mass, self.gravity);
+        let span = self.previous_dt;
+        for i in 0..p.len() {
+            if p.fixed[i] {
+                continue;
+            }
+            let m = p.mass(i);
+            let ratio = rho_f / p.density[i];
+            let m_v = c_v * ratio * m;
+            let inertia = p.moment_of_inertia(i);
+            let i_v = c_v * ratio * inertia;
+            let (v, w) = (p.velocity[i], p.angular_velocity[i]);
+            let (a_prev, alpha_prev) = match self.previous.get(&p.id[i]) {
+                Some((v0, w0)) if span > 0.0 => (
+                    std::array::from_fn(|a| (v[a] - v0[a]) / span),
+                    std::array::from_fn(|a| (w[a] - w0[a]) / span),
+                ),
+                _ => ([0.0; 3], [0.0; 3]),
+            };
+            for a in 0..3 {
+                let weight = m * g[a] * (1.0 - ratio);
+                self.forces[i][a] =
+                    (m * self.forces[i][a] + m * m_v * a_prev[a] - m_v * weight) / (m + m_v);
+                torques[i][a] =
+                    (inertia * torques[i][a] + inertia * i_v * alpha_prev[a]) / (inertia + i_v);
+            }
+            self.previous.insert(p.id[i], (v, w));
+        }
+        self.previous_dt = dt;
     }
 
     /// The lubrication of the last [`Self::set_loads`].
@@ -276,5 +361,89 @@ impl ParticleMotion {
             momentum_scale: scale,
             drive_gradient: self.drive.map(|d| d.gradient).unwrap_or([0.0; 3]),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fluid::BoundaryConditions;
+    use crate::particles::{DemConfig, DomainBox, FaceCondition, PairModel, WallModel};
+
+    fn one_particle(rho_p: f64, rho_f: f64) -> Dem {
+        let mut p = ParticleState::default();
+        p.push(1, [0.5; 3], 0.1, rho_p);
+        let mut config = DemConfig::new(
+            PairModel::linear(1.0, 0.5, 0.3),
+            WallModel::LinearSpringDashpot {
+                kn: 1.0,
+                restitution: 0.5,
+                kt: 0.3,
+                mu: 0.3,
+                tangential_damping_ratio: 0.5,
+                collision_resolution_steps: 20.0,
+            },
+        );
+        config.gravity = [0.0, -9.81, 0.0];
+        config.fluid_density = rho_f;
+        Dem::new(
+            config,
+            DomainBox::uniform([0.0; 3], [1.0; 3], FaceCondition::Periodic),
+            p,
+        )
+        .unwrap()
+    }
+
+    /// A model of the lagged explicit coupling: `F_h = −m_a (vⁿ − vⁿ⁻¹)/Δt − c vⁿ` with the
+    /// added mass `m_a = 3 ρ_f V` (the feedback measured for the direct model). At
+    /// ρ_p/ρ_f = 2 the plain coupling diverges (gain −1.5); with `C_v = 2` it settles at the
+    /// terminal velocity `m g (1 − ρ_f/ρ_p)/c`.
+    #[test]
+    fn virtual_mass_stabilises_the_lagged_added_mass() {
+        let (rho_p, rho_f) = (2000.0, 1000.0);
+        let grid = Grid::new([10; 3], [0.1; 3], [0.0; 3]);
+        let bc = BoundaryConditions::periodic();
+        let run = |c_v: f64| -> f64 {
+            let mut dem = one_particle(rho_p, rho_f);
+            let settings = MotionSettings {
+                virtual_mass: c_v,
+                active: false,
+                ..Default::default()
+            };
+            let mut motion = ParticleMotion::new(settings, &grid, &bc, &dem, rho_f, 1e-3).unwrap();
+            let m = dem.particles().mass(0);
+            let m_a = 3.0 * rho_f / rho_p * m;
+            let c = m / 0.05; // relaxation time 0.05 s
+            let dt = 1e-3;
+            let mut v_old = 0.0;
+            for _ in 0..2000 {
+                let v = dem.particles().velocity[0][1];
+                let f = -m_a * (v - v_old) / dt - c * v;
+                v_old = v;
+                motion.set_loads(&mut dem, std::iter::once(([0.0, f, 0.0], [0.0; 3])), dt);
+                dem.advance(dt);
+                if !v.is_finite() || v.abs() > 1e3 {
+                    return f64::INFINITY;
+                }
+            }
+            dem.particles().velocity[0][1] / (-m * 9.81 * (1.0 - rho_f / rho_p) / c)
+        };
+        assert!(run(0.0).is_infinite(), "the plain coupling should diverge");
+        let ratio = run(2.0);
+        assert!(
+            (ratio - 1.0).abs() < 1e-3,
+            "terminal velocity ratio {ratio}"
+        );
+    }
+
+    #[test]
+    fn light_free_particles_are_refused() {
+        let grid = Grid::new([10; 3], [0.1; 3], [0.0; 3]);
+        let bc = BoundaryConditions::periodic();
+        let dem = one_particle(1100.0, 1000.0);
+        let err = ParticleMotion::new(MotionSettings::default(), &grid, &bc, &dem, 1000.0, 1e-3)
+            .err()
+            .unwrap();
+        assert!(err.contains("1.100 times the fluid's"), "{err}");
     }
 }
