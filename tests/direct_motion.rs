@@ -67,7 +67,11 @@ impl Settler {
         let motion =
             ParticleMotion::new(MotionSettings::default(), &grid, &bc, &dem, rho_f, nu).unwrap();
         fluid.set_body_force(motion.fluid_body_force());
-        let coupling = DirectCoupling::new(&grid, &bc, DirectSettings::default());
+        let mut direct = DirectSettings::default();
+        if let Ok(offset) = std::env::var("OFFSET") {
+            direct.integral.surface_offset = offset.parse().unwrap();
+        }
+        let coupling = DirectCoupling::new(&grid, &bc, direct);
         Settler {
             fluid,
             coupling,
