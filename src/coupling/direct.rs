@@ -28,7 +28,7 @@ pub use direct_coupling::DirectCoupling;
 pub use direct_settings::DirectSettings;
 pub use field_view::{periodic_directions, FieldView, Interpolation};
 pub use gmres::{gmres, GmresReport};
-pub use immersed_boundary::{ForcingFace, ImmersedBoundary, InteriorFace};
+pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
 pub use periodic_stokes_array::{PeriodicStokesArray, SteadyStokesFlow};
 pub use porous_reference::{reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUBIC};
 pub use rigid_sphere::RigidSphere;
