@@ -5,7 +5,9 @@
 //! build the simulation: grid, fluid, initial or restart state
 //! while time remains:
 //!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
-//!     evolve the fluid                        (momentum predictor, pressure projection)
+//!     evolve the fluid                        (momentum predictor, pressure projection;
+//!                                              model direct: no-slip on every particle)
+//!     hydrodynamic loads                      (model direct: stress integral, paper eq. 4–6)
 //!     evolve the cloud                        (DEM collision sub-steps; model none: gravity
 //!                                              and buoyancy, no fluid forces)
 //!     check the solution                      (a diverged run stops, keeping its last time)
@@ -92,6 +94,7 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
         let fluid = sim.evolve_fluid(dt);
+        sim.hydrodynamic_loads();
         let cloud = sim.evolve_cloud(dt);
         let write_due = sim.time.advance(dt);
         let health = sim.check_health()?;

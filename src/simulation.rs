@@ -9,6 +9,7 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
+use crate::coupling::direct::{DirectCoupling, DirectSettings};
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -40,6 +41,21 @@ pub struct Simulation {
     pub rho: f64,
     /// The particles, when the case has an active cloud.
     pub particles: Option<Particles>,
+    /// The resolved coupling (`model direct`): forced faces and hydrodynamic loads.
+    pub direct: Option<DirectCoupling>,
+    /// Sum of the last hydrodynamic loads, for the monitor (`model direct`).
+    pub hydrodynamics: Option<HydrodynamicReport>,
+}
+
+/// The hydrodynamic loads of one step, summed over the particles (`model direct`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HydrodynamicReport {
+    /// Total force and torque on all particles, N and N·m.
+    pub force: [f64; 3],
+    pub torque: [f64; 3],
+    /// Mean force per particle along the fluid's bulk flow over `6π μ r U` (paper eq. 19),
+    /// `U` the bulk (superficial) velocity, `r` the mean radius: the porous-media `K`.
+    pub drag_coefficient: f64,
 }
 
 /// The cloud of a run: the DEM engine and what the log says about it.
@@ -70,10 +86,13 @@ impl Simulation {
     /// Builds the simulation from a validated case, starting from the case's initial fields,
     /// or from the restart state of `restart` when continuing (`startFrom latestTime`).
     pub fn new(case: &Case, restart: Option<&TimeEntry>) -> Result<Self, FsimError> {
-        if case.coupling.model != CouplingModel::None {
+        if !matches!(
+            case.coupling.model,
+            CouplingModel::None | CouplingModel::Direct
+        ) {
             return Err(FsimError::input(format!(
                 "constant/couplingProperties: model '{}' is not available yet in this fsim \
-                 (only the fluid alone, model none, runs)",
+                 (model none and model direct run)",
                 case.coupling.model.name()
             )));
         }
@@ -123,6 +142,14 @@ impl Simulation {
             model: case.coupling.model,
             rho: case.transport.rho,
             particles: None,
+            direct: None,
+            hydrodynamics: None,
+        };
+        let direct_settings = match case.coupling.model {
+            CouplingModel::Direct => {
+                Some(DirectSettings::from_coupling(&case.coupling).map_err(FsimError::from)?)
+            }
+            _ => None,
         };
         let cloud = Cloud::from_case(case)?;
         match restart {
@@ -136,12 +163,12 @@ impl Simulation {
             None => {
                 sim.set_initial_fields(case);
                 if let Some(cloud) = cloud {
-                    let dem = Dem::new(
-                        cloud.config.clone(),
-                        cloud.domain.clone(),
-                        cloud.particles.clone(),
-                    )
-                    .map_err(|e| cloud.locate(&e))?;
+                    let mut state = cloud.particles.clone();
+                    if direct_settings.as_ref().is_some_and(|s| s.fixed_particles) {
+                        state.fixed.iter_mut().for_each(|f| *f = true);
+                    }
+                    let dem = Dem::new(cloud.config.clone(), cloud.domain.clone(), state)
+                        .map_err(|e| cloud.locate(&e))?;
                     sim.particles = Some(Particles {
                         dem,
                         pair_model: cloud.pair_model_name,
@@ -151,6 +178,16 @@ impl Simulation {
                     });
                 }
             }
+        }
+        if let Some(settings) = direct_settings {
+            if sim.particles.is_none() {
+                return Err(FsimError::input(
+                    "constant/couplingProperties: model direct needs particles \
+                     (constant/kinematicCloudProperties)"
+                        .to_string(),
+                ));
+            }
+            sim.direct = Some(DirectCoupling::new(&mut sim.fluid, settings));
         }
         Ok(sim)
     }
@@ -236,11 +273,54 @@ impl Simulation {
         Ok(self.time.step_size(allowed))
     }
 
-    /// Advances the fluid by `dt`: momentum predictor, pressure projection, bulk driving.
+    /// Advances the fluid by `dt`: momentum predictor, pressure projection, bulk driving;
+    /// with `model direct`, no-slip on every particle at its current position and velocity
+    /// in every stage.
     pub fn evolve_fluid(&mut self, dt: f64) -> StepReport {
-        let report = self.fluid.step(dt);
+        let report = match (&mut self.direct, &self.particles) {
+            (Some(direct), Some(p)) => {
+                direct.set_particles(p.dem.particles());
+                self.fluid.step_with(dt, &mut |stage| direct.impose(stage))
+            }
+            _ => self.fluid.step(dt),
+        };
         self.dt = dt;
         report
+    }
+
+    /// `model direct`: force and torque on every particle from the stress integral over
+    /// its surface (paper eq. 4–6), handed to the DEM as external loads for the coming
+    /// cloud step. Other models: nothing.
+    pub fn hydrodynamic_loads(&mut self) {
+        let (Some(direct), Some(p)) = (&mut self.direct, &mut self.particles) else {
+            return;
+        };
+        let loads = direct.compute_loads(&self.fluid, self.rho);
+        let (force, torque) = p.dem.external_loads_mut();
+        let mut report = HydrodynamicReport {
+            force: [0.0; 3],
+            torque: [0.0; 3],
+            drag_coefficient: 0.0,
+        };
+        for (k, load) in loads.iter().enumerate() {
+            force[k] = load.force;
+            torque[k] = load.torque;
+            for i in 0..3 {
+                report.force[i] += load.force[i];
+                report.torque[i] += load.torque[i];
+            }
+        }
+        let spheres = direct.spheres();
+        if let (Some(drive), false) = (self.fluid.mean_velocity_force(), spheres.is_empty()) {
+            let d = drive.direction;
+            let bulk = drive.ubar;
+            let radius = spheres.iter().map(|s| s.radius).sum::<f64>() / spheres.len() as f64;
+            let mu = self.rho * self.fluid.settings().nu;
+            report.drag_coefficient = report.force[d]
+                / spheres.len() as f64
+                / (6.0 * std::f64::consts::PI * mu * radius * bulk);
+        }
+        self.hydrodynamics = Some(report);
     }
 
     /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`

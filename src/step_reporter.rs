@@ -37,11 +37,20 @@ const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
     "subSteps",
 ];
 
+/// Columns of the direct model's monitor `postProcessing/direct/<startTime>/direct.dat`:
+/// total hydrodynamic force and torque on the particles, and `K` (paper eq. 19, see
+/// [`crate::simulation::HydrodynamicReport`]).
+const DIRECT_MONITOR_COLUMNS: [&str; 8] = ["Time", "Fx", "Fy", "Fz", "Tx", "Ty", "Tz", "K"];
+
 /// The log and the monitors of one run.
 pub struct StepReporter {
     pub log: Log<Stdout>,
     fluid: Monitor,
     cloud: Option<Monitor>,
+    /// Opened at the first step that has hydrodynamic loads.
+    direct: Option<Monitor>,
+    case_dir: std::path::PathBuf,
+    start_name: String,
 }
 
 fn output_error(e: OutputError) -> FsimError {
@@ -66,6 +75,9 @@ impl StepReporter {
             log: Log::stdout(),
             fluid,
             cloud,
+            direct: None,
+            case_dir: case_dir.to_path_buf(),
+            start_name: start_name.to_string(),
         })
     }
 
@@ -107,6 +119,36 @@ impl StepReporter {
                 sim.time.step as f64,
             ])
             .map_err(output_error)?;
+        if let Some(h) = &sim.hydrodynamics {
+            if self.direct.is_none() {
+                self.direct = Some(
+                    Monitor::create(
+                        &self.case_dir,
+                        "direct",
+                        &self.start_name,
+                        &DIRECT_MONITOR_COLUMNS,
+                    )
+                    .map_err(output_error)?,
+                );
+            }
+            self.log.line(&format!(
+                "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {:.6}",
+                h.force[0], h.force[1], h.force[2], h.drag_coefficient
+            ))?;
+            if let Some(m) = self.direct.as_mut() {
+                m.row(&[
+                    sim.time.time,
+                    h.force[0],
+                    h.force[1],
+                    h.force[2],
+                    h.torque[0],
+                    h.torque[1],
+                    h.torque[2],
+                    h.drag_coefficient,
+                ])
+                .map_err(output_error)?;
+            }
+        }
         if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
             log_cloud(&mut self.log, c)?;
             let [ux, uy, uz] = c.mean_velocity;
@@ -136,6 +178,9 @@ impl StepReporter {
     /// Flushes the monitors and ends the log.
     pub fn finish(mut self) -> Result<(), FsimError> {
         self.fluid.flush().map_err(output_error)?;
+        if let Some(m) = self.direct.as_mut() {
+            m.flush().map_err(output_error)?;
+        }
         if let Some(m) = self.cloud.as_mut() {
             m.flush().map_err(output_error)?;
         }

@@ -71,7 +71,7 @@ impl Settler {
         if let Ok(offset) = std::env::var("OFFSET") {
             direct.integral.surface_offset = offset.parse().unwrap();
         }
-        let coupling = DirectCoupling::new(&grid, &bc, direct);
+        let coupling = DirectCoupling::new(&mut fluid, direct);
         Settler {
             fluid,
             coupling,

@@ -37,7 +37,7 @@ pub use direct_coupling::DirectCoupling;
 pub use direct_settings::DirectSettings;
 pub use field_view::{periodic_directions, FieldView, Interpolation};
 pub use gmres::{gmres, GmresReport};
-pub use immersed_boundary::{ForcingFace, ImmersedBoundary, InteriorFace};
+pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
     MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,

@@ -12,8 +12,7 @@ use super::sphere_quadrature::SphereQuadrature;
 use super::stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum,
 };
-use crate::fluid::{BoundaryConditions, FluidSolver, PredictedVelocity};
-use crate::grid::Grid;
+use crate::fluid::{FluidSolver, PredictedVelocity};
 use crate::particles::ParticleState;
 
 /// Resolved coupling (paper §2.1) for one run. Each fluid step:
@@ -39,10 +38,14 @@ pub struct DirectCoupling {
 }
 
 impl DirectCoupling {
-    pub fn new(grid: &Grid, bc: &BoundaryConditions, settings: DirectSettings) -> Self {
+    /// The coupling for `fluid` (enables the fluid's mass source, which the imposition sets
+    /// in cells whose faces are all forced).
+    pub fn new(fluid: &mut FluidSolver, settings: DirectSettings) -> Self {
+        fluid.mass_source_mut();
+        let grid = fluid.grid();
         DirectCoupling {
             settings,
-            boundary: ImmersedBoundary::new(grid, bc),
+            boundary: ImmersedBoundary::new(grid, fluid.boundary_conditions()),
             h: grid.h.iter().cloned().fold(0.0, f64::max),
             spheres: Vec::new(),
             ids: Vec::new(),
@@ -101,7 +104,7 @@ impl DirectCoupling {
     /// velocity (pre-compensated for the coming projection).
     pub fn impose(&self, stage: PredictedVelocity<'_>) {
         self.boundary
-            .impose(stage.velocity, stage.pressure, stage.tau);
+            .impose(stage.velocity, stage.pressure, stage.tau, stage.mass_source);
     }
 
     /// Force and torque on every sphere (order of [`Self::set_spheres`]) from the current

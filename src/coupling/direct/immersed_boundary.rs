@@ -53,18 +53,31 @@ pub struct InteriorFace {
     pub target: f64,
 }
 
-/// A fluid face next to a sphere: `u = w + a (u_neighbour − w)`.
+/// A fluid face next to a sphere: `u = w + Σ_k a_k (u_k − w)` over the next one or two
+/// fluid faces `k` along the interpolation line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ForcingFace {
     pub slot: usize,
     pub cells: [usize; 2],
-    /// The next fluid face along the interpolation line, away from the sphere.
-    pub neighbour: usize,
-    pub neighbour_cells: [usize; 2],
-    /// Interpolation weight `δ/(δ+h)` (0 for the staircase fallback).
-    pub weight: f64,
+    /// The next two fluid faces along the interpolation line, away from the sphere (the
+    /// second equals the first for the linear stencil).
+    pub neighbours: [usize; 2],
+    pub neighbour_cells: [[usize; 2]; 2],
+    /// Interpolation weights: linear `[δ/(δ+h), 0]`, quadratic
+    /// `[2δ/(δ+h), −δ/(δ+2h)]`; `[0, 0]` for the staircase fallback.
+    pub weights: [f64; 2],
     /// Rigid velocity (this component) where the line crosses the surface, m/s.
     pub wall: f64,
+}
+
+/// A cell all of whose six faces are forced: its divergence is set by the forcing, not by
+/// the projection (it gets a mass source).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClosedCell {
+    /// Unpadded cell index.
+    pub cell: usize,
+    /// Padded slots of its low and high face per component (periodic wraps resolved).
+    pub faces: [[usize; 2]; 3],
 }
 
 /// Label of a face outside every sphere.
@@ -88,8 +101,14 @@ pub struct ImmersedBoundary {
     touched: [Vec<usize>; 3],
     interior: [Vec<InteriorFace>; 3],
     forcing: [Vec<ForcingFace>; 3],
+    /// Cells with every face forced, and those of the previous update (their mass source
+    /// is cleared at the next imposition).
+    closed: Vec<ClosedCell>,
+    previous_closed: Vec<usize>,
     /// Scratch: candidate forcing faces `(unwrapped lattice index, slot)`.
     candidates: Vec<([isize; 3], usize)>,
+    /// Quadratic (two fluid faces) rather than linear forcing stencil.
+    quadratic: bool,
 }
 
 impl ImmersedBoundary {
@@ -108,8 +127,22 @@ impl ImmersedBoundary {
             touched: Default::default(),
             interior: Default::default(),
             forcing: Default::default(),
+            closed: Vec::new(),
+            previous_closed: Vec::new(),
             candidates: Vec::new(),
+            quadratic: true,
         }
+    }
+
+    /// Chooses the forcing stencil: quadratic through the wall and two fluid faces
+    /// (default), or linear through the wall and one; applies from the next update.
+    pub fn set_quadratic(&mut self, quadratic: bool) {
+        self.quadratic = quadratic;
+    }
+
+    /// Cells whose six faces are all forced.
+    pub fn closed_cells(&self) -> &[ClosedCell] {
+        &self.closed
     }
 
     /// Faces inside spheres, per component.
@@ -225,6 +258,153 @@ impl ImmersedBoundary {
             self.mark_interior(c, spheres);
             self.mark_forcing(c, spheres);
         }
+        self.find_closed_cells();
+    }
+
+    /// Cells next to forced faces whose six faces are all forced. Their divergence is
+    /// whatever the forcing imposes (the interpolated forcing faces do not conserve mass
+    /// cell by cell): the imposition hands it to the projection as a mass source
+    /// (Kim, Kim & Choi 2001), else the pressure would absorb the mismatch without end.
+    fn find_closed_cells(&mut self) {
+        self.previous_closed.clear();
+        self.previous_closed
+            .extend(self.closed.iter().map(|c| c.cell));
+        self.closed.clear();
+        let mut cells: Vec<usize> = Vec::new();
+        for c in 0..3 {
+            for f in &self.interior[c] {
+                cells.extend_from_slice(&f.cells);
+            }
+            for f in &self.forcing[c] {
+                cells.extend_from_slice(&f.cells);
+            }
+        }
+        cells.sort_unstable();
+        cells.dedup();
+        // Open cells (a free face) next to the spheres may still form a pocket enclosed by
+        // forced faces: its net inflow is set by the forcing too, so its cells are closed.
+        let mut pocket_cells: Vec<usize> = Vec::new();
+        let mut visited: Vec<usize> = Vec::new();
+        let mut queue: Vec<usize> = Vec::new();
+        for &cell in &cells {
+            let Some(faces) = self.cell_faces(cell) else {
+                continue;
+            };
+            if faces
+                .iter()
+                .enumerate()
+                .all(|(c, f)| self.forced(c, f[0]) && self.forced(c, f[1]))
+            {
+                self.closed.push(ClosedCell { cell, faces });
+                continue;
+            }
+            if pocket_cells.binary_search(&cell).is_ok() {
+                continue;
+            }
+            // Flood through free faces, at most a few dozen cells, until reaching a cell with
+            // no forced face (the open fluid).
+            visited.clear();
+            queue.clear();
+            queue.push(cell);
+            visited.push(cell);
+            let mut escaped = false;
+            while let Some(current) = queue.pop() {
+                let Some(faces) = self.cell_faces(current) else {
+                    escaped = true;
+                    break;
+                };
+                let touches_forced = faces
+                    .iter()
+                    .enumerate()
+                    .any(|(c, f)| self.forced(c, f[0]) || self.forced(c, f[1]));
+                if !touches_forced || visited.len() > 64 {
+                    escaped = true;
+                    break;
+                }
+                for c in 0..3 {
+                    for side in 0..2 {
+                        if self.forced(c, faces[c][side]) {
+                            continue;
+                        }
+                        let next = self.neighbour_cell(current, c, side);
+                        if let Some(next) = next {
+                            if !visited.contains(&next) {
+                                visited.push(next);
+                                queue.push(next);
+                            }
+                        } else {
+                            escaped = true;
+                        }
+                    }
+                }
+                if escaped {
+                    break;
+                }
+            }
+            if !escaped {
+                pocket_cells.extend_from_slice(&visited);
+                pocket_cells.sort_unstable();
+                pocket_cells.dedup();
+            }
+        }
+        for &cell in &pocket_cells {
+            if let Some(faces) = self.cell_faces(cell) {
+                if !self.closed.iter().any(|c| c.cell == cell) {
+                    self.closed.push(ClosedCell { cell, faces });
+                }
+            }
+        }
+    }
+
+    fn forced(&self, c: usize, slot: usize) -> bool {
+        self.labels[c][slot] != FLUID
+    }
+
+    /// The six face slots of a cell, if the fluid advances them all (periodic wraps
+    /// resolved); `None` next to a bounded face.
+    fn cell_faces(&self, cell: usize) -> Option<[[usize; 2]; 3]> {
+        let n = self.grid.n;
+        let l = &self.layout;
+        let idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
+        let low = l.index(idx[0] + 1, idx[1] + 1, idx[2] + 1);
+        let mut faces = [[0usize; 2]; 3];
+        for c in 0..3 {
+            let (lo, hi) = self.ranges[c][c];
+            if idx[c] + 1 < lo || idx[c] + 2 > hi + usize::from(self.periodic[c]) {
+                return None;
+            }
+            let high = if idx[c] + 1 < n[c] {
+                low + l.stride[c]
+            } else {
+                low - (n[c] - 1) * l.stride[c]
+            };
+            faces[c] = [low, high];
+        }
+        Some(faces)
+    }
+
+    /// The cell across face `side` (0 low, 1 high) along `c`, if inside the box or wrapped.
+    fn neighbour_cell(&self, cell: usize, c: usize, side: usize) -> Option<usize> {
+        let n = self.grid.n;
+        let mut idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
+        if side == 0 {
+            if idx[c] == 0 {
+                if !self.periodic[c] {
+                    return None;
+                }
+                idx[c] = n[c] - 1;
+            } else {
+                idx[c] -= 1;
+            }
+        } else if idx[c] + 1 == n[c] {
+            if !self.periodic[c] {
+                return None;
+            }
+            idx[c] = 0;
+        } else {
+            idx[c] += 1;
+        }
+        Some(self.grid.cell_index(idx[0], idx[1], idx[2]))
     }
 
     fn mark_interior(&mut self, c: usize, spheres: &[RigidSphere]) {
@@ -332,23 +512,33 @@ impl ImmersedBoundary {
             let wall = s.velocity_at(crossing)[c];
             let mut outer = m;
             outer[d] -= step;
-            let neighbour = self.slot(c, outer).filter(|&n| self.labels[c][n] == FLUID);
+            let mut outer2 = outer;
+            outer2[d] -= step;
+            let free = |q: [isize; 3]| self.slot(c, q).filter(|&n| self.labels[c][n] == FLUID);
             let cells = self.cells(c, slot);
-            let face = match neighbour {
-                Some(n) => ForcingFace {
+            let face = match (free(outer), free(outer2)) {
+                (Some(n1), Some(n2)) if self.quadratic => ForcingFace {
                     slot,
                     cells,
-                    neighbour: n,
-                    neighbour_cells: self.cells(c, n),
-                    weight: t / (t + h),
+                    neighbours: [n1, n2],
+                    neighbour_cells: [self.cells(c, n1), self.cells(c, n2)],
+                    weights: [2.0 * t / (t + h), -t / (t + 2.0 * h)],
                     wall,
                 },
-                None => ForcingFace {
+                (Some(n1), _) => ForcingFace {
                     slot,
                     cells,
-                    neighbour: slot,
-                    neighbour_cells: cells,
-                    weight: 0.0,
+                    neighbours: [n1, n1],
+                    neighbour_cells: [self.cells(c, n1); 2],
+                    weights: [t / (t + h), 0.0],
+                    wall,
+                },
+                (None, _) => ForcingFace {
+                    slot,
+                    cells,
+                    neighbours: [slot, slot],
+                    neighbour_cells: [cells, cells],
+                    weights: [0.0, 0.0],
                     wall,
                 },
             };
@@ -360,8 +550,16 @@ impl ImmersedBoundary {
     /// Imposes the rigid motion on a stage's predicted velocity (padded), so that after the
     /// coming projection `u ← u − τ∇p` the forced faces hold their targets (exactly when the
     /// pressure `p` the hook sees is the one the projection subtracts; see the module docs).
-    /// `tau = 0` imposes the targets as they are.
-    pub fn impose(&self, velocity: &mut [Vec<f64>; 3], pressure: &[f64], tau: f64) {
+    /// `tau = 0` imposes the targets as they are. With a `mass_source`, every
+    /// [`ClosedCell`] gets the divergence the imposed faces give it (less their mean, so that
+    /// the sources sum to zero), the others zero.
+    pub fn impose(
+        &self,
+        velocity: &mut [Vec<f64>; 3],
+        pressure: &[f64],
+        tau: f64,
+        mass_source: Option<&mut [f64]>,
+    ) {
         for c in 0..3 {
             let u = &mut velocity[c];
             let scale = tau / self.grid.h[c];
@@ -376,10 +574,38 @@ impl ImmersedBoundary {
                 u[f.slot] = f.target + correction(f.cells);
             }
             for f in &self.forcing[c] {
-                let outer = u[f.neighbour] - correction(f.neighbour_cells);
-                u[f.slot] = f.wall + f.weight * (outer - f.wall) + correction(f.cells);
+                let mut value = f.wall + correction(f.cells);
+                for k in 0..2 {
+                    let outer = u[f.neighbours[k]] - correction(f.neighbour_cells[k]);
+                    value += f.weights[k] * (outer - f.wall);
+                }
+                u[f.slot] = value;
             }
         }
+        if let Some(q) = mass_source {
+            for &cell in &self.previous_closed {
+                q[cell] = 0.0;
+            }
+            let mut total = 0.0;
+            for cc in &self.closed {
+                let div = self.divergence(velocity, cc);
+                q[cc.cell] = div;
+                total += div;
+            }
+            let mean = total / self.closed.len().max(1) as f64;
+            for cc in &self.closed {
+                q[cc.cell] -= mean;
+            }
+        }
+    }
+
+    /// Discrete divergence of `velocity` in a closed cell.
+    pub fn divergence(&self, velocity: &[Vec<f64>; 3], cell: &ClosedCell) -> f64 {
+        (0..3)
+            .map(|c| {
+                (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / self.grid.h[c]
+            })
+            .sum()
     }
 }
 
@@ -409,8 +635,9 @@ mod tests {
                 "{count} vs {expected}"
             );
             for f in ib.forcing_faces(c) {
-                assert!(f.weight >= 0.0 && f.weight < 0.5);
-                assert!(!ib.is_inside(c, f.neighbour));
+                assert!(f.weights[0] >= 0.0 && f.weights[0] <= 1.0);
+                assert!(f.weights[1] <= 0.0 && f.weights[1] >= -1.0 / 3.0);
+                assert!(!ib.is_inside(c, f.neighbours[0]) && !ib.is_inside(c, f.neighbours[1]));
             }
             assert!(!ib.forcing_faces(c).is_empty());
         }
@@ -443,14 +670,14 @@ mod tests {
         let layout = PaddedLayout::new([16; 3]);
         let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![7.0; layout.len]);
         let p = vec![0.0; 16 * 16 * 16];
-        ib.impose(&mut u, &p, 0.0);
+        ib.impose(&mut u, &p, 0.0, None);
         for c in 0..3 {
             let w = sphere.velocity[c];
             for f in ib.interior_faces(c) {
                 assert_eq!(u[c][f.slot], w);
             }
             for f in ib.forcing_faces(c) {
-                let expected = w + f.weight * (7.0 - w);
+                let expected = w + (f.weights[0] + f.weights[1]) * (7.0 - w);
                 assert!((u[c][f.slot] - expected).abs() < 1e-12);
             }
         }
@@ -459,7 +686,7 @@ mod tests {
         let p: Vec<f64> = (0..grid.cell_count())
             .map(|i| (i % 16) as f64 * 0.5)
             .collect();
-        ib.impose(&mut u, &p, 0.2);
+        ib.impose(&mut u, &p, 0.2, None);
         let f = ib
             .interior_faces(0)
             .iter()

@@ -43,22 +43,31 @@ pub struct PeriodicStokesArray {
     /// Scratch: per-component face fields (unpadded), divergence, potential.
     fields: [Vec<f64>; 3],
     divergence: Vec<f64>,
+    /// Cells whose faces are all forced: no continuity equation there (mass source).
+    closed: Vec<bool>,
+    closed_count: usize,
 }
 
 #[derive(Clone, Copy, Debug)]
 struct Row {
     component: usize,
     cell: usize,
-    neighbour: usize,
-    weight: f64,
+    neighbours: [usize; 2],
+    weights: [f64; 2],
     target: f64,
 }
 
 impl PeriodicStokesArray {
     /// A fully periodic grid, viscosity `nu` (m²/s), spheres at rest.
     pub fn new(grid: Grid, nu: f64, spheres: &[RigidSphere]) -> Self {
+        Self::with_stencil(grid, nu, spheres, true)
+    }
+
+    /// As [`Self::new`], with the quadratic (`true`) or linear forcing stencil.
+    pub fn with_stencil(grid: Grid, nu: f64, spheres: &[RigidSphere], quadratic: bool) -> Self {
         let bc = BoundaryConditions::periodic();
         let mut boundary = ImmersedBoundary::new(&grid, &bc);
+        boundary.set_quadratic(quadratic);
         boundary.update(spheres);
         let layout = PaddedLayout::new(grid.n);
         let unpad = |slot: usize| {
@@ -76,8 +85,8 @@ impl PeriodicStokesArray {
                 rows.push(Row {
                     component: c,
                     cell,
-                    neighbour: cell,
-                    weight: 0.0,
+                    neighbours: [cell; 2],
+                    weights: [0.0; 2],
                     target: f.target,
                 });
             }
@@ -85,15 +94,22 @@ impl PeriodicStokesArray {
                 rows.push(Row {
                     component: c,
                     cell: unpad(f.slot),
-                    neighbour: unpad(f.neighbour),
-                    weight: f.weight,
+                    neighbours: f.neighbours.map(unpad),
+                    weights: f.weights,
                     target: f.wall,
                 });
             }
         }
         let poisson = SpectralPoisson::new(grid.n, grid.h, [AxisKind::Periodic; 3]);
         let cells = grid.cell_count();
+        let mut closed = vec![false; cells];
+        for cc in boundary.closed_cells() {
+            closed[cc.cell] = true;
+        }
+        let closed_count = boundary.closed_cells().len();
         PeriodicStokesArray {
+            closed,
+            closed_count,
             fields: std::array::from_fn(|_| vec![0.0; cells]),
             divergence: vec![0.0; cells],
             layout,
@@ -116,7 +132,7 @@ impl PeriodicStokesArray {
     }
 
     /// `fields ← S(f − ⟨f⟩)` for forces `f` on the forced faces; returns `⟨f⟩` and leaves
-    /// the divergence of the unprojected field in `divergence`.
+    /// in `divergence` what the projection removed (`∇²φ`).
     fn stokes(&mut self, forces: &[f64]) -> [f64; 3] {
         for field in self.fields.iter_mut() {
             field.iter_mut().for_each(|v| *v = 0.0);
@@ -153,12 +169,25 @@ impl PeriodicStokesArray {
                 idx - stride[d]
             }
         };
+        // Continuity holds outside the closed cells; their sources balance the rest.
+        let mut open_total = 0.0;
         for idx in 0..self.divergence.len() {
             let mut div = 0.0;
             for d in 0..3 {
                 div += (self.fields[d][up(idx, d)] - self.fields[d][idx]) / h[d];
             }
             self.divergence[idx] = div;
+            if !self.closed[idx] {
+                open_total += div;
+            }
+        }
+        if self.closed_count > 0 {
+            let source = -open_total / self.closed_count as f64;
+            for (d, &c) in self.divergence.iter_mut().zip(&self.closed) {
+                if c {
+                    *d = source;
+                }
+            }
         }
         let mut phi = self.divergence.clone();
         self.poisson.solve(&mut phi);
@@ -170,13 +199,19 @@ impl PeriodicStokesArray {
         mean
     }
 
-    /// The steady flow at mean velocity `mean_velocity` (m/s), GMRES to a relative residual
-    /// `tolerance` of the forced rows.
-    pub fn solve(&mut self, mean_velocity: [f64; 3], tolerance: f64) -> SteadyStokesFlow {
+    /// The steady flow at mean velocity `mean_velocity` (m/s), GMRES(120) to a relative
+    /// residual `tolerance` of the forced rows or `max_iterations` Stokes solves. (On coarse
+    /// grids the residual can stall near 1e-4; K has then settled to about 1e-4.)
+    pub fn solve(
+        &mut self,
+        mean_velocity: [f64; 3],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> SteadyStokesFlow {
         let rhs: Vec<f64> = self
             .rows
             .iter()
-            .map(|r| (1.0 - r.weight) * (r.target - mean_velocity[r.component]))
+            .map(|r| (1.0 - r.weights[0] - r.weights[1]) * (r.target - mean_velocity[r.component]))
             .collect();
         let mut forces = vec![0.0; rhs.len()];
         let rows = self.rows.clone();
@@ -185,14 +220,16 @@ impl PeriodicStokesArray {
                 self.stokes(f);
                 for (o, r) in out.iter_mut().zip(&rows) {
                     let field = &self.fields[r.component];
-                    *o = field[r.cell] - r.weight * field[r.neighbour];
+                    *o = field[r.cell]
+                        - r.weights[0] * field[r.neighbours[0]]
+                        - r.weights[1] * field[r.neighbours[1]];
                 }
             },
             &rhs,
             &mut forces,
-            60,
+            120,
             tolerance,
-            3000,
+            max_iterations,
         );
         let mean = self.stokes(&forces);
         let l = &self.layout;
@@ -208,7 +245,7 @@ impl PeriodicStokesArray {
                 }
             }
         }
-        // −ν∇²u + ∇p = f − ⟨f⟩ with u = v − ∇φ, −ν∇²v = f − ⟨f⟩, ∇²φ = ∇·v: p = −ν ∇·v.
+        // −ν∇²u + ∇p = f − ⟨f⟩ with u = v − ∇φ, −ν∇²v = f − ⟨f⟩: p = −ν ∇²φ.
         let pressure = self.divergence.iter().map(|d| -self.nu * d).collect();
         SteadyStokesFlow {
             velocity,
