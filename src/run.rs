@@ -68,6 +68,9 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     for note in sim.particles.iter().flat_map(|p| &p.notes) {
         eprintln!("fsimFoam: note: {note}");
     }
+    for warning in &sim.warnings {
+        eprintln!("fsimFoam: warning: {warning}");
+    }
     check_first_step(&mut sim)?;
     if options.dry_run {
         print_plan(case, &mut sim, threads);
@@ -98,6 +101,7 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         let cloud = sim.evolve_cloud(dt);
         let write_due = sim.time.advance(dt);
         let health = sim.check_health()?;
+        sim.measure_sedimentation();
         let name = output.time_name(sim.time.time);
         reporter.step(
             &name,

@@ -9,7 +9,10 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
-use crate::coupling::direct::{DirectCoupling, DirectSettings};
+use crate::coupling::direct::{
+    check_resolution, DirectCoupling, DirectSettings, MotionSettings, ParticleMotion, PeriodicBox,
+    SedimentationReport,
+};
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -19,6 +22,7 @@ use crate::grid::Grid;
 use crate::output::{ParticleFields, RestartHeader, RestartState, TimeEntry};
 use crate::particles::{Dem, DemSnapshot};
 use crate::time_control::TimeControl;
+use std::time::Instant;
 
 /// How each step's size is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,6 +49,24 @@ pub struct Simulation {
     pub direct: Option<DirectCoupling>,
     /// Sum of the last hydrodynamic loads, for the monitor (`model direct`).
     pub hydrodynamics: Option<HydrodynamicReport>,
+    /// Freely moving spheres (`model direct`): lubrication, virtual mass, settling drive.
+    pub motion: Option<ParticleMotion>,
+    /// What the grid does not resolve well (`model direct`), for `-dry-run` and the log.
+    pub warnings: Vec<String>,
+    /// Wall time of the last step's phases.
+    pub phase_times: PhaseTimes,
+    /// Settling velocity and momentum after the last step (free spheres, `model direct`).
+    pub settling: Option<SedimentationReport>,
+}
+
+/// Wall time of the phases of one step, s: the fluid (predictor, projections, and with
+/// `model direct` the no-slip imposition inside each stage), the coupling (the forced faces of
+/// the moved spheres, the stress integral, lubrication) and the particles (the DEM).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseTimes {
+    pub fluid: f64,
+    pub coupling: f64,
+    pub particles: f64,
 }
 
 /// The hydrodynamic loads of one step, summed over the particles (`model direct`).
@@ -144,6 +166,10 @@ impl Simulation {
             particles: None,
             direct: None,
             hydrodynamics: None,
+            motion: None,
+            warnings: Vec::new(),
+            phase_times: PhaseTimes::default(),
+            settling: None,
         };
         let direct_settings = match case.coupling.model {
             CouplingModel::Direct => {
@@ -152,6 +178,10 @@ impl Simulation {
             _ => None,
         };
         let cloud = Cloud::from_case(case)?;
+        if let (Some(settings), Some(cloud)) = (&direct_settings, &cloud) {
+            // before the DEM's own checks, so that the message names what the grid lacks
+            sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings)?;
+        }
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
@@ -188,6 +218,21 @@ impl Simulation {
                 ));
             }
             sim.direct = Some(DirectCoupling::new(&mut sim.fluid, settings));
+            let motion_settings =
+                MotionSettings::from_coupling(&case.coupling).map_err(FsimError::from)?;
+            let dem = &sim.particles.as_ref().expect("checked above").dem;
+            let motion = ParticleMotion::new(
+                motion_settings,
+                sim.fluid.grid(),
+                sim.fluid.boundary_conditions(),
+                dem,
+                case.transport.rho,
+                case.transport.nu,
+            )
+            .map_err(|e| FsimError::input(format!("constant/couplingProperties: {e}")))?;
+            // periodic sedimentation: the mean pressure gradient that carries the mixture
+            sim.fluid.set_body_force(motion.fluid_body_force());
+            sim.motion = Some(motion);
         }
         Ok(sim)
     }
@@ -277,13 +322,17 @@ impl Simulation {
     /// with `model direct`, no-slip on every particle at its current position and velocity
     /// in every stage.
     pub fn evolve_fluid(&mut self, dt: f64) -> StepReport {
+        let clock = Instant::now();
+        self.phase_times = PhaseTimes::default();
         let report = match (&mut self.direct, &self.particles) {
             (Some(direct), Some(p)) => {
                 direct.set_particles(p.dem.particles());
+                self.phase_times.coupling = clock.elapsed().as_secs_f64();
                 self.fluid.step_with(dt, &mut |stage| direct.impose(stage))
             }
             _ => self.fluid.step(dt),
         };
+        self.phase_times.fluid = clock.elapsed().as_secs_f64() - self.phase_times.coupling;
         self.dt = dt;
         report
     }
@@ -295,16 +344,31 @@ impl Simulation {
         let (Some(direct), Some(p)) = (&mut self.direct, &mut self.particles) else {
             return;
         };
+        let clock = Instant::now();
         let loads = direct.compute_loads(&self.fluid, self.rho);
-        let (force, torque) = p.dem.external_loads_mut();
+        match self.motion.as_mut() {
+            // plus lubrication and the virtual mass (ParticleMotion)
+            Some(motion) => {
+                motion.set_loads(
+                    &mut p.dem,
+                    loads.iter().map(|l| (l.force, l.torque)),
+                    self.dt,
+                );
+            }
+            None => {
+                let (force, torque) = p.dem.external_loads_mut();
+                for (k, load) in loads.iter().enumerate() {
+                    force[k] = load.force;
+                    torque[k] = load.torque;
+                }
+            }
+        }
         let mut report = HydrodynamicReport {
             force: [0.0; 3],
             torque: [0.0; 3],
             drag_coefficient: 0.0,
         };
-        for (k, load) in loads.iter().enumerate() {
-            force[k] = load.force;
-            torque[k] = load.torque;
+        for load in loads.iter() {
             for i in 0..3 {
                 report.force[i] += load.force[i];
                 report.torque[i] += load.torque[i];
@@ -321,13 +385,29 @@ impl Simulation {
                 / (6.0 * std::f64::consts::PI * mu * radius * bulk);
         }
         self.hydrodynamics = Some(report);
+        self.phase_times.coupling += clock.elapsed().as_secs_f64();
+    }
+
+    /// Measures the settling velocity and the mixture's momentum of the free spheres after a
+    /// step into [`Simulation::settling`] (`model direct` with free particles).
+    pub fn measure_sedimentation(&mut self) {
+        let (Some(motion), Some(p)) = (&self.motion, &self.particles) else {
+            return;
+        };
+        if p.dem.particles().fixed.iter().all(|&f| f) {
+            return;
+        }
+        let mean = [0, 1, 2].map(|c| self.fluid.mean_component(c));
+        self.settling = Some(motion.sedimentation(mean, p.dem.particles()));
     }
 
     /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`
     /// without particles.
     pub fn evolve_cloud(&mut self, dt: f64) -> Option<CloudReport> {
         let p = self.particles.as_mut()?;
+        let clock = Instant::now();
         p.substeps = p.dem.advance(dt);
+        self.phase_times.particles = clock.elapsed().as_secs_f64();
         Some(CloudReport {
             count: p.dem.particles().len(),
             kinetic_energy: p.dem.kinetic_energy(),
@@ -366,6 +446,29 @@ impl Simulation {
                 "the solution diverged at t = {} s (step {}): the velocity is no longer finite",
                 self.time.time, self.time.step
             )));
+        }
+        if let Some(p) = &self.particles {
+            let s = p.dem.particles();
+            if let Some(i) = (0..s.len()).find(|&i| {
+                !(s.velocity[i]
+                    .iter()
+                    .chain(&s.position[i])
+                    .all(|v| v.is_finite()))
+            }) {
+                return Err(FsimError::run(format!(
+                    "the solution diverged at t = {} s (step {}): particle {} has no finite \
+                     velocity or position{}",
+                    self.time.time,
+                    self.time.step,
+                    s.id[i],
+                    if self.direct.is_some() {
+                        " (with model direct: particles not much heavier than the fluid need \
+                         the virtual mass, virtualMass in constant/couplingProperties)"
+                    } else {
+                        ""
+                    }
+                )));
+            }
         }
         Ok(d)
     }
@@ -522,4 +625,48 @@ fn pressure_bc_name(bc: &PressureBc) -> &'static str {
         PressureBc::SymmetryPlane => "symmetryPlane",
         PressureBc::Empty => "empty",
     }
+}
+
+/// The direct model's resolution checks on the case's particles (before the DEM is built):
+/// errors stop the run (exit 2), warnings are returned for `-dry-run` and the log.
+fn check_direct_resolution(
+    fluid: &FluidSolver,
+    cloud: &Cloud,
+    settings: &DirectSettings,
+) -> Result<Vec<String>, FsimError> {
+    let grid = fluid.grid();
+    let bc = fluid.boundary_conditions();
+    let length = grid.length();
+    let domain = PeriodicBox {
+        lo: grid.origin,
+        hi: std::array::from_fn(|a| grid.origin[a] + length[a]),
+        periodic: std::array::from_fn(|a| matches!(bc.faces[2 * a], FaceCondition::Periodic)),
+    };
+    let walls: [bool; 6] =
+        std::array::from_fn(|f| matches!(bc.faces[f], FaceCondition::Wall { .. }));
+    let mut particles = cloud.particles.clone();
+    if settings.fixed_particles {
+        particles.fixed.iter_mut().for_each(|f| *f = true);
+    }
+    let moving_wall = bc.faces.iter().any(|f| match f {
+        FaceCondition::Wall { velocity } => *velocity != [0.0; 3],
+        FaceCondition::Inlet { .. } => true,
+        _ => false,
+    });
+    let driven = fluid.mean_velocity_force().is_some() || moving_wall;
+    let report = check_resolution(
+        grid,
+        &particles,
+        &domain,
+        walls,
+        driven,
+        // overlaps are the DEM loader's to report, with the positions file's line
+        f64::INFINITY,
+    );
+    if let Some(e) = report.errors.first() {
+        return Err(FsimError::input(format!(
+            "constant/kinematicCloudProperties (model direct): {e}"
+        )));
+    }
+    Ok(report.warnings)
 }

@@ -82,7 +82,10 @@ fn overlapping_spheres() {
         let file = c.join("constant/kinematicCloudPositions");
         let text = fs::read_to_string(&file).unwrap();
         let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-        let first = lines.iter().position(|l| l.starts_with('(') && l.len() > 2).unwrap();
+        let first = lines
+            .iter()
+            .position(|l| l.starts_with('(') && l.len() > 2)
+            .unwrap();
         // the second sphere a third of a diameter from the first
         let xyz: Vec<f64> = lines[first]
             .trim_matches(|ch| ch == '(' || ch == ')')
@@ -102,7 +105,10 @@ fn narrow_gaps_warn_at_dry_run() {
         let file = c.join("constant/kinematicCloudPositions");
         let text = fs::read_to_string(&file).unwrap();
         let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-        let first = lines.iter().position(|l| l.starts_with('(') && l.len() > 2).unwrap();
+        let first = lines
+            .iter()
+            .position(|l| l.starts_with('(') && l.len() > 2)
+            .unwrap();
         let xyz: Vec<f64> = lines[first]
             .trim_matches(|ch| ch == '(' || ch == ')')
             .split_whitespace()
@@ -174,6 +180,9 @@ fn added_mass_instability_stops_and_keeps_the_last_good_time() {
         .collect();
     assert!(times.contains(&"0".to_string()), "{times:?}");
     for t in &times {
-        assert!(case.join(t).join("fluid.vti").exists() || t == "0", "{t} incomplete");
+        assert!(
+            case.join(t).join("fluid.vti").exists() || t == "0",
+            "{t} incomplete"
+        );
     }
 }

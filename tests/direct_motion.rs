@@ -68,6 +68,13 @@ impl Settler {
             ParticleMotion::new(MotionSettings::default(), &grid, &bc, &dem, rho_f, nu).unwrap();
         fluid.set_body_force(motion.fluid_body_force());
         let mut direct = DirectSettings::default();
+        if let Ok(name) = std::env::var("INTERP") {
+            direct.integral.interpolation =
+                fsim::coupling::direct::Interpolation::from_name(&name).unwrap();
+        }
+        if let Ok(q) = std::env::var("QUADS") {
+            direct.integral.quadrangles = Some(q.parse().unwrap());
+        }
         if let Ok(offset) = std::env::var("OFFSET") {
             direct.integral.surface_offset = offset.parse().unwrap();
         }
@@ -84,11 +91,19 @@ impl Settler {
 
     /// One coupled step (the order of `src/coupling/direct/particle_motion.rs`).
     pub fn step(&mut self, dt: f64) {
+        let clock = std::time::Instant::now();
         self.coupling.set_particles(self.dem.particles());
+        if std::env::var("TIMING").is_ok() {
+            eprintln!("set_particles {:?}", clock.elapsed());
+        }
         let coupling = &self.coupling;
         self.fluid
             .step_with(dt, &mut |stage| coupling.impose(stage));
+        let clock = std::time::Instant::now();
         let loads = self.coupling.compute_loads(&self.fluid, self.rho).to_vec();
+        if std::env::var("TIMING").is_ok() {
+            eprintln!("compute_loads {:?}", clock.elapsed());
+        }
         if std::env::var("TRACE").is_ok() {
             let p = self.dem.particles();
             let w = p.mass(0) * (1.0 - self.rho / p.density[0]) * 9.81;

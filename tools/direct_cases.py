@@ -86,11 +86,14 @@ def periodic_packing(length, d, count, seed, min_gap=0.0):
 
 def write_case(case, *, cells, h, d, rho_f, nu, rho_p, end_time, write_interval,
                centres=None, random_fraction=None, seed=1, max_co=0.5, max_dt=1.0,
-               kn=None, restitution=0.9, mu=0.3, coupling_extra="", title=""):
+               kn=None, restitution=0.9, mu=0.3, coupling_extra="", title="", scheme="Euler"):
     """A periodic box of cells[0] x cells[1] x cells[2] cells of size h (m) with spheres of
     diameter d (m) and density rho_p, in a fluid of density rho_f and viscosity nu.
     Particles: `centres` (a list), or `random_fraction` (fsim's randomPacking, seeded)."""
     L = [n * h for n in cells]
+    if scheme in ("Euler", "RK2"):
+        # just under the explicit viscous bound h^2/(6 nu) (paper eq. 3), which rules at h < r
+        max_dt = min(max_dt, 0.95 * h * h / (6 * nu))
     _write(case, "system/blockMeshDict", "dictionary", f"""
 // {title}
 // A periodic box {L[0]:g} x {L[1]:g} x {L[2]:g} m, {cells[0]} x {cells[1]} x {cells[2]} cells
@@ -134,10 +137,10 @@ startTime       0;
 stopAt          endTime;
 endTime         {end_time:g};
 
-deltaT          {max_dt:g};
+deltaT          {max_dt:.6g};
 adjustTimeStep  yes;
 maxCo           {max_co:g};
-maxDeltaT       {max_dt:g};
+maxDeltaT       {max_dt:.6g};
 
 writeControl    adjustableRunTime;
 writeInterval   {write_interval:g};
@@ -145,12 +148,14 @@ purgeWrite      0;
 
 timePrecision   6;
 """)
-    _write(case, "system/fvSolution", "dictionary", """
+    _write(case, "system/fvSolution", "dictionary", f"""
 fsim
-{
-    // Crank-Nicolson viscosity: at h < r the explicit bound h^2/(6 nu) would rule the step.
-    timeScheme      RK3CN;
-}
+{{
+    // The paper's explicit scheme: the step sits just under its viscous bound h^2/(6 nu)
+    // (maxDeltaT in controlDict), which rules at h < r; RK3 allows 1.25 times the step at
+    // three times the cost per step.
+    timeScheme      {scheme};
+}}
 """)
     _write(case, "constant/transportProperties", "dictionary", f"""
 continuousPhase fluid;
@@ -326,7 +331,8 @@ def settling_sphere(case):
     n, h = 36, 1.25e-4
     d = 16 * h
     return write_case(case, cells=[n, n, n], h=h, d=d, rho_f=1000.0, nu=1e-3, rho_p=2000.0,
-                      end_time=0.03, write_interval=0.01, centres=[[n * h / 2] * 3],
+                      end_time=0.005, write_interval=0.001,
+                      centres=[[n * h / 2 + 0.3 * h, n * h / 2, n * h / 2 - 0.2 * h]],
                       max_co=0.5, max_dt=2e-4,
                       title="One sphere settling in a periodic box (tutorials/settlingSphere)")
 
