@@ -101,7 +101,7 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         let cloud = sim.evolve_cloud(dt);
         let write_due = sim.time.advance(dt);
         let health = sim.check_health()?;
-        sim.measure_sedimentation();
+        sim.update_sedimentation();
         let name = output.time_name(sim.time.time);
         reporter.step(
             &name,

@@ -389,16 +389,20 @@ impl Simulation {
     }
 
     /// Measures the settling velocity and the mixture's momentum of the free spheres after a
-    /// step into [`Simulation::settling`] (`model direct` with free particles).
-    pub fn measure_sedimentation(&mut self) {
-        let (Some(motion), Some(p)) = (&self.motion, &self.particles) else {
+    /// step into [`Simulation::settling`], and corrects the periodic-settling drive so that
+    /// the mixture's momentum stays zero (`model direct` with free particles).
+    pub fn update_sedimentation(&mut self) {
+        let (Some(motion), Some(p)) = (&mut self.motion, &self.particles) else {
             return;
         };
         if p.dem.particles().fixed.iter().all(|&f| f) {
             return;
         }
         let mean = [0, 1, 2].map(|c| self.fluid.mean_component(c));
-        self.settling = Some(motion.sedimentation(mean, p.dem.particles()));
+        let report = motion.sedimentation(mean, p.dem.particles());
+        let body = motion.hold_zero_momentum(report.momentum, self.dt);
+        self.fluid.set_body_force(body);
+        self.settling = Some(report);
     }
 
     /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`

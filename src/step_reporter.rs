@@ -49,8 +49,9 @@ const DIRECT_MONITOR_COLUMNS: [&str; 8] = ["Time", "Fx", "Fy", "Fz", "Tx", "Ty",
 /// (`model direct` with free particles): solid fraction, mean particle and fluid velocities,
 /// the settling velocity along gravity in the frame of zero volume flux (positive: falling),
 /// the mixture's momentum and its scale `Σ m|v|`, the imposed excess mean pressure gradient
-/// along gravity, and the lubrication pairs and smallest gap over the radius.
-const SEDIMENTATION_MONITOR_COLUMNS: [&str; 16] = [
+/// (magnitude, correction included) and its momentum-holding correction over the analytic
+/// value, and the lubrication pairs and smallest gap over the radius.
+const SEDIMENTATION_MONITOR_COLUMNS: [&str; 17] = [
     "Time",
     "phi",
     "Vpx",
@@ -65,6 +66,7 @@ const SEDIMENTATION_MONITOR_COLUMNS: [&str; 16] = [
     "Mz",
     "momentumScale",
     "driveGradient",
+    "driveCorrection",
     "lubricationPairs",
     "minGapOverR",
 ];
@@ -228,6 +230,7 @@ impl StepReporter {
                     r.momentum[2],
                     r.momentum_scale,
                     g_norm,
+                    r.drive_correction,
                     lubrication.active as f64,
                     if lubrication.min_gap_ratio.is_finite() {
                         lubrication.min_gap_ratio

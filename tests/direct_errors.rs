@@ -102,21 +102,15 @@ fn overlapping_spheres() {
 fn narrow_gaps_warn_at_dry_run() {
     let s = Scratch::new("direct-gap");
     let case = broken(&s, "sedimentation", |c| {
+        // two spheres (d = 1.5 mm, h = 0.25 mm) 0.1 mm = 0.4 h apart
         let file = c.join("constant/kinematicCloudPositions");
         let text = fs::read_to_string(&file).unwrap();
-        let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-        let first = lines
-            .iter()
-            .position(|l| l.starts_with('(') && l.len() > 2)
-            .unwrap();
-        let xyz: Vec<f64> = lines[first]
-            .trim_matches(|ch| ch == '(' || ch == ')')
-            .split_whitespace()
-            .map(|v| v.parse().unwrap())
-            .collect();
-        // d = 1.5 mm, h = 0.25 mm: a gap of 0.1 mm = 0.4 h
-        lines[first + 1] = format!("({} {} {})", xyz[0] + 0.0016, xyz[1], xyz[2]);
-        fs::write(&file, lines.join("\n") + "\n").unwrap();
+        let head = &text[..text.find("\n(").unwrap()];
+        fs::write(
+            &file,
+            format!("{head}\n(\n(0.005 0.01 0.005)\n(0.0066 0.01 0.005)\n)\n"),
+        )
+        .unwrap();
     });
     assert_dry_run_warns(&case, &["narrower than 2 cells", "0.40 h"]);
 }
@@ -141,15 +135,15 @@ fn light_particles_are_refused() {
         replace(
             &c.join("constant/kinematicCloudProperties"),
             "rho0            2000;",
-            "rho0            1100;",
+            "rho0            150;",
         )
     });
-    assert_refused(&case, &["1.100 times the fluid's"]);
+    assert_refused(&case, &["0.150 times the fluid's"]);
 }
 
-/// Without the virtual mass the explicit coupling of a sphere only 1.3 times as dense as the
-/// liquid diverges (the added-mass instability): the run stops with the reason, exit 1, and
-/// keeps the start time it wrote.
+/// Without the virtual mass the explicit coupling of a sphere a fifth as dense as the liquid
+/// diverges within a millisecond (the added-mass instability): the run stops with the
+/// reason, exit 1, and keeps the time directories it wrote whole.
 #[test]
 fn added_mass_instability_stops_and_keeps_the_last_good_time() {
     let s = Scratch::new("direct-diverge");
@@ -157,15 +151,15 @@ fn added_mass_instability_stops_and_keeps_the_last_good_time() {
         replace(
             &c.join("constant/kinematicCloudProperties"),
             "rho0            2000;",
-            "rho0            1300;",
+            "rho0            200;",
         );
         replace(
             &c.join("constant/couplingProperties"),
             "model           direct;",
             "model           direct;\nvirtualMass     0;",
         );
-        set_entry(&c.join("system/controlDict"), "endTime", "0.02");
-        set_entry(&c.join("system/controlDict"), "writeInterval", "0.01");
+        set_entry(&c.join("system/controlDict"), "endTime", "0.003");
+        set_entry(&c.join("system/controlDict"), "writeInterval", "0.0002");
     });
     let out = fsim(&case, &[]);
     let stderr = String::from_utf8_lossy(&out.stderr);

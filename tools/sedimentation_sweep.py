@@ -69,6 +69,7 @@ def run_one(binary, scratch, phi, count, cells_per_radius, settling_times, threa
     direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=NU, rho_p=RHO_P,
                             end_time=end, write_interval=end, centres=centres, max_co=0.5,
                             max_dt=end / 400, restitution=0.5,
+                            coupling_extra=direct_cases.LINEAR,
                             title=f"sedimentation sweep, phi = {phi_actual:.4f}")
     log = os.path.join(case, "log.fsimFoam")
     with open(log, "w") as f:
