@@ -156,7 +156,7 @@ fn added_mass_instability_stops_and_keeps_the_last_good_time() {
         replace(
             &c.join("constant/couplingProperties"),
             "model           direct;",
-            "model           direct;\nvirtualMass     0;",
+            "model           direct;\nvirtualMass     0;\ndirect { interpolation linear; }",
         );
         set_entry(&c.join("system/controlDict"), "endTime", "0.003");
         set_entry(&c.join("system/controlDict"), "writeInterval", "0.0002");

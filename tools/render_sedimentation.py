@@ -28,7 +28,7 @@ def time_dirs(case):
     return sorted(out)
 
 
-def render(case, time_name, out, size=(700, 1000)):
+def render(case, time_name, out, size=(700, 1000), label=None):
     fluid = pv.read(os.path.join(case, time_name, "fluid.vti"))
     fluid = fluid.cell_data_to_point_data()
     bounds = fluid.bounds
@@ -53,7 +53,8 @@ def render(case, time_name, out, size=(700, 1000)):
                                           fmt="%.2e", position_x=0.78, position_y=0.2, width=0.08))
     plotter.add_mesh(spheres, color="#d9a441", smooth_shading=True, specular=0.3)
     plotter.add_mesh(pv.Box(bounds).outline(), color="black")
-    plotter.add_text(f"{os.path.basename(os.path.abspath(case))}, t = {time_name} s, "
+    label = label or os.path.basename(os.path.abspath(case))
+    plotter.add_text(f"{label}, t = {time_name} s, "
                      f"{len(d)} particles", font_size=12, color="black")
     # gravity along -y: y up, looking slightly down onto the mid-plane slice
     plotter.view_vector((0.55, 0.35, 1.0), viewup=(0.0, 1.0, 0.0))
@@ -67,13 +68,14 @@ def main():
     ap.add_argument("case", nargs="?", default=os.path.join(ROOT, "tutorials", "sedimentation"))
     ap.add_argument("--time", help="time directory to render (default: the latest)")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "sedimentation.png"))
+    ap.add_argument("--label", help="title of the picture (default: the case's folder name)")
     a = ap.parse_args()
     times = time_dirs(a.case)
     if not times:
         sys.exit(f"{a.case}: no time directory with fluid.vti; run fsimFoam -case {a.case} first")
     name = a.time if a.time else times[-1][1]
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    render(a.case, name, a.out)
+    render(a.case, name, a.out, label=a.label)
     print(f"wrote {a.out} ({os.path.getsize(a.out) // 1024} kB) from {a.case}/{name}")
 
 

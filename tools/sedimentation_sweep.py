@@ -2,15 +2,19 @@
 """Sedimentation sweep: mean settling velocity against solid fraction, fitted to
 Richardson & Zaki (paper eq. 21), v_m / V_0 = (1 - phi)^n.
 
-    tools/sedimentation_sweep.py [--phi 0.02 0.05 0.1 0.15 0.2 0.25 0.3] [--particles 48]
-                                 [--cells-per-radius 4] [--settling-times 6] [--csv out.csv]
+    tools/sedimentation_sweep.py [--phi 0.02 0.05 0.1 0.15 0.2 0.25 0.3] [--particles 27]
+                                 [--cells-per-radius 3] [--reynolds 0.15] [--run-length 0.15]
+                                 [--csv out.csv]
 
 Each run is a fully periodic box (cubic) holding `--particles` spheres at the solid fraction
 phi, packed at random without overlap (seeded), released from rest with the direct model.
 The mixture's weight is carried by the imposed mean pressure gradient, so the settling
 velocity is measured in the frame of zero volume flux (a container's):
 v_m = <v_p> - <u>_box along gravity (fsim's `postProcessing/sedimentation` monitor), averaged
-over the second half of the run. Particle Reynolds number Re = V_0 d / nu stays below 0.2.
+over the second half of the run. The viscosity is set for the particle Reynolds number
+Re = V_0 d / nu of `--reynolds` (below 0.2), the run length is `--run-length` L^2/nu (0.15:
+about six e-foldings of the slowest box mode, so that the flow has settled), i.e. about
+(L/h)^2 steps of the Euler scheme at its viscous bound.
 
 The fit is the least-squares line log v_m = log V_0 + n log(1 - phi), weighted by the
 run-to-run scatter of each mean (the standard error of the time average, from block means);
@@ -33,10 +37,9 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import direct_cases  # noqa: E402
 
-# A viscous liquid: Stokes velocity V_0 = 2 (rho_p - rho_f) g r^2 / (9 mu)
+# A liquid; the viscosity follows from the Reynolds number asked for
 RHO_F = 1000.0
 RHO_P = 2000.0
-NU = 1e-3
 
 
 def read_monitor(case):
@@ -53,27 +56,28 @@ def block_mean(values, blocks=5):
     return float(values.mean()), float(means.std(ddof=1) / math.sqrt(len(means)))
 
 
-def run_one(binary, scratch, phi, count, cells_per_radius, settling_times, threads, seed):
+def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed):
     h = 1e-4
     d = 2 * cells_per_radius * h
     volume = count * direct_cases.sphere_volume(d) / phi
     n = max(int(round(volume ** (1 / 3) / h)), int(math.ceil(2.3 * d / h)))
     L = [n * h] * 3
     phi_actual = count * direct_cases.sphere_volume(d) / (n * h) ** 3
-    v0 = direct_cases.stokes_velocity(d, RHO_P, RHO_F, NU)
-    # settle over `settling_times` diameters at the hindered speed
-    end = settling_times * d / (v0 * (1 - phi) ** 5)
+    # Re = V_0 d / nu with V_0 = (rho_p/rho_f - 1) g d^2 / (18 nu)
+    nu = math.sqrt((RHO_P / RHO_F - 1) * 9.81 * d ** 3 / (18 * reynolds))
+    v0 = direct_cases.stokes_velocity(d, RHO_P, RHO_F, nu)
+    end = run_length * (n * h) ** 2 / nu
     case = os.path.join(scratch, f"phi{phi:g}")
     shutil.rmtree(case, ignore_errors=True)
     centres = direct_cases.periodic_packing(L, d, count, seed=seed, min_gap=0.5 * h)
-    direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=NU, rho_p=RHO_P,
+    direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=nu, rho_p=RHO_P,
                             end_time=end, write_interval=end, centres=centres, max_co=0.5,
                             max_dt=end / 400, restitution=0.5,
                             coupling_extra=direct_cases.LINEAR,
                             title=f"sedimentation sweep, phi = {phi_actual:.4f}")
     log = os.path.join(case, "log.fsimFoam")
     with open(log, "w") as f:
-        subprocess.run([binary, "-case", case, "-threads", str(threads)], stdout=f,
+        subprocess.run(["nice", binary, "-case", case, "-threads", str(threads)], stdout=f,
                        stderr=subprocess.STDOUT, check=True)
     m = read_monitor(case)
     t = m["Time"]
@@ -81,7 +85,7 @@ def run_one(binary, scratch, phi, count, cells_per_radius, settling_times, threa
     vm, err = block_mean(m["settlingVelocity"][late])
     return dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
                 v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
-                reynolds=vm * d / NU, end_time=end)
+                reynolds=vm * d / nu, end_time=end)
 
 
 def fit(rows):
@@ -111,17 +115,19 @@ def fit_fixed_v0(rows):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--phi", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3])
-    ap.add_argument("--particles", type=int, default=48)
-    ap.add_argument("--cells-per-radius", type=float, default=4.0)
-    ap.add_argument("--settling-times", type=float, default=6.0,
-                    help="run length in diameters travelled at the hindered velocity")
+    ap.add_argument("--particles", type=int, default=27)
+    ap.add_argument("--cells-per-radius", type=float, default=3.0)
+    ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
+    ap.add_argument("--run-length", type=float, default=0.15, help="in units of L^2 / nu")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--csv", default="sedimentation_sweep.csv")
     ap.add_argument("--keep", help="keep the cases in this directory")
+    ap.add_argument("--no-build", action="store_true")
     a = ap.parse_args()
 
-    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    if not a.no_build:
+        subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
     binary = os.path.join(target, "release", "fsimFoam")
     scratch = a.keep or tempfile.mkdtemp(prefix="fsim-sedimentation-")
@@ -130,7 +136,7 @@ def main():
     try:
         for phi in a.phi:
             r = run_one(binary, scratch, phi, a.particles, a.cells_per_radius,
-                        a.settling_times, a.threads, a.seed)
+                        a.reynolds, a.run_length, a.threads, a.seed)
             rows.append(r)
             print(f"phi {r['phi']:.4f}: v_m = {r['v_m']:.4e} +- {r['v_m_error']:.1e} m/s, "
                   f"v_m/V_Stokes = {r['ratio']:.4f}, Re = {r['reynolds']:.3f}, "
