@@ -11,7 +11,8 @@ use crate::case::{CaseError, Coupling};
 /// model direct;
 /// direct
 /// {
-///     surfaceOffset   2;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere
+///     surfaceOffset   3;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere;
+///                             // must stay clear of the neighbours (below the gap minus 2)
 ///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
 ///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h/2
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)

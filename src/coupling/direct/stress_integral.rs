@@ -48,10 +48,10 @@ pub struct StressIntegral {
 }
 
 impl Default for StressIntegral {
-    /// The measured best (docs/direct_model.md): two cells out, tricubic, edges `h/2`.
+    /// The measured best (docs/direct_model.md): three cells out, tricubic, edges `h/2`.
     fn default() -> Self {
         StressIntegral {
-            surface_offset: 2.0,
+            surface_offset: 3.0,
             interpolation: Interpolation::Cubic,
             quadrangles: None,
         }
