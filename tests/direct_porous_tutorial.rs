@@ -21,8 +21,7 @@ fn porous_media_tutorial_gives_the_sangani_acrivos_k() {
     let monitor = fs::read_to_string(case.join("postProcessing/direct/0/direct.dat")).unwrap();
     let last: Vec<f64> = monitor
         .lines()
-        .filter(|l| !l.starts_with('#'))
-        .last()
+        .rfind(|l| !l.starts_with('#'))
         .unwrap()
         .split_whitespace()
         .map(|v| v.parse().unwrap())
@@ -37,8 +36,7 @@ fn porous_media_tutorial_gives_the_sangani_acrivos_k() {
     let fluid = fs::read_to_string(case.join("postProcessing/fluid/0/fluid.dat")).unwrap();
     let row: Vec<f64> = fluid
         .lines()
-        .filter(|l| !l.starts_with('#'))
-        .last()
+        .rfind(|l| !l.starts_with('#'))
         .unwrap()
         .split_whitespace()
         .map(|v| v.parse().unwrap())

@@ -15,7 +15,8 @@ pub fn sangani_acrivos_k(phi: f64) -> f64 {
 }
 
 /// Zick & Homsy (J. Fluid Mech. 115, 13–26, 1982), Table 2, simple cubic array: exact
-/// (multipole, converged) `(φ, K)` up to the close packing `π/6`.
+/// (multipole, converged) `(φ, K)` up to the close packing `π/6` (as printed: 0.5236).
+#[allow(clippy::approx_constant)]
 pub const ZICK_HOMSY_SIMPLE_CUBIC: [(f64, f64); 7] = [
     (0.027, 2.008),
     (0.064, 2.810),
