@@ -84,6 +84,7 @@ fn stokes_drag_is_exact_to_one_part_in_ten_thousand_three_cells_out() {
                 surface_offset: offset,
                 interpolation,
                 quadrangles: None,
+                convective_flux: false,
             };
             let errors: Vec<f64> = resolutions
                 .iter()

@@ -45,6 +45,9 @@ pub struct StressIntegral {
     pub interpolation: Interpolation,
     /// Quadrangles on the integration sphere; `None`: edges of about `h/2`.
     pub quadrangles: Option<usize>,
+    /// Include the momentum flux `−ρ u ((u − v_p)·n)` through the surface (Navier–Stokes;
+    /// off for a Stokes flow, which has no inertia).
+    pub convective_flux: bool,
 }
 
 impl Default for StressIntegral {
@@ -54,6 +57,7 @@ impl Default for StressIntegral {
             surface_offset: 3.0,
             interpolation: Interpolation::Cubic,
             quadrangles: None,
+            convective_flux: true,
         }
     }
 }
