@@ -122,5 +122,8 @@ fn a_translating_sphere_feels_the_drag_of_the_fixed_array_and_a_rotating_one_its
     let ratio = load.torque[2] / isolated;
     eprintln!("rotating sphere: torque / (−8πμr³ω) = {ratio:.4}, G = {g:?}");
     assert!(ratio > 1.0 && ratio < 1.0 + 2.0 * phi, "{ratio}");
-    assert!(g.iter().all(|x| x.abs() < 1e-6 * omega * radius));
+    // Net force (G L³, L = 1) under 0.2 % of the drag scale 6πμr(ωr): the staircase of
+    // forced faces is not exactly symmetric.
+    let scale = 6.0 * PI * radius * omega * radius;
+    assert!(g.iter().all(|x| x.abs() < 2e-3 * scale), "{g:?}");
 }
