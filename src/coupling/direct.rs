@@ -16,6 +16,9 @@
 //!
 //! Method choices and measured accuracy: `docs/direct_model.md`.
 
+// Hot loops are plain indexed loops over contiguous arrays, by design (as in `fluid`).
+#![allow(clippy::needless_range_loop)]
+
 mod close_pairs;
 mod direct_coupling;
 mod direct_settings;

@@ -48,10 +48,12 @@ pub struct PredictedVelocity<'a> {
     pub time: f64,
     /// The stage's projection weight: the projection subtracts `tau ∇p`.
     pub tau: f64,
-    /// What the previous projection subtracted `tau ∇` of (cell-centred, unpadded): the
-    /// pressure for the explicit schemes, the pressure increment for `RK3CN`. The coming
-    /// projection subtracts about the same, so a hook that wants a face to end at `w` after
-    /// the projection sets it to `w + tau ∂p` (exact once the flow is steady).
+    /// The pressure the coming projection will subtract `tau ∇` of, as last solved
+    /// (cell-centred, unpadded; the explicit schemes): a hook that wants a face to end at `w`
+    /// after the projection sets it to `w + tau ∂p` (exact once the flow is steady). Empty
+    /// for `RK3CN`, whose predictor already carries the pressure and whose projection only
+    /// subtracts an increment that vanishes at steady state (compensating with the last
+    /// increment there makes the step unstable).
     pub pressure: &'a [f64],
     /// Velocity components, padded layout.
     pub velocity: &'a mut [Vec<f64>; 3],
@@ -491,7 +493,7 @@ impl FluidSolver {
                 layout: &self.layout,
                 time: t0 + c_end * dt,
                 tau,
-                pressure: &implicit.increment,
+                pressure: &[],
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
             });

@@ -5,12 +5,12 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use super::direct_settings::DirectSettings;
-use super::field_view::FieldView;
+use super::field_view::{periodic_directions, FieldView};
 use super::immersed_boundary::ImmersedBoundary;
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::SphereQuadrature;
 use super::stress_integral::{
-    shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum,
+    shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };
 use crate::fluid::{FluidSolver, PredictedVelocity};
 use crate::particles::ParticleState;
@@ -28,12 +28,16 @@ pub struct DirectCoupling {
     settings: DirectSettings,
     boundary: ImmersedBoundary,
     h: f64,
+    /// Box lengths and which directions are periodic (for the gaps between spheres).
+    length: [f64; 3],
+    periodic: [bool; 3],
     spheres: Vec<RigidSphere>,
     ids: Vec<u64>,
     /// Quadrature per distinct radius (bit pattern of the radius).
     quadratures: HashMap<u64, SphereQuadrature>,
-    /// Shell momentum at the last load evaluation, per particle id, with its time.
-    previous_shell: HashMap<u64, (f64, ShellMomentum)>,
+    /// Shell momentum at the last load evaluation, per particle id, with its time and the
+    /// surface offset it was taken with (a changed surface has no rate).
+    previous_shell: HashMap<u64, (f64, f64, ShellMomentum)>,
     loads: Vec<HydrodynamicLoad>,
 }
 
@@ -47,6 +51,8 @@ impl DirectCoupling {
             settings,
             boundary: ImmersedBoundary::new(grid, fluid.boundary_conditions()),
             h: grid.h.iter().cloned().fold(0.0, f64::max),
+            length: grid.length(),
+            periodic: periodic_directions(fluid.boundary_conditions()),
             spheres: Vec::new(),
             ids: Vec::new(),
             quadratures: HashMap::new(),
@@ -121,11 +127,17 @@ impl DirectCoupling {
         let integral = self.settings.integral;
         let with_shell = integral.surface_offset > 0.0;
         let quadratures = &self.quadratures;
+        let offsets = self.surface_offsets();
         let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
             .spheres
             .par_iter()
-            .map(|s| {
+            .zip(offsets.par_iter())
+            .map(|(s, &offset)| {
                 let q = &quadratures[&s.radius.to_bits()];
+                let integral = StressIntegral {
+                    surface_offset: offset,
+                    ..integral
+                };
                 let load = stress_integral_force(&view, s, rho, body, &integral, q);
                 let shell = if with_shell {
                     shell_momentum(&view, s, &integral, q)
@@ -138,9 +150,9 @@ impl DirectCoupling {
         self.loads.clear();
         for (k, (mut load, shell)) in results.into_iter().enumerate() {
             let id = self.ids[k];
-            if let Some((t0, old)) = self.previous_shell.get(&id) {
+            if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
-                if span > 0.0 {
+                if span > 0.0 && *offset == offsets[k] {
                     for i in 0..3 {
                         load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
                         load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
@@ -148,11 +160,55 @@ impl DirectCoupling {
                 }
             }
             if with_shell {
-                self.previous_shell.insert(id, (time, shell));
+                self.previous_shell.insert(id, (time, offsets[k], shell));
             }
             self.loads.push(load);
         }
         &self.loads
+    }
+
+    /// The integration surface offset (cells) per sphere: the setting, reduced where a
+    /// neighbour (or the sphere's own periodic image) comes closer than `offset + 1` cells,
+    /// so that the surface encloses neither the neighbour nor its forcing layer:
+    /// `min(offset, max(1, gap/h − 1))`. Below a gap of two cells the integral sees the
+    /// neighbour's forcing (the lubrication range, handled by the particle model).
+    pub fn surface_offsets(&self) -> Vec<f64> {
+        let h = self.h;
+        let nominal = self.settings.integral.surface_offset;
+        let spheres = &self.spheres;
+        let gap_of = |i: usize| {
+            let a = &spheres[i];
+            let mut gap = f64::INFINITY;
+            for d in 0..3 {
+                if self.periodic[d] {
+                    gap = gap.min(self.length[d] - 2.0 * a.radius);
+                }
+            }
+            for (j, b) in spheres.iter().enumerate() {
+                if j == i {
+                    continue;
+                }
+                let mut dist2 = 0.0;
+                for d in 0..3 {
+                    let mut r = a.centre[d] - b.centre[d];
+                    if self.periodic[d] {
+                        r -= self.length[d] * (r / self.length[d]).round();
+                    }
+                    dist2 += r * r;
+                }
+                gap = gap.min(dist2.sqrt() - a.radius - b.radius);
+            }
+            gap
+        };
+        (0..spheres.len())
+            .into_par_iter()
+            .map(|i| {
+                if nominal == 0.0 {
+                    return 0.0;
+                }
+                nominal.min((gap_of(i) / h - 1.0).max(1.0))
+            })
+            .collect()
     }
 
     /// The loads of the last [`Self::compute_loads`].

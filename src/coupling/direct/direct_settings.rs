@@ -11,7 +11,8 @@ use crate::case::{CaseError, Coupling};
 /// model direct;
 /// direct
 /// {
-///     surfaceOffset   2;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere
+///     surfaceOffset   3;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere;
+///                             // must stay clear of the neighbours (below the gap minus 2)
 ///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
 ///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h/2
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)
@@ -78,5 +79,41 @@ impl DirectSettings {
         }
         settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
         Ok(settings)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    fn settings(text: &str) -> Result<DirectSettings, CaseError> {
+        let dict = parse_dict(text, "constant/couplingProperties").unwrap();
+        DirectSettings::from_coupling(&Coupling::new(Some(dict), true)?)
+    }
+
+    #[test]
+    fn reads_the_direct_dictionary_and_rejects_unknown_keywords() {
+        let s = settings("model direct;").unwrap();
+        assert_eq!(s, DirectSettings::default());
+        assert_eq!(s.integral.surface_offset, 3.0);
+        let s = settings(
+            "model direct; direct { surfaceOffset 2; interpolation linear; quadrangles 600; \
+             fixedParticles yes; }",
+        )
+        .unwrap();
+        assert_eq!(s.integral.surface_offset, 2.0);
+        assert_eq!(s.integral.interpolation, Interpolation::Linear);
+        assert_eq!(s.integral.quadrangles, Some(600));
+        assert!(s.fixed_particles);
+        let e = settings("model direct; direct { surfaceOfset 2; }").unwrap_err();
+        assert!(
+            e.to_string().contains("unknown keyword 'surfaceOfset'"),
+            "{e}"
+        );
+        let e = settings("model direct; direct { surfaceOffset -1; }").unwrap_err();
+        assert!(e.to_string().contains("between 0 and 8"), "{e}");
+        let e = settings("model direct; direct { interpolation quintic; }").unwrap_err();
+        assert!(e.to_string().contains("quintic"), "{e}");
     }
 }

@@ -33,9 +33,11 @@
 //! hook, on each stage's predicted velocity, before the projection. The projection then
 //! subtracts `τ∇p`; the hook pre-compensates with the pressure of the previous projection
 //! (`u_f* = target + τ ∂p`), so that once the flow is steady the forced faces hold their
-//! targets exactly and the steady state does not depend on `Δt` (with the explicit schemes;
-//! with `RK3CN` the implicit viscous solve spreads the forcing and the steady state carries
-//! an error growing with `ν Δt / h²`: use `RK3` for steady flows, or small steps).
+//! targets exactly and the steady state does not depend on `Δt` (the explicit schemes).
+//! `RK3CN`'s incremental projection needs no compensation (its increment vanishes at steady
+//! state), but its implicit viscous solve spreads the forcing before the hook resets it, so
+//! its steady state carries an error growing with `ν Δt / h²` (measured in
+//! `docs/direct_model.md`): use `RK3` for steady flows.
 
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
@@ -550,7 +552,7 @@ impl ImmersedBoundary {
     /// Imposes the rigid motion on a stage's predicted velocity (padded), so that after the
     /// coming projection `u ← u − τ∇p` the forced faces hold their targets (exactly when the
     /// pressure `p` the hook sees is the one the projection subtracts; see the module docs).
-    /// `tau = 0` imposes the targets as they are. With a `mass_source`, every
+    /// `tau = 0` or an empty `pressure` imposes the targets as they are. With a `mass_source`, every
     /// [`ClosedCell`] gets the divergence the imposed faces give it (less their mean, so that
     /// the sources sum to zero), the others zero.
     pub fn impose(
@@ -564,7 +566,7 @@ impl ImmersedBoundary {
             let u = &mut velocity[c];
             let scale = tau / self.grid.h[c];
             let correction = |cells: [usize; 2]| {
-                if tau == 0.0 {
+                if tau == 0.0 || pressure.is_empty() {
                     0.0
                 } else {
                     scale * (pressure[cells[1]] - pressure[cells[0]])

@@ -45,15 +45,19 @@ pub struct StressIntegral {
     pub interpolation: Interpolation,
     /// Quadrangles on the integration sphere; `None`: edges of about `h/2`.
     pub quadrangles: Option<usize>,
+    /// Include the momentum flux `−ρ u ((u − v_p)·n)` through the surface (Navier–Stokes;
+    /// off for a Stokes flow, which has no inertia).
+    pub convective_flux: bool,
 }
 
 impl Default for StressIntegral {
-    /// The measured best (docs/direct_model.md): two cells out, tricubic, edges `h/2`.
+    /// The measured best (docs/direct_model.md): three cells out, tricubic, edges `h/2`.
     fn default() -> Self {
         StressIntegral {
-            surface_offset: 2.0,
+            surface_offset: 3.0,
             interpolation: Interpolation::Cubic,
             quadrangles: None,
+            convective_flux: true,
         }
     }
 }
