@@ -253,8 +253,8 @@ fn monitor(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
 /// One sphere (r/h = 8, ρ_p/ρ_f = 2, Re = 0.004) settling in a periodic box of 36 cells
 /// (φ = 0.046): its terminal velocity in the frame of zero volume flux over the Stokes
 /// velocity is `1/K` of Sangani & Acrivos (paper eq. 17) for the simple cubic array, 0.4131.
-/// Measured: 0.4120 after 5 ms (the tutorial's end), 0.4110 after the 3 ms run here (the
-/// flow still develops by 0.2 %). Bound: 3 %; the velocity must also have settled (the last
+/// Measured: 0.4120 after 5 ms (the tutorial's end), 0.4108 after the 3 ms run here (ratio
+/// 0.9944; the flow still develops by 0.2 %); the drive's momentum correction 1e-4. Bound: 3 %; the velocity must also have settled (the last
 /// two samples of the monitor 0.5 ms apart within 0.5 %).
 #[test]
 fn settling_sphere_matches_the_periodic_array_correction() {
@@ -310,7 +310,8 @@ fn settling_sphere_matches_the_periodic_array_correction() {
 /// correction) keeps the total momentum of fluid and particles at zero, within 1 % of
 /// `Σ m|v|` at every step once the correction has settled (after 5 ms, 30 steps; during the
 /// start-up it reaches 16 %, measured), while the particles fall and the fluid streams up. The correction this coarse, dense case needs measures the stress
-/// integral's momentum defect there: 0.198 of the analytic drive (bound 0.3).
+/// integral's momentum defect there: 0.058 of the analytic drive (bound 0.3; 0.198 with the
+/// earlier two-cell integration surface that overlapped the neighbours).
 #[test]
 fn settling_suspension_keeps_zero_momentum() {
     let s = Scratch::new("suspension-momentum");
@@ -447,8 +448,8 @@ fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64,
 /// end of the expected 4.6–5.1 less the scatter of three short averages (n ≥ 4): a periodic
 /// cell of few particles only adds hindrance (Hasimoto's `1.76 (φ/N)^{1/3}` lattice term,
 /// 0.32 of the Stokes velocity at φ = 0.05 with N = 8), and so does a coarse grid with gaps
-/// of a few cells. Measured: n = 9.2, V_0 = 0.83 V_Stokes (v_m/V_Stokes 0.497, 0.185,
-/// 0.021): these small cells behave nearly as lattices; the sweep with 27 particles per
+/// of a few cells. Measured: n = 7.8, V_0 = 0.77 V_Stokes (v_m/V_Stokes 0.502, 0.209,
+/// 0.034): these small cells behave nearly as lattices; the sweep with 27 particles per
 /// cell is in the README.
 #[test]
 fn sedimentation_follows_richardson_zaki_coarsely() {

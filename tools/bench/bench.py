@@ -239,7 +239,8 @@ def main():
                     help="physical time of tutorials/benchmark (0.1 s in the paper)")
     ap.add_argument("--direct-scaling", action="store_true",
                     help="also r/h = 2.5, 3.33, 5 and 125, 250, 500 particles")
-    ap.add_argument("--direct-scaling-end", type=float, default=0.002)
+    ap.add_argument("--direct-scaling-end", type=float, default=3e-5,
+                    help="physical time of each scaling run (r/h = 5: about 30 steps)")
     a = ap.parse_args()
 
     binary = fsim_binary()
