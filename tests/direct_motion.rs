@@ -254,8 +254,9 @@ fn monitor(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
 /// (φ = 0.046): its terminal velocity in the frame of zero volume flux over the Stokes
 /// velocity is `1/K` of Sangani & Acrivos (paper eq. 17) for the simple cubic array, 0.4131.
 /// Measured: 0.4120 after 5 ms (the tutorial's end), 0.4108 after the 3 ms run here (ratio
-/// 0.9944; the flow still develops by 0.2 %); the drive's momentum correction 1e-4. Bound: 3 %; the velocity must also have settled (the last
-/// two samples of the monitor 0.5 ms apart within 0.5 %).
+/// 0.9944; the flow still develops by 0.2 %); the drive's momentum correction 1e-4.
+/// Bound: 3 %; the velocity must also have settled (the last two samples of the monitor
+/// 0.5 ms apart within 0.5 %).
 #[test]
 fn settling_sphere_matches_the_periodic_array_correction() {
     let s = Scratch::new("settling-sphere");
