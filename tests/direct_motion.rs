@@ -503,3 +503,24 @@ fn sedimentation_follows_richardson_zaki_coarsely() {
     );
     assert!(n.is_finite() && n >= 4.0, "n = {n}");
 }
+
+/// The three moving-sphere tutorials validate (`-dry-run`): their grid and particle count,
+/// and no error.
+#[test]
+fn tutorials_validate_at_dry_run() {
+    for (name, cells, particles) in [
+        ("settlingSphere", "36x36x36 = 46656 cells", "1 particles"),
+        ("sedimentation", "32x64x32 = 65536 cells", "48 particles"),
+        ("benchmark", "60x180x60 = 648000 cells", "500 particles"),
+    ] {
+        let s = Scratch::new(&format!("dry-{name}"));
+        let case = copy_tutorial(name, &s.0, name);
+        let out = fsim(&case, &["-dry-run"]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {stderr}");
+        assert!(stdout.contains(cells), "{name}: {stdout}");
+        assert!(stdout.contains(particles), "{name}: {stdout}");
+        assert!(!stderr.contains("error"), "{name}: {stderr}");
+    }
+}
