@@ -162,7 +162,7 @@ def run_icofoam(n, steps, scratch):
 
 def run_direct(binary, scratch, threads, end, cells_per_radius=2.5, particles=500):
     """tutorials/benchmark (or a variant at another r/h or particle count) for `end` s."""
-    case = os.path.join(scratch, f"direct_{cells_per_radius:g}_{particles}_{threads}")
+    case = os.path.join(scratch, f"direct_{cells_per_radius:g}_{particles}_{threads}_{end:g}")
     shutil.rmtree(case, ignore_errors=True)
     if cells_per_radius == 2.5 and particles == 500:
         src = os.path.join(ROOT, "tutorials", "benchmark")
@@ -201,15 +201,15 @@ def direct_suite(binary, scratch, a):
         for n_p in (125, 250):
             rows.append(run_direct(binary, scratch, t, a.direct_scaling_end, particles=n_p))
     print("\ntutorials/benchmark (paper section 3.3), direct model; noisy shared machine")
-    print(f"{'case':28} {'thr':>3} {'end s':>7} {'steps':>6} {'cells':>9} {'Mcell-steps/s':>13} "
+    print(f"{'case':28} {'thr':>3} {'end s':>8} {'steps':>6} {'cells':>9} {'Mcell-steps/s':>13} "
           f"{'loop s':>8} {'wall s':>8} {'peak MB':>8} {'fluid':>6} {'coupl':>6} {'part':>6}")
     for r in rows:
         rate = r["cells"] * r["steps"] / max(r["loop"], 1e-9)
         share = {k: 100 * r[k] / max(r["loop"], 1e-9) for k in ("fluid", "coupling", "particle")}
-        print(f"{r['solver']:28} {r['threads']:>3} {r['end']:>7.4f} {r['steps']:>6} {r['cells']:>9} "
+        print(f"{r['solver']:28} {r['threads']:>3} {r['end']:>8.1e} {r['steps']:>6} {r['cells']:>9} "
               f"{rate / 1e6:>13.2f} {r['loop']:>8.2f} {r['wall']:>8.2f} {r['rss'] / 1e6:>8.1f} "
               f"{share['fluid']:>5.1f}% {share['coupling']:>5.1f}% {share['particle']:>5.1f}%")
-        if r["end"] < 0.1 and "r/h=2.5 n_p=500" in r["solver"]:
+        if r["end"] == a.direct_end and a.direct_end < 0.1 and "r/h=2.5 n_p=500" in r["solver"]:
             print(f"{'':28} projected to 0.1 s: about {r['loop'] * 0.1 / r['end']:.0f} s of time loop")
 
 
