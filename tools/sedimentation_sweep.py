@@ -69,7 +69,9 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
     end = run_length * (n * h) ** 2 / nu
     case = os.path.join(scratch, f"phi{phi:g}")
     shutil.rmtree(case, ignore_errors=True)
-    centres = direct_cases.periodic_packing(L, d, count, seed=seed, min_gap=0.5 * h)
+    # random sequential addition jams near phi = 0.38: keep the gaps small when dense
+    centres = direct_cases.periodic_packing(L, d, count, seed=seed,
+                                            min_gap=(0.5 if phi < 0.25 else 0.1) * h)
     direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=nu, rho_p=RHO_P,
                             end_time=end, write_interval=end, centres=centres, max_co=0.5,
                             max_dt=end / 400, restitution=0.5,
