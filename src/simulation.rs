@@ -152,10 +152,14 @@ impl Simulation {
             _ => None,
         };
         let cloud = Cloud::from_case(case)?;
+        let mut direct_shell: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
                 let state = sim.restore(&dir, write_control, control)?;
+                direct_shell = state
+                    .array(DirectCoupling::RESTART_NAME)
+                    .map(|a| a.to_vec());
                 if let Some(cloud) = cloud {
                     sim.particles = Some(restore_particles(cloud, &state, &dir)?);
                 }
@@ -187,7 +191,13 @@ impl Simulation {
                         .to_string(),
                 ));
             }
-            sim.direct = Some(DirectCoupling::new(&mut sim.fluid, settings));
+            let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
+            if let Some(shell) = direct_shell {
+                direct
+                    .restore_shell_state(&shell)
+                    .map_err(FsimError::input)?;
+            }
+            sim.direct = Some(direct);
         }
         Ok(sim)
     }
@@ -378,8 +388,12 @@ impl Simulation {
             .as_ref()
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
+        let shell = self.direct.as_ref().map(|d| d.shell_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
+        if let Some(shell) = &shell {
+            arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
         header
             .write(path, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))

@@ -211,6 +211,46 @@ impl DirectCoupling {
             .collect()
     }
 
+    /// Name of the restart array of [`Self::shell_state`].
+    pub const RESTART_NAME: &'static str = "direct.shell";
+
+    /// The shell momenta the next [`Self::compute_loads`] differences against, for a
+    /// bit-identical restart: per particle (sorted by id) `id, time, offset, linear (3),
+    /// angular (3)`.
+    pub fn shell_state(&self) -> Vec<f64> {
+        let mut ids: Vec<&u64> = self.previous_shell.keys().collect();
+        ids.sort_unstable();
+        let mut out = Vec::with_capacity(9 * ids.len());
+        for id in ids {
+            let (time, offset, m) = &self.previous_shell[id];
+            out.extend_from_slice(&[*id as f64, *time, *offset]);
+            out.extend_from_slice(&m.linear);
+            out.extend_from_slice(&m.angular);
+        }
+        out
+    }
+
+    /// Restores what [`Self::shell_state`] saved.
+    pub fn restore_shell_state(&mut self, data: &[f64]) -> Result<(), String> {
+        if data.len() % 9 != 0 {
+            return Err(format!(
+                "restart array '{}' has {} values, not a multiple of 9",
+                Self::RESTART_NAME,
+                data.len()
+            ));
+        }
+        self.previous_shell.clear();
+        for row in data.chunks_exact(9) {
+            let m = ShellMomentum {
+                linear: [row[3], row[4], row[5]],
+                angular: [row[6], row[7], row[8]],
+            };
+            self.previous_shell
+                .insert(row[0] as u64, (row[1], row[2], m));
+        }
+        Ok(())
+    }
+
     /// The loads of the last [`Self::compute_loads`].
     pub fn loads(&self) -> &[HydrodynamicLoad] {
         &self.loads
