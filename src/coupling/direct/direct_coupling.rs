@@ -232,7 +232,7 @@ impl DirectCoupling {
 
     /// Restores what [`Self::shell_state`] saved.
     pub fn restore_shell_state(&mut self, data: &[f64]) -> Result<(), String> {
-        if data.len() % 9 != 0 {
+        if !data.len().is_multiple_of(9) {
             return Err(format!(
                 "restart array '{}' has {} values, not a multiple of 9",
                 Self::RESTART_NAME,
