@@ -9,7 +9,7 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
-use crate::coupling::direct::{DirectCoupling, DirectSettings};
+use crate::coupling::direct::{periodic_directions, DirectCoupling, DirectSettings};
 use crate::error::FsimError;
 use crate::fluid::{
     BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
@@ -190,6 +190,15 @@ impl Simulation {
                      (constant/kinematicCloudProperties)"
                         .to_string(),
                 ));
+            }
+            if let Some(p) = sim.particles.as_mut() {
+                let periodic = periodic_directions(sim.fluid.boundary_conditions());
+                let notes =
+                    DirectCoupling::check_particles(sim.fluid.grid(), periodic, p.dem.particles())
+                        .map_err(|e| {
+                            FsimError::input(format!("constant/kinematicCloudProperties: {e}"))
+                        })?;
+                p.notes.extend(notes);
             }
             let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
             if let Some(shell) = direct_shell {

@@ -115,3 +115,39 @@ fn direct_run_restarts_bit_for_bit() {
         uninterrupted[uninterrupted.len() - continued.len()..]
     );
 }
+
+/// Spheres the grid cannot resolve, or larger than the periodic box, stop the run before
+/// anything is written (exit 2), naming the particle.
+#[test]
+fn unresolvable_spheres_are_refused() {
+    let scratch = Scratch::new("direct-bad-input");
+    let coarse = copy_tutorial("porousMedia", &scratch.0, "coarse");
+    set_entry(&coarse.join("constant/porousParameters"), "n", "6"); // r/h = 1.73
+    let out = fsim(&coarse, &["-dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("at least 2 cells in radius: particle 1 (id"),
+        "{err}"
+    );
+    assert!(err.contains("r/h = 1.728"), "{err}");
+
+    let large = copy_tutorial("porousMedia", &scratch.0, "large");
+    set_entry(&large.join("constant/porousParameters"), "phi", "0.6"); // d = 1.05 L
+    let out = fsim(&large, &["-dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("does not fit the periodic box"), "{err}");
+    assert!(!large.join("postProcessing").exists());
+
+    // r/h below 4 runs, with a note.
+    let note = copy_tutorial("porousMedia", &scratch.0, "note");
+    set_entry(&note.join("constant/porousParameters"), "n", "12"); // r/h = 3.46
+    let out = fsim(&note, &["-dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("below 4 cells in radius (smallest r/h = 3.46)"),
+        "{err}"
+    );
+}
