@@ -10,8 +10,8 @@ use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
 use crate::coupling::direct::{
-    check_resolution, DirectCoupling, DirectSettings, MotionSettings, ParticleMotion, PeriodicBox,
-    SedimentationReport,
+    check_resolution, periodic_directions, DirectCoupling, DirectSettings, MotionSettings,
+    ParticleMotion, PeriodicBox, SedimentationReport,
 };
 use crate::error::FsimError;
 use crate::fluid::{
@@ -182,10 +182,14 @@ impl Simulation {
             // before the DEM's own checks, so that the message names what the grid lacks
             sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings)?;
         }
+        let mut direct_shell: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
                 let state = sim.restore(&dir, write_control, control)?;
+                direct_shell = state
+                    .array(DirectCoupling::RESTART_NAME)
+                    .map(|a| a.to_vec());
                 if let Some(cloud) = cloud {
                     sim.particles = Some(restore_particles(cloud, &state, &dir)?);
                 }
@@ -217,7 +221,22 @@ impl Simulation {
                         .to_string(),
                 ));
             }
-            sim.direct = Some(DirectCoupling::new(&mut sim.fluid, settings));
+            if let Some(p) = sim.particles.as_mut() {
+                let periodic = periodic_directions(sim.fluid.boundary_conditions());
+                let notes =
+                    DirectCoupling::check_particles(sim.fluid.grid(), periodic, p.dem.particles())
+                        .map_err(|e| {
+                            FsimError::input(format!("constant/kinematicCloudProperties: {e}"))
+                        })?;
+                p.notes.extend(notes);
+            }
+            let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
+            if let Some(shell) = direct_shell {
+                direct
+                    .restore_shell_state(&shell)
+                    .map_err(FsimError::input)?;
+            }
+            sim.direct = Some(direct);
             let motion_settings =
                 MotionSettings::from_coupling(&case.coupling).map_err(FsimError::from)?;
             let dem = &sim.particles.as_ref().expect("checked above").dem;
@@ -485,8 +504,12 @@ impl Simulation {
             .as_ref()
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
+        let shell = self.direct.as_ref().map(|d| d.shell_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
+        if let Some(shell) = &shell {
+            arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
         header
             .write(path, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))

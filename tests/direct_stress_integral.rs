@@ -75,7 +75,7 @@ fn order(errors: &[f64]) -> Vec<f64> {
 }
 
 #[test]
-fn stokes_drag_is_exact_to_one_part_in_ten_thousand_three_cells_out() {
+fn stokes_drag_converges_at_second_order_three_cells_out() {
     let resolutions = [4.0, 8.0, 16.0];
     let mut table = Vec::new();
     for offset in [0.0, 1.0, 2.0, 3.0] {
@@ -110,18 +110,12 @@ fn stokes_drag_is_exact_to_one_part_in_ten_thousand_three_cells_out() {
         .iter()
         .find(|(o, i, _)| *o == default.surface_offset && *i == default.interpolation)
         .unwrap();
-    // Claimed: the default surface (three cells out, tricubic) is exact to 1e-4 from
-    // r/h = 4 on (measured 1e-5): interpolation O(h⁴) and quadrature O(h²) are then below
-    // the rounding of the field; closer surfaces see the sphere's interior through the
-    // stencil (the floor of the rows above).
+    // Claimed: the default surface (three cells out, tricubic, quadrangle edges ≈ h) is
+    // within 1e-4 from r/h = 4 on and converges at second order (the quadrature's; the
+    // tricubic interpolation is O(h⁴)); closer surfaces see the sphere's interior through the
+    // stencil (the floors of the rows above).
     assert!(errors.iter().all(|&e| e < 1e-4), "{errors:?}");
-    // The linear interpolation two cells out has converged by r/h = 16 to 1e-4 too.
-    let (_, _, linear) = table
-        .iter()
-        .find(|(o, i, _)| *o == 2.0 && *i == Interpolation::Linear)
-        .unwrap();
-    assert!(
-        linear[2] < 1e-4 && linear[2] < linear[0] / 4.0,
-        "{linear:?}"
-    );
+    for o in order(errors) {
+        assert!(o >= 1.8, "order {o} ({errors:?})");
+    }
 }

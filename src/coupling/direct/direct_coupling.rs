@@ -13,6 +13,7 @@ use super::stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };
 use crate::fluid::{FluidSolver, PredictedVelocity};
+use crate::grid::Grid;
 use crate::particles::ParticleState;
 
 /// Resolved coupling (paper §2.1) for one run. Each fluid step:
@@ -59,6 +60,57 @@ impl DirectCoupling {
             previous_shell: HashMap::new(),
             loads: Vec::new(),
         }
+    }
+
+    /// Checks a case before the run: every sphere at least two cells in radius, none as
+    /// large as a periodic box length (it would overlap its own image). Returns notes on
+    /// what runs but deserves a word (coarse spheres, r/h < 4: drag errors of 2 % and more,
+    /// docs/direct_model.md).
+    pub fn check_particles(
+        grid: &Grid,
+        periodic: [bool; 3],
+        p: &ParticleState,
+    ) -> Result<Vec<String>, String> {
+        let h = grid.h.iter().cloned().fold(0.0, f64::max);
+        let length = grid.length();
+        let mut coarse = 0;
+        let mut smallest = f64::INFINITY;
+        for i in 0..p.len() {
+            let r = 0.5 * p.diameter[i];
+            let resolution = r / h;
+            smallest = smallest.min(resolution);
+            if resolution < 2.0 {
+                return Err(format!(
+                    "model direct needs spheres of at least 2 cells in radius: particle {} \
+                     (id {}) has r/h = {resolution:.3} (h = {h:e} m); refine the grid",
+                    i + 1,
+                    p.id[i]
+                ));
+            }
+            if resolution < 4.0 {
+                coarse += 1;
+            }
+            for d in 0..3 {
+                if periodic[d] && 2.0 * r >= length[d] {
+                    return Err(format!(
+                        "particle {} (id {}) of diameter {:e} m does not fit the periodic box \
+                         ({:e} m along axis {d})",
+                        i + 1,
+                        p.id[i],
+                        2.0 * r,
+                        length[d]
+                    ));
+                }
+            }
+        }
+        let mut notes = Vec::new();
+        if coarse > 0 {
+            notes.push(format!(
+                "model direct: {coarse} particle(s) below 4 cells in radius (smallest \
+                 r/h = {smallest:.2}); expect drag errors of 2 % and more"
+            ));
+        }
+        Ok(notes)
     }
 
     pub fn settings(&self) -> &DirectSettings {
@@ -209,6 +261,46 @@ impl DirectCoupling {
                 nominal.min((gap_of(i) / h - 1.0).max(1.0))
             })
             .collect()
+    }
+
+    /// Name of the restart array of [`Self::shell_state`].
+    pub const RESTART_NAME: &'static str = "direct.shell";
+
+    /// The shell momenta the next [`Self::compute_loads`] differences against, for a
+    /// bit-identical restart: per particle (sorted by id) `id, time, offset, linear (3),
+    /// angular (3)`.
+    pub fn shell_state(&self) -> Vec<f64> {
+        let mut ids: Vec<&u64> = self.previous_shell.keys().collect();
+        ids.sort_unstable();
+        let mut out = Vec::with_capacity(9 * ids.len());
+        for id in ids {
+            let (time, offset, m) = &self.previous_shell[id];
+            out.extend_from_slice(&[*id as f64, *time, *offset]);
+            out.extend_from_slice(&m.linear);
+            out.extend_from_slice(&m.angular);
+        }
+        out
+    }
+
+    /// Restores what [`Self::shell_state`] saved.
+    pub fn restore_shell_state(&mut self, data: &[f64]) -> Result<(), String> {
+        if !data.len().is_multiple_of(9) {
+            return Err(format!(
+                "restart array '{}' has {} values, not a multiple of 9",
+                Self::RESTART_NAME,
+                data.len()
+            ));
+        }
+        self.previous_shell.clear();
+        for row in data.chunks_exact(9) {
+            let m = ShellMomentum {
+                linear: [row[3], row[4], row[5]],
+                angular: [row[6], row[7], row[8]],
+            };
+            self.previous_shell
+                .insert(row[0] as u64, (row[1], row[2], m));
+        }
+        Ok(())
     }
 
     /// The loads of the last [`Self::compute_loads`].

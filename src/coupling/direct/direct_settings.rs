@@ -14,7 +14,7 @@ use crate::case::{CaseError, Coupling};
 ///     surfaceOffset   3;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere;
 ///                             // must stay clear of the neighbours (below the gap minus 2)
 ///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
-///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h/2
+///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)
 /// }
 /// ```
