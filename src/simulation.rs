@@ -183,12 +183,16 @@ impl Simulation {
             sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings)?;
         }
         let mut direct_shell: Option<Vec<f64>> = None;
+        let mut motion_state: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
                 let state = sim.restore(&dir, write_control, control)?;
                 direct_shell = state
                     .array(DirectCoupling::RESTART_NAME)
+                    .map(|a| a.to_vec());
+                motion_state = state
+                    .array(ParticleMotion::RESTART_NAME)
                     .map(|a| a.to_vec());
                 if let Some(cloud) = cloud {
                     sim.particles = Some(restore_particles(cloud, &state, &dir)?);
@@ -249,6 +253,10 @@ impl Simulation {
                 case.transport.nu,
             )
             .map_err(|e| FsimError::input(format!("constant/couplingProperties: {e}")))?;
+            let mut motion = motion;
+            if let Some(state) = motion_state {
+                motion.restore_state(&state).map_err(FsimError::input)?;
+            }
             // periodic sedimentation: the mean pressure gradient that carries the mixture
             sim.fluid.set_body_force(motion.fluid_body_force());
             sim.motion = Some(motion);
@@ -505,10 +513,14 @@ impl Simulation {
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
         let shell = self.direct.as_ref().map(|d| d.shell_state());
+        let motion = self.motion.as_ref().map(|m| m.restart_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
         if let Some(shell) = &shell {
             arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
+        if let Some(motion) = &motion {
+            arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));
         }
         header
             .write(path, &arrays)

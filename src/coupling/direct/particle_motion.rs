@@ -372,6 +372,55 @@ impl ParticleMotion {
         self.previous_dt = dt;
     }
 
+    /// Name of the restart array of [`Self::restart_state`].
+    pub const RESTART_NAME: &'static str = "direct.motion";
+
+    /// What a bit-identical continuation needs: the drive's correction, the last mixture
+    /// momentum, the last step and each particle's velocities at its start (by id, sorted):
+    /// `[b_c(3), M(3), has M, Δt, (id, v(3), ω(3))…]`.
+    pub fn restart_state(&self) -> Vec<f64> {
+        let mut out = Vec::with_capacity(8 + 7 * self.previous.len());
+        out.extend_from_slice(&self.correction);
+        out.extend_from_slice(&self.last_momentum.unwrap_or([0.0; 3]));
+        out.push(if self.last_momentum.is_some() {
+            1.0
+        } else {
+            0.0
+        });
+        out.push(self.previous_dt);
+        let mut ids: Vec<&u64> = self.previous.keys().collect();
+        ids.sort_unstable();
+        for id in ids {
+            let (v, w) = self.previous[id];
+            out.push(*id as f64);
+            out.extend_from_slice(&v);
+            out.extend_from_slice(&w);
+        }
+        out
+    }
+
+    /// Restores what [`Self::restart_state`] saved.
+    pub fn restore_state(&mut self, data: &[f64]) -> Result<(), String> {
+        if data.len() < 8 || !(data.len() - 8).is_multiple_of(7) {
+            return Err(format!(
+                "restart array '{}' has {} values, not 8 + 7 per particle",
+                Self::RESTART_NAME,
+                data.len()
+            ));
+        }
+        self.correction = [data[0], data[1], data[2]];
+        self.last_momentum = (data[6] != 0.0).then_some([data[3], data[4], data[5]]);
+        self.previous_dt = data[7];
+        self.previous.clear();
+        for row in data[8..].chunks_exact(7) {
+            self.previous.insert(
+                row[0] as u64,
+                ([row[1], row[2], row[3]], [row[4], row[5], row[6]]),
+            );
+        }
+        Ok(())
+    }
+
     /// The lubrication of the last [`Self::set_loads`].
     pub fn last_lubrication(&self) -> LubricationReport {
         self.last_lubrication
@@ -493,6 +542,31 @@ mod tests {
             (ratio - 1.0).abs() < 1e-3,
             "terminal velocity ratio {ratio}"
         );
+    }
+
+    #[test]
+    fn restart_state_round_trips() {
+        let grid = Grid::new([10; 3], [0.1; 3], [0.0; 3]);
+        let bc = BoundaryConditions::periodic();
+        let mut dem = one_particle(2500.0, 1000.0);
+        let mut motion =
+            ParticleMotion::new(MotionSettings::default(), &grid, &bc, &dem, 1000.0, 1e-3).unwrap();
+        for _ in 0..3 {
+            motion.set_loads(
+                &mut dem,
+                std::iter::once(([0.0, 1e-3, 0.0], [0.0; 3])),
+                1e-3,
+            );
+            dem.advance(1e-3);
+            motion.hold_zero_momentum([0.0, 1e-9, 0.0], 1e-3);
+        }
+        let saved = motion.restart_state();
+        let mut other =
+            ParticleMotion::new(MotionSettings::default(), &grid, &bc, &dem, 1000.0, 1e-3).unwrap();
+        other.restore_state(&saved).unwrap();
+        assert_eq!(other.restart_state(), saved);
+        assert_eq!(other.fluid_body_force(), motion.fluid_body_force());
+        assert!(other.restore_state(&saved[..9]).is_err());
     }
 
     #[test]
