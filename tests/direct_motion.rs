@@ -253,7 +253,7 @@ fn monitor(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
 /// One sphere (r/h = 8, ρ_p/ρ_f = 2, Re = 0.004) settling in a periodic box of 36 cells
 /// (φ = 0.046): its terminal velocity in the frame of zero volume flux over the Stokes
 /// velocity is `1/K` of Sangani & Acrivos (paper eq. 17) for the simple cubic array, 0.4131.
-/// Measured: 0.4120 after 5 ms (the tutorial's end), 0.4108 after the 3 ms run here (ratio
+/// Measured: 0.4118 after 5 ms (the tutorial's end), 0.4108 after the 3 ms run here (ratio
 /// 0.9944; the flow still develops by 0.2 %); the drive's momentum correction 1e-4.
 /// Bound: 3 %; the velocity must also have settled (the last two samples of the monitor
 /// 0.5 ms apart within 0.5 %).

@@ -341,7 +341,7 @@ LINEAR = """
 direct
 {
     // trilinear sampling for the stress integral: 4 times cheaper than tricubic; on the
-    // settling sphere at r/h = 8 the terminal velocity differs by 0.06 % (tests/direct_motion.rs)
+    // settling sphere at r/h = 8 the terminal velocity differs by 0.01 % (README)
     interpolation   linear;
 }
 """
