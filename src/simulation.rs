@@ -179,8 +179,7 @@ impl Simulation {
         };
         let cloud = Cloud::from_case(case)?;
         if let (Some(settings), Some(cloud)) = (&direct_settings, &cloud) {
-            // before the DEM's own checks, so that the message names what the grid lacks
-            sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings)?;
+            sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings);
         }
         let mut direct_shell: Option<Vec<f64>> = None;
         let mut motion_state: Option<Vec<f64>> = None;
@@ -666,13 +665,13 @@ fn pressure_bc_name(bc: &PressureBc) -> &'static str {
     }
 }
 
-/// The direct model's resolution checks on the case's particles (before the DEM is built):
-/// errors stop the run (exit 2), warnings are returned for `-dry-run` and the log.
+/// The direct model's resolution warnings on the case's particles (gaps narrower than 2h,
+/// fixed spheres with nothing driving the flow), for `-dry-run` and the log.
 fn check_direct_resolution(
     fluid: &FluidSolver,
     cloud: &Cloud,
     settings: &DirectSettings,
-) -> Result<Vec<String>, FsimError> {
+) -> Vec<String> {
     let grid = fluid.grid();
     let bc = fluid.boundary_conditions();
     let length = grid.length();
@@ -702,10 +701,7 @@ fn check_direct_resolution(
         // overlaps are the DEM loader's to report, with the positions file's line
         f64::INFINITY,
     );
-    if let Some(e) = report.errors.first() {
-        return Err(FsimError::input(format!(
-            "constant/kinematicCloudProperties (model direct): {e}"
-        )));
-    }
-    Ok(report.warnings)
+    // Its errors (r/h below 2, a sphere wider than the box) are reported, with the particle
+    // named, by `DirectCoupling::check_particles` and the DEM loader; here the warnings.
+    report.warnings
 }

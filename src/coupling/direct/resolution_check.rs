@@ -1,5 +1,10 @@
 //! What the direct model can resolve, checked before the run (and by `-dry-run`).
 //!
+//! `fsimFoam` takes the warnings from here; the errors it reports through
+//! `DirectCoupling::check_particles` (r/h, size) and the DEM loader (overlaps, with the
+//! positions file's line), which run on the same particles. The errors below serve callers of
+//! the library.
+//!
 //! - Errors (the run cannot be meaningful): a sphere with fewer than two cells per radius
 //!   (`r/h < 2`: the staircase of cut cells is coarser than the sphere and the stress
 //!   integral has no resolved shell to sit on; the drag-law model is the tool there), a
