@@ -40,6 +40,8 @@ pub struct DirectCoupling {
     /// surface offset it was taken with (a changed surface has no rate).
     previous_shell: HashMap<u64, (f64, f64, ShellMomentum)>,
     loads: Vec<HydrodynamicLoad>,
+    /// Whether the forced faces have been built once.
+    built: bool,
 }
 
 impl DirectCoupling {
@@ -59,6 +61,7 @@ impl DirectCoupling {
             quadratures: HashMap::new(),
             previous_shell: HashMap::new(),
             loads: Vec::new(),
+            built: false,
         }
     }
 
@@ -129,8 +132,14 @@ impl DirectCoupling {
 
     /// Sets the spheres (ids name them across calls, for the shell's rate of change) and
     /// rebuilds the forced faces.
+    ///
+    /// Spheres identical to the current ones (fixed arrays) keep their forced faces.
     pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
         assert_eq!(spheres.len(), ids.len(), "one id per sphere");
+        if self.built && self.spheres == spheres && self.ids == ids {
+            return;
+        }
+        self.built = true;
         self.spheres.clear();
         self.spheres.extend_from_slice(spheres);
         self.ids.clear();

@@ -171,32 +171,42 @@ impl<'a> FieldView<'a> {
             None => self.pressure,
         };
         let l = self.layout;
-        let index = |d: usize, m: isize| -> usize {
-            let n = g.n[d] as isize;
-            let m = if self.periodic[d] { m.rem_euclid(n) } else { m };
-            match component {
-                Some(_) => (m + 1) as usize,
-                None => m as usize,
-            }
-        };
         let (stride1, stride2) = match component {
             Some(_) => (l.stride[1], l.stride[2]),
             None => (g.n[0], g.n[0] * g.n[1]),
         };
+        let stride = [1, stride1, stride2];
+        // Offsets of the stencil's nodes along each axis, periodic wraps resolved once.
+        let mut offsets = [[0usize; 4]; 3];
+        for d in 0..3 {
+            let n = g.n[d] as isize;
+            for k in 0..nodes {
+                let m = first[d] + k as isize;
+                let m = if self.periodic[d] { m.rem_euclid(n) } else { m };
+                let slot = match component {
+                    Some(_) => (m + 1) as usize,
+                    None => m as usize,
+                };
+                offsets[d][k] = slot * stride[d];
+            }
+        }
         let mut value = 0.0;
         let mut grad = [0.0; 3];
         for b in 0..nodes {
-            let kz = index(2, first[2] + b as isize) * stride2;
+            let kz = offsets[2][b];
             for a in 0..nodes {
-                let jy = index(1, first[1] + a as isize) * stride1 + kz;
+                let jy = offsets[1][a] + kz;
                 let (wyz, dy, dz) = (w[1][a] * w[2][b], dw[1][a] * w[2][b], w[1][a] * dw[2][b]);
+                let (mut v, mut gx) = (0.0, 0.0);
                 for i in 0..nodes {
-                    let f = data[index(0, first[0] + i as isize) + jy];
-                    value += w[0][i] * wyz * f;
-                    grad[0] += dw[0][i] * wyz * f;
-                    grad[1] += w[0][i] * dy * f;
-                    grad[2] += w[0][i] * dz * f;
+                    let f = data[offsets[0][i] + jy];
+                    v += w[0][i] * f;
+                    gx += dw[0][i] * f;
                 }
+                value += wyz * v;
+                grad[0] += wyz * gx;
+                grad[1] += dy * v;
+                grad[2] += dz * v;
             }
         }
         for d in 0..3 {

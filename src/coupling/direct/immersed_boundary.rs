@@ -107,6 +107,10 @@ pub struct ImmersedBoundary {
     /// is cleared at the next imposition).
     closed: Vec<ClosedCell>,
     previous_closed: Vec<usize>,
+    /// Scratch of the closed-cell search: a mark per cell (0 outside the search) and the
+    /// cells next to forced faces.
+    cell_marks: Vec<u8>,
+    near_cells: Vec<usize>,
     /// Scratch: candidate forcing faces `(unwrapped lattice index, slot)`.
     candidates: Vec<([isize; 3], usize)>,
     /// Quadratic (two fluid faces) rather than linear forcing stencil.
@@ -131,6 +135,8 @@ impl ImmersedBoundary {
             forcing: Default::default(),
             closed: Vec::new(),
             previous_closed: Vec::new(),
+            cell_marks: vec![0; grid.cell_count()],
+            near_cells: Vec::new(),
             candidates: Vec::new(),
             quadratic: true,
         }
@@ -272,90 +278,84 @@ impl ImmersedBoundary {
         self.previous_closed
             .extend(self.closed.iter().map(|c| c.cell));
         self.closed.clear();
-        let mut cells: Vec<usize> = Vec::new();
+        // The cells next to forced faces ("near" cells).
+        let mut near = std::mem::take(&mut self.near_cells);
+        near.clear();
         for c in 0..3 {
             for f in &self.interior[c] {
-                cells.extend_from_slice(&f.cells);
+                near.extend_from_slice(&f.cells);
             }
             for f in &self.forcing[c] {
-                cells.extend_from_slice(&f.cells);
+                near.extend_from_slice(&f.cells);
             }
         }
-        cells.sort_unstable();
-        cells.dedup();
-        // Open cells (a free face) next to the spheres may still form a pocket enclosed by
-        // forced faces: its net inflow is set by the forcing too, so its cells are closed.
-        let mut pocket_cells: Vec<usize> = Vec::new();
-        let mut visited: Vec<usize> = Vec::new();
+        near.sort_unstable();
+        near.dedup();
+        const NEAR: u8 = 1;
+        const REACHED: u8 = 2;
+        const CLOSED: u8 = 3;
+        for &cell in &near {
+            self.cell_marks[cell] = NEAR;
+        }
+        // Open near cells are reached from the open fluid through free faces (a search from
+        // every near cell with a free face onto a cell that is not near); the open near
+        // cells left unreached form pockets enclosed by forced faces: closed too.
         let mut queue: Vec<usize> = Vec::new();
-        for &cell in &cells {
+        for &cell in &near {
+            let Some(faces) = self.cell_faces(cell) else {
+                self.cell_marks[cell] = REACHED;
+                queue.push(cell);
+                continue;
+            };
+            let mut all_forced = true;
+            let mut seed = false;
+            for c in 0..3 {
+                for side in 0..2 {
+                    if self.forced(c, faces[c][side]) {
+                        continue;
+                    }
+                    all_forced = false;
+                    match self.neighbour_cell(cell, c, side) {
+                        Some(next) if self.cell_marks[next] != 0 => {}
+                        _ => seed = true,
+                    }
+                }
+            }
+            if all_forced {
+                self.cell_marks[cell] = CLOSED;
+                self.closed.push(ClosedCell { cell, faces });
+            } else if seed {
+                self.cell_marks[cell] = REACHED;
+                queue.push(cell);
+            }
+        }
+        while let Some(cell) = queue.pop() {
             let Some(faces) = self.cell_faces(cell) else {
                 continue;
             };
-            if faces
-                .iter()
-                .enumerate()
-                .all(|(c, f)| self.forced(c, f[0]) && self.forced(c, f[1]))
-            {
-                self.closed.push(ClosedCell { cell, faces });
-                continue;
-            }
-            if pocket_cells.binary_search(&cell).is_ok() {
-                continue;
-            }
-            // Flood through free faces, at most a few dozen cells, until reaching a cell with
-            // no forced face (the open fluid).
-            visited.clear();
-            queue.clear();
-            queue.push(cell);
-            visited.push(cell);
-            let mut escaped = false;
-            while let Some(current) = queue.pop() {
-                let Some(faces) = self.cell_faces(current) else {
-                    escaped = true;
-                    break;
-                };
-                let touches_forced = faces
-                    .iter()
-                    .enumerate()
-                    .any(|(c, f)| self.forced(c, f[0]) || self.forced(c, f[1]));
-                if !touches_forced || visited.len() > 64 {
-                    escaped = true;
-                    break;
-                }
-                for c in 0..3 {
-                    for side in 0..2 {
-                        if self.forced(c, faces[c][side]) {
-                            continue;
-                        }
-                        let next = self.neighbour_cell(current, c, side);
-                        if let Some(next) = next {
-                            if !visited.contains(&next) {
-                                visited.push(next);
-                                queue.push(next);
-                            }
-                        } else {
-                            escaped = true;
+            for c in 0..3 {
+                for side in 0..2 {
+                    if self.forced(c, faces[c][side]) {
+                        continue;
+                    }
+                    if let Some(next) = self.neighbour_cell(cell, c, side) {
+                        if self.cell_marks[next] == NEAR {
+                            self.cell_marks[next] = REACHED;
+                            queue.push(next);
                         }
                     }
                 }
-                if escaped {
-                    break;
-                }
-            }
-            if !escaped {
-                pocket_cells.extend_from_slice(&visited);
-                pocket_cells.sort_unstable();
-                pocket_cells.dedup();
             }
         }
-        for &cell in &pocket_cells {
-            if let Some(faces) = self.cell_faces(cell) {
-                if !self.closed.iter().any(|c| c.cell == cell) {
+        for &cell in &near {
+            if self.cell_marks[cell] == NEAR {
+                if let Some(faces) = self.cell_faces(cell) {
                     self.closed.push(ClosedCell { cell, faces });
                 }
             }
+            self.cell_marks[cell] = 0;
         }
+        self.near_cells = near;
     }
 
     fn forced(&self, c: usize, slot: usize) -> bool {
@@ -452,12 +452,21 @@ impl ImmersedBoundary {
     fn mark_forcing(&mut self, c: usize, spheres: &[RigidSphere]) {
         let mut candidates = std::mem::take(&mut self.candidates);
         candidates.clear();
+        let h_max = self.grid.h.iter().cloned().fold(0.0, f64::max);
         for s in spheres {
             let b = self.bounds(c, s, 2);
+            // A face with a neighbour inside this sphere lies within one cell of its surface
+            // (faces near other spheres are found from those).
+            let reach = (s.radius + h_max) * (s.radius + h_max);
             for m2 in b[2].0..=b[2].1 {
                 for m1 in b[1].0..=b[1].1 {
                     for m0 in b[0].0..=b[0].1 {
                         let m = [m0, m1, m2];
+                        let x = self.position(c, m);
+                        let rel = [x[0] - s.centre[0], x[1] - s.centre[1], x[2] - s.centre[2]];
+                        if rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] >= reach {
+                            continue;
+                        }
                         let Some(slot) = self.slot(c, m) else {
                             continue;
                         };
