@@ -5,11 +5,13 @@
 //! build the simulation: grid, fluid, initial or restart state
 //! while time remains:
 //!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
-//!     evolve the cloud                        (drag law: forces from the fluid, eq. 10–16;
-//!                                              DEM collision sub-steps; model none: gravity
-//!                                              and buoyancy, no fluid forces)
-//!     evolve the fluid                        (drag law: update ε; momentum predictor,
-//!                                              pressure correction)
+//!     evolve the cloud  ┐ drag law (DPMFoam's order): forces from the fluid as it is
+//!     evolve the fluid  ┘ (eq. 10–16), DEM sub-steps; then ε, momentum predictor,
+//!                         pressure correction with the particles' reaction
+//!     evolve the fluid  ┐ direct model (paper §2.1) and model none: momentum predictor and
+//!     hydrodynamic loads│ projection with no-slip on every sphere where it is, force and
+//!     evolve the cloud  ┘ torque by the stress integral (eq. 4–6), DEM sub-steps (model
+//!                         none: gravity and buoyancy, no fluid forces)
 //!     check the solution                      (a diverged run stops, keeping its last time)
 //!     monitor, log
 //!     write the time directory when due       (whole or not at all)
@@ -68,6 +70,9 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     for note in sim.particles.iter().flat_map(|p| &p.notes) {
         eprintln!("fsimFoam: note: {note}");
     }
+    for warning in &sim.warnings {
+        eprintln!("fsimFoam: warning: {warning}");
+    }
     check_first_step(&mut sim)?;
     if options.dry_run {
         print_plan(case, &mut sim, threads);
@@ -98,10 +103,17 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     while sim.time.running() {
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
-        let cloud = sim.evolve_cloud(dt);
-        let fluid = sim.evolve_fluid(dt)?;
+        let (fluid, cloud) = if sim.drag.is_some() {
+            let cloud = sim.evolve_cloud(dt);
+            (sim.evolve_fluid(dt)?, cloud)
+        } else {
+            let fluid = sim.evolve_fluid(dt)?;
+            sim.hydrodynamic_loads();
+            (fluid, sim.evolve_cloud(dt))
+        };
         let write_due = sim.time.advance(dt);
         let health = sim.check_health()?;
+        sim.update_sedimentation();
         let name = output.time_name(sim.time.time);
         reporter.step(
             &name,

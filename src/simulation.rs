@@ -9,6 +9,10 @@
 use crate::case::{
     Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
 };
+use crate::coupling::direct::{
+    check_resolution, periodic_directions, DirectCoupling, DirectSettings, MotionSettings,
+    ParticleMotion, PeriodicBox, SedimentationReport,
+};
 use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{
@@ -19,6 +23,7 @@ use crate::grid::Grid;
 use crate::output::{ParticleFields, RestartHeader, RestartState, TimeEntry};
 use crate::particles::{Dem, DemSnapshot};
 use crate::time_control::TimeControl;
+use std::time::Instant;
 
 /// How each step's size is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +48,39 @@ pub struct Simulation {
     pub particles: Option<Particles>,
     /// The drag-law model (paper §2.2), when the case runs it with a cloud.
     pub drag: Option<DragLawCoupling>,
+    /// The resolved coupling (`model direct`): forced faces and hydrodynamic loads.
+    pub direct: Option<DirectCoupling>,
+    /// Sum of the last hydrodynamic loads, for the monitor (`model direct`).
+    pub hydrodynamics: Option<HydrodynamicReport>,
+    /// Freely moving spheres (`model direct`): lubrication, virtual mass, settling drive.
+    pub motion: Option<ParticleMotion>,
+    /// What the grid does not resolve well (`model direct`), for `-dry-run` and the log.
+    pub warnings: Vec<String>,
+    /// Wall time of the last step's phases.
+    pub phase_times: PhaseTimes,
+    /// Settling velocity and momentum after the last step (free spheres, `model direct`).
+    pub settling: Option<SedimentationReport>,
+}
+
+/// Wall time of the phases of one step, s: the fluid (predictor, projections, and with
+/// `model direct` the no-slip imposition inside each stage), the coupling (the forced faces of
+/// the moved spheres, the stress integral, lubrication) and the particles (the DEM).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseTimes {
+    pub fluid: f64,
+    pub coupling: f64,
+    pub particles: f64,
+}
+
+/// The hydrodynamic loads of one step, summed over the particles (`model direct`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HydrodynamicReport {
+    /// Total force and torque on all particles, N and N·m.
+    pub force: [f64; 3],
+    pub torque: [f64; 3],
+    /// Mean force per particle along the fluid's bulk flow over `6π μ r U` (paper eq. 19),
+    /// `U` the bulk (superficial) velocity, `r` the mean radius: the porous-media `K`.
+    pub drag_coefficient: f64,
 }
 
 /// The cloud of a run: the DEM engine and what the log says about it.
@@ -75,11 +113,11 @@ impl Simulation {
     pub fn new(case: &Case, restart: Option<&TimeEntry>) -> Result<Self, FsimError> {
         if !matches!(
             case.coupling.model,
-            CouplingModel::None | CouplingModel::DragLaw
+            CouplingModel::None | CouplingModel::Direct | CouplingModel::DragLaw
         ) {
             return Err(FsimError::input(format!(
                 "constant/couplingProperties: model '{}' is not available yet in this fsim \
-                 (model none and dragLaw run)",
+                 (models none, direct and dragLaw run)",
                 case.coupling.model.name()
             )));
         }
@@ -130,12 +168,35 @@ impl Simulation {
             rho: case.transport.rho,
             particles: None,
             drag: None,
+            direct: None,
+            hydrodynamics: None,
+            motion: None,
+            warnings: Vec::new(),
+            phase_times: PhaseTimes::default(),
+            settling: None,
+        };
+        let direct_settings = match case.coupling.model {
+            CouplingModel::Direct => {
+                Some(DirectSettings::from_coupling(&case.coupling).map_err(FsimError::from)?)
+            }
+            _ => None,
         };
         let cloud = Cloud::from_case(case)?;
+        if let (Some(settings), Some(cloud)) = (&direct_settings, &cloud) {
+            sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings);
+        }
+        let mut direct_shell: Option<Vec<f64>> = None;
+        let mut motion_state: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
                 let state = sim.restore(&dir, write_control, control)?;
+                direct_shell = state
+                    .array(DirectCoupling::RESTART_NAME)
+                    .map(|a| a.to_vec());
+                motion_state = state
+                    .array(ParticleMotion::RESTART_NAME)
+                    .map(|a| a.to_vec());
                 if let Some(cloud) = cloud {
                     let cloud_settings = cloud.clone();
                     let particles = restore_particles(cloud, &state, &dir)?;
@@ -150,12 +211,12 @@ impl Simulation {
             None => {
                 sim.set_initial_fields(case);
                 if let Some(cloud) = cloud {
-                    let dem = Dem::new(
-                        cloud.config.clone(),
-                        cloud.domain.clone(),
-                        cloud.particles.clone(),
-                    )
-                    .map_err(|e| cloud.locate(&e))?;
+                    let mut state = cloud.particles.clone();
+                    if direct_settings.as_ref().is_some_and(|s| s.fixed_particles) {
+                        state.fixed.iter_mut().for_each(|f| *f = true);
+                    }
+                    let dem = Dem::new(cloud.config.clone(), cloud.domain.clone(), state)
+                        .map_err(|e| cloud.locate(&e))?;
                     sim.drag = drag_law(case, &cloud, &sim.fluid, &dem)?;
                     sim.particles = Some(Particles {
                         dem,
@@ -169,6 +230,58 @@ impl Simulation {
                     drag.initialise_pressure(&mut sim.fluid, sim.dt);
                 }
             }
+        }
+        if let Some(settings) = direct_settings {
+            if sim.particles.is_none() {
+                return Err(FsimError::input(
+                    "constant/couplingProperties: model direct needs particles \
+                     (constant/kinematicCloudProperties)"
+                        .to_string(),
+                ));
+            }
+            if let Some(p) = sim.particles.as_mut() {
+                let periodic = periodic_directions(sim.fluid.boundary_conditions());
+                let notes =
+                    DirectCoupling::check_particles(sim.fluid.grid(), periodic, p.dem.particles())
+                        .map_err(|e| {
+                            FsimError::input(format!("constant/kinematicCloudProperties: {e}"))
+                        })?;
+                p.notes.extend(notes);
+                if sim.fluid.settings().scheme == TimeScheme::RK3CN {
+                    p.notes.push(
+                        "model direct with timeScheme RK3CN: the no-slip forcing is exact only \
+                         as Δt → 0 (drag 1.3 % low at the RK3 step, 5 % at four times it; \
+                         docs/direct_model.md); RK3 is exact at steady state"
+                            .to_string(),
+                    );
+                }
+            }
+            let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
+            if let Some(shell) = direct_shell {
+                direct
+                    .restore_shell_state(&shell)
+                    .map_err(FsimError::input)?;
+            }
+            sim.direct = Some(direct);
+            let motion_settings =
+                MotionSettings::from_coupling(&case.coupling).map_err(FsimError::from)?;
+            let dem = &sim.particles.as_ref().expect("checked above").dem;
+            let motion = ParticleMotion::new(
+                motion_settings,
+                sim.fluid.grid(),
+                sim.fluid.boundary_conditions(),
+                dem,
+                case.transport.rho,
+                case.transport.nu,
+            )
+            .map_err(|e| FsimError::input(format!("constant/couplingProperties: {e}")))?;
+            let mut motion = motion;
+            if let Some(state) = motion_state {
+                motion.restore_state(&state).map_err(FsimError::input)?;
+            }
+            // periodic sedimentation: the mean pressure gradient that carries the mixture
+            sim.fluid.set_body_force(motion.fluid_body_force());
+            sim.motion = Some(motion);
         }
         Ok(sim)
     }
@@ -266,31 +379,107 @@ impl Simulation {
     }
 
     /// Advances the fluid by `dt`. Alone: momentum predictor, pressure projection, bulk
-    /// driving. Drag-law model: ε from the particles' new positions (a cell packed beyond
-    /// `alphaMax` stops the run), then the volume-averaged momentum predictor with the
-    /// particles' reaction and the variable-coefficient pressure correction.
+    /// driving. `model direct`: the same with no-slip on every particle at its current
+    /// position and velocity in every stage. Drag-law model: ε from the particles' new
+    /// positions (a cell packed beyond `alphaMax` stops the run), then the volume-averaged
+    /// momentum predictor with the particles' reaction and the variable-coefficient pressure
+    /// correction.
     pub fn evolve_fluid(&mut self, dt: f64) -> Result<StepReport, FsimError> {
+        let clock = Instant::now();
         self.dt = dt;
-        let Some(drag) = self.drag.as_mut() else {
-            return Ok(self.fluid.step(dt));
+        self.phase_times.coupling = 0.0;
+        let report = match (&mut self.drag, &mut self.direct, &self.particles) {
+            (Some(drag), _, Some(p)) => {
+                drag.update_fluid_fraction(&p.dem).map_err(|e| {
+                    FsimError::run(format!(
+                        "drag-law model at t = {} s: {e}",
+                        self.time.time + dt
+                    ))
+                })?;
+                drag.step_fluid(&mut self.fluid, dt);
+                StepReport {
+                    dt,
+                    time: self.fluid.time(),
+                    driving_gradient: None,
+                }
+            }
+            (None, Some(direct), Some(p)) => {
+                direct.set_particles(p.dem.particles());
+                self.phase_times.coupling = clock.elapsed().as_secs_f64();
+                self.fluid.step_with(dt, &mut |stage| direct.impose(stage))
+            }
+            _ => self.fluid.step(dt),
         };
-        let dem = &self
-            .particles
-            .as_ref()
-            .expect("the drag-law model has a cloud")
-            .dem;
-        drag.update_fluid_fraction(dem).map_err(|e| {
-            FsimError::run(format!(
-                "drag-law model at t = {} s: {e}",
-                self.time.time + dt
-            ))
-        })?;
-        drag.step_fluid(&mut self.fluid, dt);
-        Ok(StepReport {
-            dt,
-            time: self.fluid.time(),
-            driving_gradient: None,
-        })
+        self.phase_times.fluid = clock.elapsed().as_secs_f64() - self.phase_times.coupling;
+        Ok(report)
+    }
+
+    /// `model direct`: force and torque on every particle from the stress integral over
+    /// its surface (paper eq. 4–6), handed to the DEM as external loads for the coming
+    /// cloud step. Other models: nothing.
+    pub fn hydrodynamic_loads(&mut self) {
+        let (Some(direct), Some(p)) = (&mut self.direct, &mut self.particles) else {
+            return;
+        };
+        let clock = Instant::now();
+        let loads = direct.compute_loads(&self.fluid, self.rho);
+        match self.motion.as_mut() {
+            // plus lubrication and the virtual mass (ParticleMotion)
+            Some(motion) => {
+                motion.set_loads(
+                    &mut p.dem,
+                    loads.iter().map(|l| (l.force, l.torque)),
+                    self.dt,
+                );
+            }
+            None => {
+                let (force, torque) = p.dem.external_loads_mut();
+                for (k, load) in loads.iter().enumerate() {
+                    force[k] = load.force;
+                    torque[k] = load.torque;
+                }
+            }
+        }
+        let mut report = HydrodynamicReport {
+            force: [0.0; 3],
+            torque: [0.0; 3],
+            drag_coefficient: 0.0,
+        };
+        for load in loads.iter() {
+            for i in 0..3 {
+                report.force[i] += load.force[i];
+                report.torque[i] += load.torque[i];
+            }
+        }
+        let spheres = direct.spheres();
+        if let (Some(drive), false) = (self.fluid.mean_velocity_force(), spheres.is_empty()) {
+            let d = drive.direction;
+            let bulk = drive.ubar;
+            let radius = spheres.iter().map(|s| s.radius).sum::<f64>() / spheres.len() as f64;
+            let mu = self.rho * self.fluid.settings().nu;
+            report.drag_coefficient = report.force[d]
+                / spheres.len() as f64
+                / (6.0 * std::f64::consts::PI * mu * radius * bulk);
+        }
+        self.hydrodynamics = Some(report);
+        self.phase_times.coupling += clock.elapsed().as_secs_f64();
+    }
+
+    /// Measures the settling velocity and the mixture's momentum of the free spheres after a
+    /// step into [`Simulation::settling`], and corrects the periodic-settling drive so that
+    /// the mixture's momentum stays zero (`model direct` with free particles).
+    pub fn update_sedimentation(&mut self) {
+        let (Some(motion), Some(p)) = (&mut self.motion, &self.particles) else {
+            return;
+        };
+        if p.dem.particles().fixed.iter().all(|&f| f) {
+            return;
+        }
+        let mean = [0, 1, 2].map(|c| self.fluid.mean_component(c));
+        let report = motion.sedimentation(mean, p.dem.particles());
+        let body = motion.hold_zero_momentum(report.momentum, self.dt);
+        self.fluid.set_body_force(body);
+        self.settling = Some(report);
     }
 
     /// Advances the cloud by the fluid step `dt` in the engine's collision sub-steps; `None`
@@ -298,10 +487,12 @@ impl Simulation {
     /// the fluid as it is (DPMFoam's order: the cloud moves before the fluid).
     pub fn evolve_cloud(&mut self, dt: f64) -> Option<CloudReport> {
         let p = self.particles.as_mut()?;
+        let clock = Instant::now();
         if let Some(drag) = self.drag.as_mut() {
             drag.particle_forces(&self.fluid, &mut p.dem, dt);
         }
         p.substeps = p.dem.advance(dt);
+        self.phase_times.particles = clock.elapsed().as_secs_f64();
         Some(CloudReport {
             count: p.dem.particles().len(),
             kinetic_energy: p.dem.kinetic_energy(),
@@ -341,6 +532,29 @@ impl Simulation {
                 self.time.time, self.time.step
             )));
         }
+        if let Some(p) = &self.particles {
+            let s = p.dem.particles();
+            if let Some(i) = (0..s.len()).find(|&i| {
+                !(s.velocity[i]
+                    .iter()
+                    .chain(&s.position[i])
+                    .all(|v| v.is_finite()))
+            }) {
+                return Err(FsimError::run(format!(
+                    "the solution diverged at t = {} s (step {}): particle {} has no finite \
+                     velocity or position{}",
+                    self.time.time,
+                    self.time.step,
+                    s.id[i],
+                    if self.direct.is_some() {
+                        " (with model direct: particles not much heavier than the fluid need \
+                         the virtual mass, virtualMass in constant/couplingProperties)"
+                    } else {
+                        ""
+                    }
+                )));
+            }
+        }
         Ok(d)
     }
 
@@ -352,8 +566,16 @@ impl Simulation {
             .as_ref()
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
+        let shell = self.direct.as_ref().map(|d| d.shell_state());
+        let motion = self.motion.as_ref().map(|m| m.restart_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
+        if let Some(shell) = &shell {
+            arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
+        if let Some(motion) = &motion {
+            arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));
+        }
         header
             .write(path, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))
@@ -548,4 +770,45 @@ fn pressure_bc_name(bc: &PressureBc) -> &'static str {
         PressureBc::SymmetryPlane => "symmetryPlane",
         PressureBc::Empty => "empty",
     }
+}
+
+/// The direct model's resolution warnings on the case's particles (gaps narrower than 2h,
+/// fixed spheres with nothing driving the flow), for `-dry-run` and the log.
+fn check_direct_resolution(
+    fluid: &FluidSolver,
+    cloud: &Cloud,
+    settings: &DirectSettings,
+) -> Vec<String> {
+    let grid = fluid.grid();
+    let bc = fluid.boundary_conditions();
+    let length = grid.length();
+    let domain = PeriodicBox {
+        lo: grid.origin,
+        hi: std::array::from_fn(|a| grid.origin[a] + length[a]),
+        periodic: std::array::from_fn(|a| matches!(bc.faces[2 * a], FaceCondition::Periodic)),
+    };
+    let walls: [bool; 6] =
+        std::array::from_fn(|f| matches!(bc.faces[f], FaceCondition::Wall { .. }));
+    let mut particles = cloud.particles.clone();
+    if settings.fixed_particles {
+        particles.fixed.iter_mut().for_each(|f| *f = true);
+    }
+    let moving_wall = bc.faces.iter().any(|f| match f {
+        FaceCondition::Wall { velocity } => *velocity != [0.0; 3],
+        FaceCondition::Inlet { .. } => true,
+        _ => false,
+    });
+    let driven = fluid.mean_velocity_force().is_some() || moving_wall;
+    let report = check_resolution(
+        grid,
+        &particles,
+        &domain,
+        walls,
+        driven,
+        // overlaps are the DEM loader's to report, with the positions file's line
+        f64::INFINITY,
+    );
+    // Its errors (r/h below 2, a sphere wider than the box) are reported, with the particle
+    // named, by `DirectCoupling::check_particles` and the DEM loader; here the warnings.
+    report.warnings
 }

@@ -10,7 +10,7 @@ use std::path::Path;
 use std::time::Duration;
 
 /// Columns of the per-step fluid monitor `postProcessing/fluid/<startTime>/fluid.dat`.
-const FLUID_MONITOR_COLUMNS: [&str; 11] = [
+const FLUID_MONITOR_COLUMNS: [&str; 14] = [
     "Time",
     "deltaT",
     "CoMax",
@@ -22,6 +22,9 @@ const FLUID_MONITOR_COLUMNS: [&str; 11] = [
     "drivingGradient",
     "stepWallTime",
     "step",
+    "fluidWallTime",
+    "couplingWallTime",
+    "particleWallTime",
 ];
 
 /// Columns of the per-step particle monitor `postProcessing/cloud/<startTime>/cloud.dat`.
@@ -61,12 +64,49 @@ const DRAG_MONITOR_COLUMNS: [&str; 17] = [
     "continuityError",
 ];
 
+/// Columns of the direct model's monitor `postProcessing/direct/<startTime>/direct.dat`:
+/// total hydrodynamic force and torque on the particles, and `K` (paper eq. 19, see
+/// [`crate::simulation::HydrodynamicReport`]).
+const DIRECT_MONITOR_COLUMNS: [&str; 8] = ["Time", "Fx", "Fy", "Fz", "Tx", "Ty", "Tz", "K"];
+
+/// Columns of the settling monitor `postProcessing/sedimentation/<startTime>/sedimentation.dat`
+/// (`model direct` with free particles): solid fraction, mean particle and fluid velocities,
+/// the settling velocity along gravity in the frame of zero volume flux (positive: falling),
+/// the mixture's momentum and its scale `Σ m|v|`, the imposed excess mean pressure gradient
+/// (magnitude, correction included) and its momentum-holding correction over the analytic
+/// value, and the lubrication pairs and smallest gap over the radius.
+const SEDIMENTATION_MONITOR_COLUMNS: [&str; 17] = [
+    "Time",
+    "phi",
+    "Vpx",
+    "Vpy",
+    "Vpz",
+    "Ufx",
+    "Ufy",
+    "Ufz",
+    "settlingVelocity",
+    "Mx",
+    "My",
+    "Mz",
+    "momentumScale",
+    "driveGradient",
+    "driveCorrection",
+    "lubricationPairs",
+    "minGapOverR",
+];
+
 /// The log and the monitors of one run.
 pub struct StepReporter {
     pub log: Log<Stdout>,
     fluid: Monitor,
     cloud: Option<Monitor>,
     drag: Option<Monitor>,
+    /// Opened at the first step that has hydrodynamic loads.
+    direct: Option<Monitor>,
+    /// Opened at the first step with a settling report.
+    sedimentation: Option<Monitor>,
+    case_dir: std::path::PathBuf,
+    start_name: String,
 }
 
 fn output_error(e: OutputError) -> FsimError {
@@ -105,6 +145,10 @@ impl StepReporter {
             fluid,
             cloud,
             drag,
+            direct: None,
+            sedimentation: None,
+            case_dir: case_dir.to_path_buf(),
+            start_name: start_name.to_string(),
         })
     }
 
@@ -144,8 +188,98 @@ impl StepReporter {
                 fluid.driving_gradient.unwrap_or(0.0),
                 wall.as_secs_f64(),
                 sim.time.step as f64,
+                sim.phase_times.fluid,
+                sim.phase_times.coupling,
+                sim.phase_times.particles,
             ])
             .map_err(output_error)?;
+        if let Some(h) = &sim.hydrodynamics {
+            if self.direct.is_none() {
+                self.direct = Some(
+                    Monitor::create(
+                        &self.case_dir,
+                        "direct",
+                        &self.start_name,
+                        &DIRECT_MONITOR_COLUMNS,
+                    )
+                    .map_err(output_error)?,
+                );
+            }
+            self.log.line(&format!(
+                "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {:.6}",
+                h.force[0], h.force[1], h.force[2], h.drag_coefficient
+            ))?;
+            if let Some(m) = self.direct.as_mut() {
+                m.row(&[
+                    sim.time.time,
+                    h.force[0],
+                    h.force[1],
+                    h.force[2],
+                    h.torque[0],
+                    h.torque[1],
+                    h.torque[2],
+                    h.drag_coefficient,
+                ])
+                .map_err(output_error)?;
+            }
+        }
+        if let Some(r) = &sim.settling {
+            if self.sedimentation.is_none() {
+                self.sedimentation = Some(
+                    Monitor::create(
+                        &self.case_dir,
+                        "sedimentation",
+                        &self.start_name,
+                        &SEDIMENTATION_MONITOR_COLUMNS,
+                    )
+                    .map_err(output_error)?,
+                );
+            }
+            let lubrication = sim
+                .motion
+                .as_ref()
+                .map(|m| m.last_lubrication())
+                .unwrap_or_default();
+            self.log.line(&format!(
+                "Sedimentation: settling velocity = {:.6e} m/s (phi = {:.4}), mixture momentum \
+                 ({:.3e} {:.3e} {:.3e}) of {:.3e} kg m/s, lubrication pairs {}",
+                r.settling_velocity,
+                r.phi,
+                r.momentum[0],
+                r.momentum[1],
+                r.momentum[2],
+                r.momentum_scale,
+                lubrication.active
+            ))?;
+            let g = r.drive_gradient;
+            let g_norm = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+            if let Some(m) = self.sedimentation.as_mut() {
+                m.row(&[
+                    sim.time.time,
+                    r.phi,
+                    r.particle_velocity[0],
+                    r.particle_velocity[1],
+                    r.particle_velocity[2],
+                    r.fluid_velocity[0],
+                    r.fluid_velocity[1],
+                    r.fluid_velocity[2],
+                    r.settling_velocity,
+                    r.momentum[0],
+                    r.momentum[1],
+                    r.momentum[2],
+                    r.momentum_scale,
+                    g_norm,
+                    r.drive_correction,
+                    lubrication.active as f64,
+                    if lubrication.min_gap_ratio.is_finite() {
+                        lubrication.min_gap_ratio
+                    } else {
+                        -1.0
+                    },
+                ])
+                .map_err(output_error)?;
+            }
+        }
         if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
             log_cloud(&mut self.log, c)?;
             let [ux, uy, uz] = c.mean_velocity;
@@ -218,7 +352,13 @@ impl StepReporter {
     /// Flushes the monitors and ends the log.
     pub fn finish(mut self) -> Result<(), FsimError> {
         self.fluid.flush().map_err(output_error)?;
-        for m in self.cloud.iter_mut().chain(self.drag.iter_mut()) {
+        for m in self
+            .cloud
+            .iter_mut()
+            .chain(self.drag.iter_mut())
+            .chain(self.direct.iter_mut())
+            .chain(self.sedimentation.iter_mut())
+        {
             m.flush().map_err(output_error)?;
         }
         self.log.end()?;

@@ -1,1 +1,58 @@
 //! Resolved coupling (paper §2.1): declares and re-exports the direct model's parts.
+//!
+//! - [`RigidSphere`]: a particle as the fluid sees it, `v = v_p + ω_p × (x − x_p)`;
+//! - [`ImmersedBoundary`]: no-slip on every sphere on the MAC grid (sharp-interface direct
+//!   forcing, imposed in [`crate::fluid::FluidSolver::step_with`]'s hook);
+//! - [`stress_integral_force`] with [`StressIntegral`], [`SphereQuadrature`], [`FieldView`]:
+//!   force and torque from the stress tensor over a sphere split into quadrangles
+//!   (paper eq. 4–6);
+//! - [`DirectCoupling`] and [`DirectSettings`]: the model in a run (`model direct;`);
+//! - [`PeriodicStokesArray`]: steady Stokes flow through fixed spheres in a periodic box,
+//!   solved directly, for the porous-media validation (paper §3.1), and its references
+//!   [`sangani_acrivos_k`] (paper eq. 17) and [`ZICK_HOMSY_SIMPLE_CUBIC`];
+//! - [`ParticleMotion`]: freely moving spheres: [`Lubrication`] below the grid's reach, the
+//!   periodic-settling [`SettlingDrive`], the settling monitor;
+//! - [`check_resolution`]: what the grid resolves (r/h, gaps), before the run.
+//!
+//! Method choices and measured accuracy: `docs/direct_model.md`.
+
+// Hot loops are plain indexed loops over contiguous arrays, by design (as in `fluid`).
+#![allow(clippy::needless_range_loop)]
+
+mod close_pairs;
+mod direct_coupling;
+mod direct_settings;
+mod field_view;
+mod gmres;
+mod immersed_boundary;
+mod lubrication;
+mod particle_motion;
+mod periodic_stokes_array;
+mod porous_reference;
+mod resolution_check;
+mod rigid_sphere;
+mod settling_drive;
+mod sphere_quadrature;
+mod stress_integral;
+
+pub use close_pairs::{ClosePairs, PeriodicBox};
+pub use direct_coupling::DirectCoupling;
+pub use direct_settings::DirectSettings;
+pub use field_view::{periodic_directions, FieldView, Interpolation};
+pub use gmres::{gmres, GmresReport};
+pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
+pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
+pub use particle_motion::{
+    MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,
+};
+pub use periodic_stokes_array::{PeriodicStokesArray, SteadyStokesFlow};
+pub use porous_reference::{reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUBIC};
+pub use resolution_check::{
+    check_resolution, ResolutionReport, MIN_CELLS_PER_RADIUS, RESOLVED_GAP_CELLS,
+};
+pub use rigid_sphere::RigidSphere;
+pub use settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
+pub use sphere_quadrature::SphereQuadrature;
+pub use stress_integral::{
+    shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
+};

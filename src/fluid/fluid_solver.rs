@@ -48,8 +48,20 @@ pub struct PredictedVelocity<'a> {
     pub time: f64,
     /// The stage's projection weight: the projection subtracts `tau ∇p`.
     pub tau: f64,
+    /// The pressure the coming projection will subtract `tau ∇` of, as last solved
+    /// (cell-centred, unpadded; the explicit schemes): a hook that wants a face to end at `w`
+    /// after the projection sets it to `w + tau ∂p` (exact once the flow is steady). Empty
+    /// for `RK3CN`, whose predictor already carries the pressure and whose projection only
+    /// subtracts an increment that vanishes at steady state (compensating with the last
+    /// increment there makes the step unstable).
+    pub pressure: &'a [f64],
     /// Velocity components, padded layout.
     pub velocity: &'a mut [Vec<f64>; 3],
+    /// Mass source `q` per cell (1/s, unpadded), when enabled by
+    /// [`FluidSolver::mass_source_mut`]: the projection makes `∇·u = q` instead of 0. A
+    /// hook that fixes every face of a cell sets `q` there to the divergence it imposes
+    /// (Kim, Kim & Choi, J. Comput. Phys. 171, 132–150, 2001); `Σ q` must be 0.
+    pub mass_source: Option<&'a mut [f64]>,
 }
 
 /// What one step did.
@@ -81,6 +93,8 @@ pub struct FluidSolver {
     p: Vec<f64>,
     q: [Vec<f64>; 3],
     source: Option<[Vec<f64>; 3]>,
+    /// Optional per-cell mass source of the projection (see [`PredictedVelocity`]).
+    mass_source: Option<Vec<f64>>,
     poisson: SpectralPoisson,
     /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
     implicit: Option<ImplicitViscosity>,
@@ -118,6 +132,7 @@ impl FluidSolver {
             q: [zeros(), zeros(), zeros()],
             p: vec![0.0; grid.cell_count()],
             source: None,
+            mass_source: None,
             poisson,
             implicit: None,
             drive: None,
@@ -203,6 +218,13 @@ impl FluidSolver {
         let len = self.layout.len;
         self.source
             .get_or_insert_with(|| [vec![0.0; len], vec![0.0; len], vec![0.0; len]])
+    }
+
+    /// Allocates (once) the zeroed per-cell mass source that hooks may set (see
+    /// [`PredictedVelocity::mass_source`]).
+    pub fn mass_source_mut(&mut self) -> &mut [f64] {
+        let cells = self.grid.cell_count();
+        self.mass_source.get_or_insert_with(|| vec![0.0; cells])
     }
 
     /// Drives the flow at a bulk velocity (`meanVelocityForce`); the direction must be
@@ -384,11 +406,14 @@ impl FluidSolver {
                 layout: &self.layout,
                 time: t0 + c_end * dt,
                 tau,
+                pressure: &self.p,
                 velocity: &mut self.u,
+                mass_source: self.mass_source.as_deref_mut(),
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
+            subtract_mass_source(&mut self.p, self.mass_source.as_deref(), tau);
             self.poisson.solve(&mut self.p);
             subtract_gradient(
                 &mut self.u,
@@ -468,12 +493,15 @@ impl FluidSolver {
                 layout: &self.layout,
                 time: t0 + c_end * dt,
                 tau,
+                pressure: &[],
                 velocity: &mut self.u,
+                mass_source: self.mass_source.as_deref_mut(),
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             // Pressure increment φ: ∇²φ = ∇·u*/τ, u = u* − τ∇φ, p ← p + φ.
             let phi = &mut implicit.increment;
             divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, tau);
+            subtract_mass_source(phi, self.mass_source.as_deref(), tau);
             self.poisson.solve(phi);
             subtract_gradient(
                 &mut self.u,
@@ -746,6 +774,14 @@ impl FluidSolver {
             + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
+    }
+}
+
+/// `rhs ← rhs − q/τ`: the projection then leaves `∇·u = q`.
+fn subtract_mass_source(rhs: &mut [f64], q: Option<&[f64]>, tau: f64) {
+    if let Some(q) = q {
+        let inv = 1.0 / tau;
+        rhs.par_iter_mut().zip(q).for_each(|(r, q)| *r -= q * inv);
     }
 }
 

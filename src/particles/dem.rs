@@ -481,8 +481,10 @@ impl Dem {
         let skin = config.skin_fraction * d_max.max(f64::MIN_POSITIVE);
         let cell_size = if d_max > 0.0 { d_max + skin } else { 0.0 };
         let l = domain.length();
+        // The minimum-image convention matters only for pair contacts: a fixed array of one
+        // sphere per periodic cell (porous media) has none.
         for a in 0..3 {
-            if domain.is_periodic(a) && l[a] < 2.0 * cell_size {
+            if config.pair_collisions && domain.is_periodic(a) && l[a] < 2.0 * cell_size {
                 return Err(DemError::PeriodicTooShort {
                     axis: a,
                     length: l[a],

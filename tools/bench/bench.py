@@ -2,6 +2,7 @@
 """fsim benchmark: throughput, wall time and peak memory, side by side with OpenFOAM.
 
     tools/bench/bench.py [--sizes 64 128] [--threads 1 2] [--steps 20] [--no-openfoam]
+    tools/bench/bench.py --suite direct [--direct-end 0.1] [--direct-scaling]
 
 Runs the 2-D Taylor-Green vortex in a periodic n^3 box (nu = 0.05, dt = 0.005) with fsimFoam
 at each size and thread count, and OpenFOAM's icoFoam (Debian package `openfoam`, its cavity
@@ -10,6 +11,13 @@ per second (time loop only, from fsim's per-step monitor and icoFoam's Execution
 wall time, peak resident memory (bytes per cell), the velocity error against the exact
 solution at the final time, and the ratio fsim / icoFoam. The machines are shared and noisy:
 only ratios from one run mean anything, and each figure is the median of `--repeat` runs.
+
+`--suite direct` runs tutorials/benchmark (the paper's section 3.3 case with the direct model:
+60 x 180 x 60 cells, 500 particles; `--direct-end` shortens its 0.1 s of physical time) and
+prints wall time, peak memory (VmHWM), cell-steps per second of the whole coupled step and the
+shares of the time loop spent in the fluid, the coupling (no-slip, stress integral,
+lubrication) and the particles (DEM), from fsim's per-step monitor. `--direct-scaling` adds
+the same box at r/h = 2.5, 3.33 and 5 and with 125, 250 and 500 particles.
 """
 import argparse
 import math
@@ -28,6 +36,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 import cases  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(HERE))
+import direct_cases  # noqa: E402
 
 NU = 0.05
 DT = 0.005
@@ -81,7 +92,8 @@ def relative_l2(u, exact):
 
 def fsim_binary():
     subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
-    return os.path.join(ROOT, "target", "release", "fsimFoam")
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    return os.path.join(target, "release", "fsimFoam")
 
 
 def latest_time_dir(case):
@@ -148,6 +160,59 @@ def run_icofoam(n, steps, scratch):
                 cells=n ** 3, error=err)
 
 
+def run_direct(binary, scratch, threads, end, cells_per_radius=2.5, particles=500):
+    """tutorials/benchmark (or a variant at another r/h or particle count) for `end` s."""
+    case = os.path.join(scratch, f"direct_{cells_per_radius:g}_{particles}_{threads}_{end:g}")
+    shutil.rmtree(case, ignore_errors=True)
+    if cells_per_radius == 2.5 and particles == 500:
+        src = os.path.join(ROOT, "tutorials", "benchmark")
+        for sub in ("system", "constant", "0"):
+            shutil.copytree(os.path.join(src, sub), os.path.join(case, sub))
+        text = open(os.path.join(case, "system", "controlDict")).read()
+        text = re.sub(r"\nendTime\s+[^;]+;", f"\nendTime         {end:g};", text)
+        text = re.sub(r"\nwriteInterval\s+[^;]+;", f"\nwriteInterval   {end:g};", text)
+        open(os.path.join(case, "system", "controlDict"), "w").write(text)
+    else:
+        direct_cases.benchmark(case, end_time=end, cells_per_radius=cells_per_radius,
+                               particles=particles)
+    log = os.path.join(case, "log.fsimFoam")
+    wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch, log=log)
+    reported = re.findall(r"Peak memory = ([0-9.]+) MB", open(log).read())
+    if reported:
+        rss = max(rss, float(reported[-1]) * 1e6)
+    monitor = os.path.join(case, "postProcessing", "fluid", "0", "fluid.dat")
+    data = np.loadtxt(monitor, comments="#", ndmin=2)
+    names = open(monitor).readline().lstrip("#").split()
+    col = lambda n: data[:, names.index(n)] if n in names else np.zeros(len(data))  # noqa: E731
+    loop = float(np.sum(col("stepWallTime")))
+    phases = {k: float(np.sum(col(k + "WallTime"))) for k in ("fluid", "coupling", "particle")}
+    cells = int(np.prod([round(c * cells_per_radius) for c in (24, 72, 24)]))
+    return dict(solver=f"direct r/h={cells_per_radius:g} n_p={particles}", threads=threads,
+                steps=len(data), loop=loop, wall=wall, rss=rss, cells=cells, end=end, **phases)
+
+
+def direct_suite(binary, scratch, a):
+    rows = [run_direct(binary, scratch, t, a.direct_end) for t in a.threads]
+    if a.direct_scaling:
+        t = max(a.threads)
+        for cpr in (3.333333, 5.0):
+            rows.append(run_direct(binary, scratch, t, a.direct_scaling_end, cells_per_radius=cpr))
+        rows.append(run_direct(binary, scratch, t, a.direct_scaling_end))
+        for n_p in (125, 250):
+            rows.append(run_direct(binary, scratch, t, a.direct_scaling_end, particles=n_p))
+    print("\ntutorials/benchmark (paper section 3.3), direct model; noisy shared machine")
+    print(f"{'case':28} {'thr':>3} {'end s':>8} {'steps':>6} {'cells':>9} {'Mcell-steps/s':>13} "
+          f"{'loop s':>8} {'wall s':>8} {'peak MB':>8} {'fluid':>6} {'coupl':>6} {'part':>6}")
+    for r in rows:
+        rate = r["cells"] * r["steps"] / max(r["loop"], 1e-9)
+        share = {k: 100 * r[k] / max(r["loop"], 1e-9) for k in ("fluid", "coupling", "particle")}
+        print(f"{r['solver']:28} {r['threads']:>3} {r['end']:>8.1e} {r['steps']:>6} {r['cells']:>9} "
+              f"{rate / 1e6:>13.2f} {r['loop']:>8.2f} {r['wall']:>8.2f} {r['rss'] / 1e6:>8.1f} "
+              f"{share['fluid']:>5.1f}% {share['coupling']:>5.1f}% {share['particle']:>5.1f}%")
+        if r["end"] == a.direct_end and a.direct_end < 0.1 and "r/h=2.5 n_p=500" in r["solver"]:
+            print(f"{'':28} projected to 0.1 s: about {r['loop'] * 0.1 / r['end']:.0f} s of time loop")
+
+
 def median_run(fn, repeat):
     runs = [fn() for _ in range(repeat)]
     runs = [r for r in runs if r]
@@ -169,9 +234,24 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--schemes", nargs="+", default=["Euler", "RK3"],
                     help="fsim time schemes to run (Euler: one projection per step)")
+    ap.add_argument("--suite", nargs="+", default=["taylorGreen"], choices=["taylorGreen", "direct"])
+    ap.add_argument("--direct-end", type=float, default=0.1,
+                    help="physical time of tutorials/benchmark (0.1 s in the paper)")
+    ap.add_argument("--direct-scaling", action="store_true",
+                    help="also r/h = 2.5, 3.33, 5 and 125, 250, 500 particles")
+    ap.add_argument("--direct-scaling-end", type=float, default=3e-5,
+                    help="physical time of each scaling run (r/h = 5: about 30 steps)")
     a = ap.parse_args()
 
     binary = fsim_binary()
+    if "direct" in a.suite:
+        scratch = tempfile.mkdtemp(prefix="fsim-bench-")
+        try:
+            direct_suite(binary, scratch, a)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+        if "taylorGreen" not in a.suite:
+            return
     scratch = tempfile.mkdtemp(prefix="fsim-bench-")
     rows = []
     try:

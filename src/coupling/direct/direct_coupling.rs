@@ -1,0 +1,319 @@
+//! The direct model's state in a run: the spheres, their forced faces, and their loads.
+
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+use super::direct_settings::DirectSettings;
+use super::field_view::{periodic_directions, FieldView};
+use super::immersed_boundary::ImmersedBoundary;
+use super::rigid_sphere::RigidSphere;
+use super::sphere_quadrature::SphereQuadrature;
+use super::stress_integral::{
+    shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
+};
+use crate::fluid::{FluidSolver, PredictedVelocity};
+use crate::grid::Grid;
+use crate::particles::ParticleState;
+
+/// Resolved coupling (paper §2.1) for one run. Each fluid step:
+///
+/// 1. [`DirectCoupling::set_particles`] (or [`DirectCoupling::set_spheres`]): the spheres at
+///    their current positions and velocities; the forced faces are rebuilt;
+/// 2. `fluid.step_with(dt, &mut |stage| coupling.impose(stage))`: no-slip on every sphere
+///    in every stage ([`ImmersedBoundary`]);
+/// 3. [`DirectCoupling::compute_loads`]: force and torque on every sphere from the stress
+///    integral ([`stress_integral_force`]), in the order of the spheres handed in step 1, for
+///    the DEM's external loads.
+pub struct DirectCoupling {
+    settings: DirectSettings,
+    boundary: ImmersedBoundary,
+    h: f64,
+    /// Box lengths and which directions are periodic (for the gaps between spheres).
+    length: [f64; 3],
+    periodic: [bool; 3],
+    spheres: Vec<RigidSphere>,
+    ids: Vec<u64>,
+    /// Quadrature per distinct radius (bit pattern of the radius).
+    quadratures: HashMap<u64, SphereQuadrature>,
+    /// Shell momentum at the last load evaluation, per particle id, with its time and the
+    /// surface offset it was taken with (a changed surface has no rate).
+    previous_shell: HashMap<u64, (f64, f64, ShellMomentum)>,
+    loads: Vec<HydrodynamicLoad>,
+    /// Whether the forced faces have been built once.
+    built: bool,
+}
+
+impl DirectCoupling {
+    /// The coupling for `fluid` (enables the fluid's mass source, which the imposition sets
+    /// in cells whose faces are all forced).
+    pub fn new(fluid: &mut FluidSolver, settings: DirectSettings) -> Self {
+        fluid.mass_source_mut();
+        let grid = fluid.grid();
+        DirectCoupling {
+            settings,
+            boundary: ImmersedBoundary::new(grid, fluid.boundary_conditions()),
+            h: grid.h.iter().cloned().fold(0.0, f64::max),
+            length: grid.length(),
+            periodic: periodic_directions(fluid.boundary_conditions()),
+            spheres: Vec::new(),
+            ids: Vec::new(),
+            quadratures: HashMap::new(),
+            previous_shell: HashMap::new(),
+            loads: Vec::new(),
+            built: false,
+        }
+    }
+
+    /// Checks a case before the run: every sphere at least two cells in radius, none as
+    /// large as a periodic box length (it would overlap its own image). Returns notes on
+    /// what runs but deserves a word (coarse spheres, r/h < 4: drag errors of 2 % and more,
+    /// docs/direct_model.md).
+    pub fn check_particles(
+        grid: &Grid,
+        periodic: [bool; 3],
+        p: &ParticleState,
+    ) -> Result<Vec<String>, String> {
+        let h = grid.h.iter().cloned().fold(0.0, f64::max);
+        let length = grid.length();
+        let mut coarse = 0;
+        let mut smallest = f64::INFINITY;
+        for i in 0..p.len() {
+            let r = 0.5 * p.diameter[i];
+            let resolution = r / h;
+            smallest = smallest.min(resolution);
+            if resolution < 2.0 {
+                return Err(format!(
+                    "model direct needs spheres of at least 2 cells in radius: particle {} \
+                     (id {}) has r/h = {resolution:.3} (h = {h:e} m); refine the grid",
+                    i + 1,
+                    p.id[i]
+                ));
+            }
+            if resolution < 4.0 {
+                coarse += 1;
+            }
+            for d in 0..3 {
+                if periodic[d] && 2.0 * r >= length[d] {
+                    return Err(format!(
+                        "particle {} (id {}) of diameter {:e} m does not fit the periodic box \
+                         ({:e} m along axis {d})",
+                        i + 1,
+                        p.id[i],
+                        2.0 * r,
+                        length[d]
+                    ));
+                }
+            }
+        }
+        let mut notes = Vec::new();
+        if coarse > 0 {
+            notes.push(format!(
+                "model direct: {coarse} particle(s) below 4 cells in radius (smallest \
+                 r/h = {smallest:.2}); expect drag errors of 2 % and more"
+            ));
+        }
+        Ok(notes)
+    }
+
+    pub fn settings(&self) -> &DirectSettings {
+        &self.settings
+    }
+
+    /// The forced faces of the current spheres.
+    pub fn boundary(&self) -> &ImmersedBoundary {
+        &self.boundary
+    }
+
+    /// The spheres as last set.
+    pub fn spheres(&self) -> &[RigidSphere] {
+        &self.spheres
+    }
+
+    /// Sets the spheres (ids name them across calls, for the shell's rate of change) and
+    /// rebuilds the forced faces.
+    ///
+    /// Spheres identical to the current ones (fixed arrays) keep their forced faces.
+    pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
+        assert_eq!(spheres.len(), ids.len(), "one id per sphere");
+        if self.built && self.spheres == spheres && self.ids == ids {
+            return;
+        }
+        self.built = true;
+        self.spheres.clear();
+        self.spheres.extend_from_slice(spheres);
+        self.ids.clear();
+        self.ids.extend_from_slice(ids);
+        for s in spheres {
+            let h = self.h;
+            let integral = self.settings.integral;
+            self.quadratures
+                .entry(s.radius.to_bits())
+                .or_insert_with(|| integral.quadrature(s.radius, h));
+        }
+        self.boundary.update(&self.spheres);
+    }
+
+    /// The DEM's particles as spheres (same order), then as [`Self::set_spheres`].
+    pub fn set_particles(&mut self, p: &ParticleState) {
+        let spheres: Vec<RigidSphere> = (0..p.len())
+            .map(|i| RigidSphere {
+                centre: p.position[i],
+                radius: 0.5 * p.diameter[i],
+                velocity: p.velocity[i],
+                angular_velocity: p.angular_velocity[i],
+            })
+            .collect();
+        self.set_spheres(&spheres, &p.id);
+    }
+
+    /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted
+    /// velocity (pre-compensated for the coming projection).
+    pub fn impose(&self, stage: PredictedVelocity<'_>) {
+        self.boundary
+            .impose(stage.velocity, stage.pressure, stage.tau, stage.mass_source);
+    }
+
+    /// Force and torque on every sphere (order of [`Self::set_spheres`]) from the current
+    /// fluid state; `rho` the fluid density (kg/m³). The body force on the fluid (its
+    /// settings' plus the `meanVelocityForce` gradient) enters as `f_h0`; the shell term uses
+    /// the shell momentum of the previous call (none at the first).
+    pub fn compute_loads(&mut self, fluid: &FluidSolver, rho: f64) -> &[HydrodynamicLoad] {
+        let view = FieldView::of(fluid);
+        let mut body = fluid.settings().body_force;
+        if let Some(d) = fluid.mean_velocity_force() {
+            body[d.direction] += d.gradient;
+        }
+        let time = fluid.time();
+        let integral = self.settings.integral;
+        let with_shell = integral.surface_offset > 0.0;
+        let quadratures = &self.quadratures;
+        let offsets = self.surface_offsets();
+        let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
+            .spheres
+            .par_iter()
+            .zip(offsets.par_iter())
+            .map(|(s, &offset)| {
+                let q = &quadratures[&s.radius.to_bits()];
+                let integral = StressIntegral {
+                    surface_offset: offset,
+                    ..integral
+                };
+                let load = stress_integral_force(&view, s, rho, body, &integral, q);
+                let shell = if with_shell {
+                    shell_momentum(&view, s, &integral, q)
+                } else {
+                    ShellMomentum::default()
+                };
+                (load, shell)
+            })
+            .collect();
+        self.loads.clear();
+        for (k, (mut load, shell)) in results.into_iter().enumerate() {
+            let id = self.ids[k];
+            if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
+                let span = time - t0;
+                if span > 0.0 && *offset == offsets[k] {
+                    for i in 0..3 {
+                        load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
+                        load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
+                    }
+                }
+            }
+            if with_shell {
+                self.previous_shell.insert(id, (time, offsets[k], shell));
+            }
+            self.loads.push(load);
+        }
+        &self.loads
+    }
+
+    /// The integration surface offset (cells) per sphere: the setting, reduced where a
+    /// neighbour (or the sphere's own periodic image) comes closer than `offset + 1` cells,
+    /// so that the surface encloses neither the neighbour nor its forcing layer:
+    /// `min(offset, max(1, gap/h − 1))`. Below a gap of two cells the integral sees the
+    /// neighbour's forcing (the lubrication range, handled by the particle model).
+    pub fn surface_offsets(&self) -> Vec<f64> {
+        let h = self.h;
+        let nominal = self.settings.integral.surface_offset;
+        let spheres = &self.spheres;
+        let gap_of = |i: usize| {
+            let a = &spheres[i];
+            let mut gap = f64::INFINITY;
+            for d in 0..3 {
+                if self.periodic[d] {
+                    gap = gap.min(self.length[d] - 2.0 * a.radius);
+                }
+            }
+            for (j, b) in spheres.iter().enumerate() {
+                if j == i {
+                    continue;
+                }
+                let mut dist2 = 0.0;
+                for d in 0..3 {
+                    let mut r = a.centre[d] - b.centre[d];
+                    if self.periodic[d] {
+                        r -= self.length[d] * (r / self.length[d]).round();
+                    }
+                    dist2 += r * r;
+                }
+                gap = gap.min(dist2.sqrt() - a.radius - b.radius);
+            }
+            gap
+        };
+        (0..spheres.len())
+            .into_par_iter()
+            .map(|i| {
+                if nominal == 0.0 {
+                    return 0.0;
+                }
+                nominal.min((gap_of(i) / h - 1.0).max(1.0))
+            })
+            .collect()
+    }
+
+    /// Name of the restart array of [`Self::shell_state`].
+    pub const RESTART_NAME: &'static str = "direct.shell";
+
+    /// The shell momenta the next [`Self::compute_loads`] differences against, for a
+    /// bit-identical restart: per particle (sorted by id) `id, time, offset, linear (3),
+    /// angular (3)`.
+    pub fn shell_state(&self) -> Vec<f64> {
+        let mut ids: Vec<&u64> = self.previous_shell.keys().collect();
+        ids.sort_unstable();
+        let mut out = Vec::with_capacity(9 * ids.len());
+        for id in ids {
+            let (time, offset, m) = &self.previous_shell[id];
+            out.extend_from_slice(&[*id as f64, *time, *offset]);
+            out.extend_from_slice(&m.linear);
+            out.extend_from_slice(&m.angular);
+        }
+        out
+    }
+
+    /// Restores what [`Self::shell_state`] saved.
+    pub fn restore_shell_state(&mut self, data: &[f64]) -> Result<(), String> {
+        if !data.len().is_multiple_of(9) {
+            return Err(format!(
+                "restart array '{}' has {} values, not a multiple of 9",
+                Self::RESTART_NAME,
+                data.len()
+            ));
+        }
+        self.previous_shell.clear();
+        for row in data.chunks_exact(9) {
+            let m = ShellMomentum {
+                linear: [row[3], row[4], row[5]],
+                angular: [row[6], row[7], row[8]],
+            };
+            self.previous_shell
+                .insert(row[0] as u64, (row[1], row[2], m));
+        }
+        Ok(())
+    }
+
+    /// The loads of the last [`Self::compute_loads`].
+    pub fn loads(&self) -> &[HydrodynamicLoad] {
+        &self.loads
+    }
+}

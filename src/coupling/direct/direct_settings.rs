@@ -1,0 +1,119 @@
+//! The direct model's settings in `constant/couplingProperties`.
+
+use super::field_view::Interpolation;
+use super::stress_integral::StressIntegral;
+use crate::case::control_dict::choice;
+use crate::case::{CaseError, Coupling};
+
+/// Settings of `model direct;`, read from the optional sub-dictionary `direct`:
+///
+/// ```text
+/// model direct;
+/// direct
+/// {
+///     surfaceOffset   3;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere;
+///                             // must stay clear of the neighbours (below the gap minus 2)
+///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
+///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h
+///     fixedParticles  no;     // yes: every particle is held in place (porous media)
+/// }
+/// ```
+///
+/// Unknown keywords in `direct` are errors (this is fsim's own file: a misspelt setting must
+/// not pass silently).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DirectSettings {
+    /// Integration surface, interpolation and quadrangle count of the stress integral.
+    pub integral: StressIntegral,
+    /// Hold every particle fixed (flow through a fixed array).
+    pub fixed_particles: bool,
+}
+
+const KEYWORDS: [&str; 4] = [
+    "surfaceOffset",
+    "interpolation",
+    "quadrangles",
+    "fixedParticles",
+];
+
+impl DirectSettings {
+    /// From the case's coupling file; the defaults when it has no `direct` dictionary.
+    pub fn from_coupling(coupling: &Coupling) -> Result<Self, CaseError> {
+        let mut settings = DirectSettings::default();
+        let Some(dict) = coupling.dict.as_ref() else {
+            return Ok(settings);
+        };
+        let Some(d) = dict.opt_dict("direct")? else {
+            return Ok(settings);
+        };
+        for entry in d.entries() {
+            if !KEYWORDS.contains(&entry.keyword()) {
+                return Err(CaseError::at(
+                    entry.value_loc(),
+                    format!(
+                        "unknown keyword '{}' in direct; expected one of {}",
+                        entry.keyword(),
+                        KEYWORDS.join(", ")
+                    ),
+                ));
+            }
+        }
+        if let Some(offset) = d.opt_scalar("surfaceOffset")? {
+            if !(0.0..=8.0).contains(&offset) {
+                let loc = d.get_entry("surfaceOffset")?.value_loc();
+                return Err(CaseError::at(
+                    loc,
+                    format!("surfaceOffset must be between 0 and 8 cells, got {offset}"),
+                ));
+            }
+            settings.integral.surface_offset = offset;
+        }
+        if d.contains("interpolation") {
+            let names = ["cubic", "linear"];
+            let k = choice(d, "interpolation", &names, None)?;
+            settings.integral.interpolation =
+                Interpolation::from_name(names[k]).expect("listed names parse");
+        }
+        if let Some(n) = d.opt_label("quadrangles")? {
+            settings.integral.quadrangles = (n > 0).then_some(n);
+        }
+        settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
+        Ok(settings)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    fn settings(text: &str) -> Result<DirectSettings, CaseError> {
+        let dict = parse_dict(text, "constant/couplingProperties").unwrap();
+        DirectSettings::from_coupling(&Coupling::new(Some(dict), true)?)
+    }
+
+    #[test]
+    fn reads_the_direct_dictionary_and_rejects_unknown_keywords() {
+        let s = settings("model direct;").unwrap();
+        assert_eq!(s, DirectSettings::default());
+        assert_eq!(s.integral.surface_offset, 3.0);
+        let s = settings(
+            "model direct; direct { surfaceOffset 2; interpolation linear; quadrangles 600; \
+             fixedParticles yes; }",
+        )
+        .unwrap();
+        assert_eq!(s.integral.surface_offset, 2.0);
+        assert_eq!(s.integral.interpolation, Interpolation::Linear);
+        assert_eq!(s.integral.quadrangles, Some(600));
+        assert!(s.fixed_particles);
+        let e = settings("model direct; direct { surfaceOfset 2; }").unwrap_err();
+        assert!(
+            e.to_string().contains("unknown keyword 'surfaceOfset'"),
+            "{e}"
+        );
+        let e = settings("model direct; direct { surfaceOffset -1; }").unwrap_err();
+        assert!(e.to_string().contains("between 0 and 8"), "{e}");
+        let e = settings("model direct; direct { interpolation quintic; }").unwrap_err();
+        assert!(e.to_string().contains("quintic"), "{e}");
+    }
+}

@@ -1,0 +1,221 @@
+//! What the direct model can resolve, checked before the run (and by `-dry-run`).
+//!
+//! `fsimFoam` takes the warnings from here; the errors it reports through
+//! `DirectCoupling::check_particles` (r/h, size) and the DEM loader (overlaps, with the
+//! positions file's line), which run on the same particles. The errors below serve callers of
+//! the library.
+//!
+//! - Errors (the run cannot be meaningful): a sphere with fewer than two cells per radius
+//!   (`r/h < 2`: the staircase of cut cells is coarser than the sphere and the stress
+//!   integral has no resolved shell to sit on; the drag-law model is the tool there), a
+//!   sphere wider than the box along some axis (it overlaps its own periodic image or the
+//!   walls), two spheres overlapping beyond the DEM's tolerance.
+//! - Warnings (the run goes on, less accurate): surface gaps between spheres, or between a
+//!   sphere and a wall, narrower than `2h` (the paper's §3.1: denser media need finer grids;
+//!   the lubrication correction takes over below its cut-off), and fixed spheres with
+//!   nothing to drive the flow through them (no `meanVelocityForce`, no inlet, no moving
+//!   wall: the fluid stays at rest and every force is zero).
+
+use super::close_pairs::{ClosePairs, PeriodicBox};
+use crate::grid::Grid;
+use crate::particles::ParticleState;
+
+/// Fewest cells per radius the direct model accepts.
+pub const MIN_CELLS_PER_RADIUS: f64 = 2.0;
+/// Narrowest gap, in cells, the grid is taken to resolve.
+pub const RESOLVED_GAP_CELLS: f64 = 2.0;
+
+/// The findings of [`check_resolution`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ResolutionReport {
+    pub errors: Vec<String>,
+    pub warnings: Vec<String>,
+    /// Smallest `r/h` over the spheres (`h`: the coarsest spacing).
+    pub min_cells_per_radius: f64,
+    /// Smallest surface gap (pairs and walls) over `h`; `INFINITY` when none is near.
+    pub min_gap_cells: f64,
+}
+
+/// Checks the spheres `p` on `grid` in `domain` with no-slip walls `walls` (face order
+/// `x−, x+, y−, y+, z−, z+`); `driven` says whether anything drives the flow (a mean
+/// pressure gradient, an inlet, a moving wall), `overlap_tolerance` is the DEM's accepted
+/// initial overlap over the smaller diameter.
+pub fn check_resolution(
+    grid: &Grid,
+    p: &ParticleState,
+    domain: &PeriodicBox,
+    walls: [bool; 6],
+    driven: bool,
+    overlap_tolerance: f64,
+) -> ResolutionReport {
+    let h = grid.h.iter().cloned().fold(0.0, f64::max);
+    let length = grid.length();
+    let mut report = ResolutionReport {
+        min_cells_per_radius: f64::INFINITY,
+        min_gap_cells: f64::INFINITY,
+        ..Default::default()
+    };
+    if p.is_empty() {
+        return report;
+    }
+    let mut thin = None::<(usize, f64)>;
+    let mut large = None::<(usize, usize)>;
+    for i in 0..p.len() {
+        let r = p.diameter[i] / 2.0;
+        if r / h < report.min_cells_per_radius {
+            report.min_cells_per_radius = r / h;
+            thin = Some((i, r / h));
+        }
+        if large.is_none() {
+            if let Some(a) = (0..3).find(|&a| p.diameter[i] > length[a]) {
+                large = Some((i, a));
+            }
+        }
+    }
+    if let Some((i, ratio)) = thin.filter(|t| t.1 < MIN_CELLS_PER_RADIUS) {
+        report.errors.push(format!(
+            "particle {} (d = {:e} m): r/h = {ratio:.3} is below {MIN_CELLS_PER_RADIUS}; the \
+             direct model needs at least {MIN_CELLS_PER_RADIUS} cells per radius (2.5 or more \
+             recommended, h = {h:e} m): refine system/blockMeshDict or use model dragLaw",
+            p.id[i], p.diameter[i]
+        ));
+    }
+    if let Some((i, a)) = large {
+        report.errors.push(format!(
+            "particle {} (d = {:e} m) is larger than the box along {} (L = {:e} m)",
+            p.id[i],
+            p.diameter[i],
+            ["x", "y", "z"][a],
+            length[a]
+        ));
+    }
+    let mut overlaps = 0usize;
+    let mut narrow = 0usize;
+    let mut worst = None::<(usize, usize, f64)>;
+    ClosePairs::default().visit(p, domain, RESOLVED_GAP_CELLS * h, |i, j, _, _, gap| {
+        report.min_gap_cells = report.min_gap_cells.min(gap / h);
+        if -gap > overlap_tolerance * p.diameter[i].min(p.diameter[j]) {
+            overlaps += 1;
+            if worst.is_none_or(|w| gap < w.2) {
+                worst = Some((i, j, gap));
+            }
+        } else {
+            narrow += 1;
+        }
+    });
+    if let Some((i, j, gap)) = worst {
+        report.errors.push(format!(
+            "{overlaps} pair(s) of particles overlap, the deepest particles {} and {} by {:e} m",
+            p.id[i], p.id[j], -gap
+        ));
+    }
+    let mut near_walls = 0usize;
+    for i in 0..p.len() {
+        let r = p.diameter[i] / 2.0;
+        for face in (0..6).filter(|&f| walls[f]) {
+            let a = face / 2;
+            let gap = if face % 2 == 1 {
+                domain.hi[a] - p.position[i][a] - r
+            } else {
+                p.position[i][a] - domain.lo[a] - r
+            };
+            if gap < RESOLVED_GAP_CELLS * h {
+                near_walls += 1;
+                report.min_gap_cells = report.min_gap_cells.min(gap / h);
+            }
+        }
+    }
+    if narrow + near_walls > 0 {
+        report.warnings.push(format!(
+            "{narrow} particle pair(s) and {near_walls} particle-wall gap(s) are narrower than \
+             {RESOLVED_GAP_CELLS} cells (smallest {:.2} h, h = {h:e} m): the grid does not \
+             resolve the flow there (the lubrication correction covers the normal force below \
+             its cut-off); refine the grid for accurate forces",
+            report.min_gap_cells
+        ));
+    }
+    if !driven && p.fixed.iter().any(|&f| f) && p.fixed.iter().all(|&f| f) {
+        report.warnings.push(
+            "every particle is fixed and nothing drives the flow (no meanVelocityForce in \
+             fvOptions, no inlet, no moving wall): the fluid stays at rest and the forces are \
+             zero"
+                .to_string(),
+        );
+    }
+    report
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(n: usize, l: f64) -> Grid {
+        Grid::new([n; 3], [l / n as f64; 3], [0.0; 3])
+    }
+
+    fn periodic(l: f64) -> PeriodicBox {
+        PeriodicBox {
+            lo: [0.0; 3],
+            hi: [l; 3],
+            periodic: [true; 3],
+        }
+    }
+
+    #[test]
+    fn coarse_spheres_are_refused() {
+        let mut p = ParticleState::default();
+        p.push(7, [0.5; 3], 0.06, 2500.0); // r/h = 0.03/0.02 = 1.5
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert_eq!(r.errors.len(), 1, "{:?}", r.errors);
+        assert!(r.errors[0].contains("particle 7") && r.errors[0].contains("r/h = 1.500"));
+        p.diameter[0] = 0.1; // r/h = 2.5
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert!(r.errors.is_empty() && r.warnings.is_empty(), "{r:?}");
+        assert!((r.min_cells_per_radius - 2.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sphere_larger_than_the_box_is_refused() {
+        let mut p = ParticleState::default();
+        p.push(1, [0.5; 3], 1.2, 2500.0);
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert!(
+            r.errors.iter().any(|e| e.contains("larger than the box")),
+            "{r:?}"
+        );
+    }
+
+    #[test]
+    fn overlaps_are_errors_and_narrow_gaps_warnings() {
+        let mut p = ParticleState::default();
+        p.push(1, [0.3, 0.5, 0.5], 0.2, 2500.0);
+        p.push(2, [0.5 + 0.01, 0.5, 0.5], 0.2, 2500.0); // gap 0.01 = 0.5 h
+        p.push(3, [0.62, 0.5, 0.5], 0.2, 2500.0); // overlaps 2 by 0.09
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert_eq!(r.errors.len(), 1, "{r:?}");
+        assert!(r.errors[0].contains("particles 2 and 3"), "{}", r.errors[0]);
+        assert_eq!(r.warnings.len(), 1, "{r:?}");
+        assert!(
+            r.warnings[0].contains("1 particle pair(s)"),
+            "{}",
+            r.warnings[0]
+        );
+        assert!((r.min_gap_cells + 4.5).abs() < 1e-9, "{}", r.min_gap_cells);
+    }
+
+    #[test]
+    fn wall_gaps_and_undriven_porous_media_warn() {
+        let mut p = ParticleState::default();
+        p.push(1, [0.5, 0.5, 0.11], 0.2, 2500.0); // 0.01 from the floor
+        p.fixed[0] = true;
+        let mut walls = [false; 6];
+        walls[4] = true;
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), walls, false, 1e-3);
+        assert!(r.errors.is_empty());
+        assert_eq!(r.warnings.len(), 2, "{r:?}");
+        assert!(r.warnings[0].contains("1 particle-wall gap(s)"));
+        assert!(r.warnings[1].contains("nothing drives the flow"));
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert!(r.warnings.is_empty(), "{r:?}");
+    }
+}

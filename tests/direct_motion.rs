@@ -1,0 +1,578 @@
+//! Freely moving spheres with the direct model: a settling sphere against the periodic-array
+//! correction (paper eq. 17) and the zero momentum of a settling suspension in a periodic box,
+//! run by `fsimFoam` on the tutorials; and a harness assembling the coupled step from the
+//! library's parts as the time loop does (fluid step with no-slip, stress integral,
+//! lubrication, DEM), for the density-ratio stability study (ignored tests, run by hand).
+
+mod support;
+
+use std::fs;
+use std::path::Path;
+use support::*;
+
+use fsim::coupling::direct::{
+    sangani_acrivos_k, DirectCoupling, DirectSettings, MotionSettings, ParticleMotion,
+    SedimentationReport,
+};
+use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, TimeScheme};
+use fsim::grid::Grid;
+use fsim::particles::{
+    Dem, DemConfig, DomainBox, FaceCondition, PairModel, ParticleState, WallModel,
+};
+
+/// A fully periodic box of `n` cells of size `h` per axis with free spheres, gravity −y.
+pub struct Settler {
+    pub fluid: FluidSolver,
+    pub coupling: DirectCoupling,
+    pub dem: Dem,
+    pub motion: ParticleMotion,
+    pub rho: f64,
+    pub time: f64,
+}
+
+impl Settler {
+    pub fn new(
+        n: [usize; 3],
+        h: f64,
+        spheres: &[([f64; 3], f64)],
+        rho_p: f64,
+        rho_f: f64,
+        nu: f64,
+        scheme: TimeScheme,
+    ) -> Settler {
+        let grid = Grid::new(n, [h; 3], [0.0; 3]);
+        let bc = BoundaryConditions::periodic();
+        let mut settings = FluidSettings::new(nu);
+        settings.scheme = scheme;
+        let mut fluid = FluidSolver::new(grid.clone(), bc.clone(), settings).unwrap();
+        let mut p = ParticleState::default();
+        for (k, (x, d)) in spheres.iter().enumerate() {
+            p.push(k as u64, *x, *d, rho_p);
+        }
+        let d = spheres[0].1;
+        let m = rho_p * std::f64::consts::PI * d * d * d / 6.0;
+        // soft contacts: only a backstop here
+        let kn = 1e-3 * m / (1e-4 * 1e-4);
+        let wall = WallModel::LinearSpringDashpot {
+            kn,
+            restitution: 0.5,
+            kt: 2.0 / 7.0 * kn,
+            mu: 0.3,
+            tangential_damping_ratio: 0.5,
+            collision_resolution_steps: 20.0,
+        };
+        let mut config = DemConfig::new(PairModel::linear(kn, 0.5, 0.3), wall);
+        config.gravity = [0.0, -9.81, 0.0];
+        config.fluid_density = rho_f;
+        let length = grid.length();
+        let dem = Dem::new(
+            config,
+            DomainBox::uniform([0.0; 3], length, FaceCondition::Periodic),
+            p,
+        )
+        .unwrap();
+        let mut motion_settings = MotionSettings::default();
+        if let Ok(c) = std::env::var("VM") {
+            motion_settings.virtual_mass = c.parse().unwrap();
+        }
+        let motion = ParticleMotion::new(motion_settings, &grid, &bc, &dem, rho_f, nu).unwrap();
+        fluid.set_body_force(motion.fluid_body_force());
+        let mut direct = DirectSettings::default();
+        if let Ok(name) = std::env::var("INTERP") {
+            direct.integral.interpolation =
+                fsim::coupling::direct::Interpolation::from_name(&name).unwrap();
+        }
+        if let Ok(q) = std::env::var("QUADS") {
+            direct.integral.quadrangles = Some(q.parse().unwrap());
+        }
+        if let Ok(offset) = std::env::var("OFFSET") {
+            direct.integral.surface_offset = offset.parse().unwrap();
+        }
+        let coupling = DirectCoupling::new(&mut fluid, direct);
+        Settler {
+            fluid,
+            coupling,
+            dem,
+            motion,
+            rho: rho_f,
+            time: 0.0,
+        }
+    }
+
+    /// One coupled step (the order of `src/coupling/direct/particle_motion.rs`).
+    pub fn step(&mut self, dt: f64) {
+        let clock = std::time::Instant::now();
+        self.coupling.set_particles(self.dem.particles());
+        if std::env::var("TIMING").is_ok() {
+            eprintln!("set_particles {:?}", clock.elapsed());
+        }
+        let coupling = &self.coupling;
+        self.fluid
+            .step_with(dt, &mut |stage| coupling.impose(stage));
+        let clock = std::time::Instant::now();
+        let loads = self.coupling.compute_loads(&self.fluid, self.rho).to_vec();
+        if std::env::var("TIMING").is_ok() {
+            eprintln!("compute_loads {:?}", clock.elapsed());
+        }
+        if std::env::var("TRACE").is_ok() {
+            let p = self.dem.particles();
+            let w = p.mass(0) * (1.0 - self.rho / p.density[0]) * 9.81;
+            eprintln!(
+                "  v_p {:.4e} <u> {:.4e} F_h/W {:.4} T {:.3e}",
+                p.velocity[0][1],
+                self.fluid.mean_component(1),
+                loads[0].force[1] / w,
+                loads[0].torque[2]
+            );
+        }
+        self.motion
+            .set_loads(&mut self.dem, loads.iter().map(|l| (l.force, l.torque)), dt);
+        self.dem.advance(dt);
+        self.time += dt;
+    }
+
+    pub fn report(&mut self) -> SedimentationReport {
+        let mean = [0, 1, 2].map(|c| self.fluid.mean_component(c));
+        self.motion.sedimentation(mean, self.dem.particles())
+    }
+}
+
+fn stokes_velocity(d: f64, rho_p: f64, rho_f: f64, nu: f64) -> f64 {
+    2.0 * (rho_p - rho_f) * 9.81 * (d / 2.0).powi(2) / (9.0 * rho_f * nu)
+}
+
+/// Terminal velocity of one sphere in a periodic box at r/h = 8, Re = 0.004.
+fn settling_sphere_ratio(scheme: TimeScheme, dt: f64, steps: usize, rho_p: f64) -> Vec<f64> {
+    let (n, h) = (36, 1.25e-4);
+    let d = 16.0 * h;
+    let (rho_f, nu) = (1000.0, 1e-3);
+    let centre = [18.0 * h + 0.3 * h, 18.0 * h, 18.0 * h - 0.2 * h];
+    let mut s = Settler::new([n; 3], h, &[(centre, d)], rho_p, rho_f, nu, scheme);
+    let us = stokes_velocity(d, rho_p, rho_f, nu);
+    let mut out = Vec::new();
+    for k in 0..steps {
+        s.step(dt);
+        if (k + 1) % (steps / 10).max(1) == 0 {
+            let r = s.report();
+            out.push(r.settling_velocity / us);
+            eprintln!(
+                "t = {:.4e}: v/U_s = {:.5}, momentum {:.3e} of {:.3e}",
+                s.time,
+                r.settling_velocity / us,
+                r.momentum[1],
+                r.momentum_scale
+            );
+        }
+    }
+    out
+}
+
+#[test]
+#[ignore]
+fn explore_settling_sphere() {
+    let scheme = match std::env::var("SCHEME").as_deref() {
+        Ok("RK3") => TimeScheme::RK3,
+        Ok("Euler") => TimeScheme::Euler,
+        _ => TimeScheme::RK3CN,
+    };
+    let dt: f64 = std::env::var("DT")
+        .map(|s| s.parse().unwrap())
+        .unwrap_or(1e-4);
+    let steps: usize = std::env::var("STEPS")
+        .map(|s| s.parse().unwrap())
+        .unwrap_or(100);
+    let rho_p: f64 = std::env::var("RHOP")
+        .map(|s| s.parse().unwrap())
+        .unwrap_or(2000.0);
+    let phi = 4.0 / 3.0 * std::f64::consts::PI * 512.0 / 36f64.powi(3);
+    eprintln!("phi {phi}, 1/K = {}", 1.0 / sangani_acrivos_k(phi));
+    settling_sphere_ratio(scheme, dt, steps, rho_p);
+}
+
+/// Diagnostic: a fixed sphere in a periodic box with the fluid driven by a uniform body force
+/// `b`: in the steady state the sphere carries all of it, `F = ρ b L³` (exact momentum balance).
+#[test]
+#[ignore]
+fn explore_fixed_sphere_momentum_balance() {
+    let scheme = match std::env::var("SCHEME").as_deref() {
+        Ok("RK3") => TimeScheme::RK3,
+        Ok("Euler") => TimeScheme::Euler,
+        _ => TimeScheme::RK3CN,
+    };
+    let dt: f64 = std::env::var("DT")
+        .map(|s| s.parse().unwrap())
+        .unwrap_or(1e-4);
+    let steps: usize = std::env::var("STEPS")
+        .map(|s| s.parse().unwrap())
+        .unwrap_or(100);
+    let (n, h) = (36, 1.25e-4);
+    let d = 16.0 * h;
+    let centre = [18.0 * h + 0.3 * h, 18.0 * h, 18.0 * h - 0.2 * h];
+    let mut s = Settler::new([n; 3], h, &[(centre, d)], 2000.0, 1000.0, 1e-3, scheme);
+    // hold it: zero gravity, fixed
+    let b = 1.0;
+    s.fluid.set_body_force([0.0, b, 0.0]);
+    let l3 = (n as f64 * h).powi(3);
+    for k in 0..steps {
+        s.coupling.set_particles(s.dem.particles());
+        let coupling = &s.coupling;
+        s.fluid.step_with(dt, &mut |stage| coupling.impose(stage));
+        let loads = s.coupling.compute_loads(&s.fluid, s.rho).to_vec();
+        if (k + 1) % (steps / 10).max(1) == 0 {
+            eprintln!(
+                "step {}: F/(rho b L^3) = {:.5}, <u> = {:.4e}",
+                k + 1,
+                loads[0].force[1] / (1000.0 * b * l3),
+                s.fluid.mean_component(1)
+            );
+        }
+    }
+}
+
+/// Columns of a monitor file by name.
+fn monitor(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let names: Vec<String> = lines
+        .next()
+        .unwrap()
+        .trim_start_matches('#')
+        .split_whitespace()
+        .map(str::to_string)
+        .collect();
+    let mut columns: std::collections::HashMap<String, Vec<f64>> =
+        names.iter().map(|n| (n.clone(), Vec::new())).collect();
+    for line in lines.filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+        for (n, v) in names.iter().zip(line.split_whitespace()) {
+            columns.get_mut(n).unwrap().push(v.parse().unwrap());
+        }
+    }
+    columns
+}
+
+/// One sphere (r/h = 8, ρ_p/ρ_f = 2, Re = 0.004) settling in a periodic box of 36 cells
+/// (φ = 0.046): its terminal velocity in the frame of zero volume flux over the Stokes
+/// velocity is `1/K` of Sangani & Acrivos (paper eq. 17) for the simple cubic array, 0.4131.
+/// Measured: 0.4118 after 5 ms (the tutorial's end), 0.4108 after the 3 ms run here (ratio
+/// 0.9944; the flow still develops by 0.2 %); the drive's momentum correction 1e-4.
+/// Bound: 3 %; the velocity must also have settled (the last two samples of the monitor
+/// 0.5 ms apart within 0.5 %).
+#[test]
+fn settling_sphere_matches_the_periodic_array_correction() {
+    let s = Scratch::new("settling-sphere");
+    let case = copy_tutorial("settlingSphere", &s.0, "settlingSphere");
+    set_entry(&case.join("system/controlDict"), "endTime", "0.003");
+    set_entry(&case.join("system/controlDict"), "writeInterval", "0.003");
+    let out = fsim(&case, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let m = monitor(&case.join("postProcessing/sedimentation/0/sedimentation.dat"));
+    let (t, v) = (&m["Time"], &m["settlingVelocity"]);
+    let (d, rho_p, rho_f, nu) = (2e-3, 2000.0, 1000.0, 1e-3);
+    let stokes = stokes_velocity(d, rho_p, rho_f, nu);
+    let phi = m["phi"][0];
+    let expected = 1.0 / sangani_acrivos_k(phi);
+    let last = *v.last().unwrap() / stokes;
+    let earlier_index = t
+        .iter()
+        .position(|&x| x >= t.last().unwrap() - 5e-4)
+        .unwrap();
+    let earlier = v[earlier_index] / stokes;
+    eprintln!(
+        "settling sphere: phi {phi:.5}, v/U_s = {last:.5} (t = {:.2e}), {earlier:.5} 0.5 ms \
+         before; Sangani-Acrivos 1/K = {expected:.5}; ratio {:.5}",
+        t.last().unwrap(),
+        last / expected
+    );
+    assert!((phi - 0.04597).abs() < 1e-4, "phi {phi}");
+    assert!(
+        (last - earlier).abs() < 5e-3 * last,
+        "not settled: {earlier} → {last}"
+    );
+    assert!(
+        (last / expected - 1.0).abs() < 0.03,
+        "v/U_s {last} vs {expected}"
+    );
+    // the mixture's momentum stays zero, and the drive needed little correction for it: the
+    // stress integral balances the no-slip forcing's reaction on the fluid
+    let scale = *m["momentumScale"].last().unwrap();
+    let worst = m["My"].iter().map(|x| x.abs()).fold(0.0, f64::max);
+    let correction = *m["driveCorrection"].last().unwrap();
+    eprintln!("settling sphere: max |momentum| {worst:.3e} of {scale:.3e}, drive correction {correction:.4}");
+    assert!(worst < 0.02 * scale, "momentum {worst:e} of {scale:e}");
+    assert!(correction < 0.02, "drive correction {correction}");
+}
+
+/// Eight spheres (r/h = 3, ρ_p/ρ_f = 2.5, φ = 0.22, gaps of 2h) settling together in a
+/// periodic box: the imposed mean pressure gradient (SettlingDrive with its momentum-holding
+/// correction) keeps the total momentum of fluid and particles at zero, within 1 % of
+/// `Σ m|v|` at every step once the correction has settled (after 5 ms, 30 steps; during the
+/// start-up it reaches 16 %, measured), while the particles fall and the fluid streams up. The correction this coarse, dense case needs measures the stress
+/// integral's momentum defect there: 0.055 of the analytic drive (bound 0.3; 0.198 with the
+/// earlier two-cell integration surface that overlapped the neighbours).
+#[test]
+fn settling_suspension_keeps_zero_momentum() {
+    let s = Scratch::new("suspension-momentum");
+    let case = copy_tutorial("sedimentation", &s.0, "suspension");
+    let block = case.join("system/blockMeshDict");
+    let text = fs::read_to_string(&block).unwrap();
+    // a 16 x 16 x 16-cell corner of the tutorial's box (4 mm) with eight spheres
+    let text = text
+        .replace("(32 64 32)", "(16 16 16)")
+        .replace("0.008", "0.004")
+        .replace("0.016", "0.004");
+    fs::write(&block, text).unwrap();
+    let positions = case.join("constant/kinematicCloudPositions");
+    let head = {
+        let t = fs::read_to_string(&positions).unwrap();
+        t[..t.find("\n(").unwrap()].to_string()
+    };
+    let mut list = String::new();
+    for (k, x) in [
+        [1.0, 1.0, 1.0],
+        [3.0, 1.1, 1.0],
+        [1.0, 3.0, 1.2],
+        [3.1, 3.0, 1.0],
+        [1.0, 1.0, 3.0],
+        [3.0, 1.0, 3.1],
+        [1.2, 3.1, 3.0],
+        [3.0, 2.9, 3.0],
+    ]
+    .iter()
+    .enumerate()
+    {
+        let _ = k;
+        list += &format!("({} {} {})\n", x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3);
+    }
+    fs::write(&positions, format!("{head}\n(\n{list})\n")).unwrap();
+    set_entry(&case.join("system/controlDict"), "endTime", "0.015");
+    set_entry(&case.join("system/controlDict"), "writeInterval", "0.015");
+    let out = fsim(&case, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let m = monitor(&case.join("postProcessing/sedimentation/0/sedimentation.dat"));
+    let scale = *m["momentumScale"].last().unwrap();
+    let worst = (0..m["Time"].len())
+        .filter(|&i| m["Time"][i] > 5e-3)
+        .map(|i| (m["Mx"][i].powi(2) + m["My"][i].powi(2) + m["Mz"][i].powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    let correction = *m["driveCorrection"].last().unwrap();
+    let vp = *m["Vpy"].last().unwrap();
+    let uf = *m["Ufy"].last().unwrap();
+    eprintln!(
+        "suspension: phi {:.4}, {} steps, max |momentum| {worst:.3e} of {scale:.3e} ({:.2e}); \
+         particles {vp:.3e} m/s, fluid {uf:.3e} m/s, drive correction {correction:.4}",
+        m["phi"][0],
+        m["Time"].len(),
+        worst / scale
+    );
+    assert!(vp < 0.0 && uf > 0.0, "particles {vp}, fluid {uf}");
+    assert!(worst < 0.01 * scale, "momentum {worst:e} of {scale:e}");
+    assert!(correction < 0.3, "drive correction {correction}");
+}
+
+/// A fully periodic cube of `n` cells of size `h` holding `count` spheres of diameter `d`,
+/// packed at random (seeded, gaps of at least h/2 across periodic faces too), from the
+/// sedimentation tutorial's files with viscosity `nu`; returns the solid fraction.
+fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64, end: f64) -> f64 {
+    let l = n as f64 * h;
+    let block = case.join("system/blockMeshDict");
+    let text = fs::read_to_string(&block).unwrap();
+    let text = text
+        .replace("(32 64 32)", &format!("({n} {n} {n})"))
+        .replace("0.008", &format!("{l}"))
+        .replace("0.016", &format!("{l}"));
+    fs::write(&block, text).unwrap();
+    let mut rng = fsim::particles::SplitMix64::new(17);
+    let mut centres: Vec<[f64; 3]> = Vec::new();
+    let reach = d + 0.5 * h;
+    while centres.len() < count {
+        let x = [rng.next_f64() * l, rng.next_f64() * l, rng.next_f64() * l];
+        let clear = centres.iter().all(|y| {
+            let s: f64 = (0..3)
+                .map(|a| {
+                    let t = x[a] - y[a];
+                    let t = t - l * (t / l).round();
+                    t * t
+                })
+                .sum();
+            s >= reach * reach
+        });
+        if clear {
+            centres.push(x);
+        }
+    }
+    let positions = case.join("constant/kinematicCloudPositions");
+    let head = {
+        let t = fs::read_to_string(&positions).unwrap();
+        t[..t.find("\n(").unwrap()].to_string()
+    };
+    let list: String = centres
+        .iter()
+        .map(|x| format!("({} {} {})\n", x[0], x[1], x[2]))
+        .collect();
+    fs::write(&positions, format!("{head}\n(\n{list})\n")).unwrap();
+    let cloud = case.join("constant/kinematicCloudProperties");
+    let text = fs::read_to_string(&cloud).unwrap();
+    fs::write(
+        &cloud,
+        text.replace("value 0.0015;", &format!("value {d};"))
+            .replace("rho0            2500;", "rho0            2000;"),
+    )
+    .unwrap();
+    set_entry(
+        &case.join("constant/transportProperties"),
+        "nu",
+        &format!("{nu}"),
+    );
+    let control = case.join("system/controlDict");
+    set_entry(&control, "endTime", &format!("{end}"));
+    set_entry(&control, "writeInterval", &format!("{end}"));
+    let dt = 0.95 * h * h / (6.0 * nu);
+    set_entry(&control, "deltaT", &format!("{dt}"));
+    set_entry(&control, "maxDeltaT", &format!("{dt}"));
+    count as f64 * std::f64::consts::PI * d * d * d / 6.0 / (l * l * l)
+}
+
+/// Sedimentation, coarse (the full sweep is `tools/sedimentation_sweep.py`): eight spheres at
+/// r/h = 3, ρ_p/ρ_f = 2, Re ≤ 0.15, in periodic cubes at φ = 0.05, 0.15 and 0.30; the mean
+/// settling velocity in the frame of zero volume flux, averaged over the second half of a
+/// run of 0.15 L²/ν, fitted to Richardson & Zaki's `(1−φ)^n` with `V_0` free.
+///
+/// What can be asserted at this size: the velocity falls with φ, and n is at least the low
+/// end of the expected 4.6–5.1 less the scatter of three short averages (n ≥ 4): a periodic
+/// cell of few particles only adds hindrance (Hasimoto's `1.76 (φ/N)^{1/3}` lattice term,
+/// 0.32 of the Stokes velocity at φ = 0.05 with N = 8), and so does a coarse grid with gaps
+/// of a few cells. Measured: n = 7.8, V_0 = 0.77 V_Stokes (v_m/V_Stokes 0.502, 0.209,
+/// 0.034): these small cells behave nearly as lattices; the sweep with 27 particles per
+/// cell is in the README.
+#[test]
+fn sedimentation_follows_richardson_zaki_coarsely() {
+    let (h, d, rho_p, rho_f) = (1e-4, 6e-4, 2000.0, 1000.0);
+    let re: f64 = 0.15;
+    let nu = ((rho_p / rho_f - 1.0) * 9.81 * d * d * d / (18.0 * re)).sqrt();
+    let stokes = stokes_velocity(d, rho_p, rho_f, nu);
+    let s = Scratch::new("richardson-zaki");
+    let mut points = Vec::new();
+    for (k, target) in [0.05, 0.15, 0.30].into_iter().enumerate() {
+        let case = copy_tutorial("sedimentation", &s.0, &format!("phi{k}"));
+        let volume = 8.0 * std::f64::consts::PI * d * d * d / 6.0 / target;
+        let n = (volume.cbrt() / h).round() as usize;
+        let end = 0.15 * (n as f64 * h).powi(2) / nu;
+        let phi = suspension_case(&case, n, h, d, 8, nu, end);
+        let out = fsim(&case, &[]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let m = monitor(&case.join("postProcessing/sedimentation/0/sedimentation.dat"));
+        let t_end = *m["Time"].last().unwrap();
+        let late: Vec<f64> = (0..m["Time"].len())
+            .filter(|&i| m["Time"][i] >= 0.5 * t_end)
+            .map(|i| m["settlingVelocity"][i])
+            .collect();
+        let v = late.iter().sum::<f64>() / late.len() as f64;
+        eprintln!(
+            "phi {phi:.4} ({n}^3 cells, {} steps): v_m/V_Stokes = {:.4}, Re = {:.3}",
+            m["Time"].len(),
+            v / stokes,
+            v * d / nu
+        );
+        assert!(v * d / nu < 0.2, "Re {}", v * d / nu);
+        points.push((phi, v));
+    }
+    assert!(points.windows(2).all(|w| w[1].1 < w[0].1), "{points:?}");
+    // least squares of ln v on ln(1 − φ)
+    let xs: Vec<f64> = points.iter().map(|p| (1.0 - p.0).ln()).collect();
+    let ys: Vec<f64> = points.iter().map(|p| p.1.ln()).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / 3.0, ys.iter().sum::<f64>() / 3.0);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    let n = sxy / sxx;
+    let v0 = (my - n * mx).exp();
+    eprintln!(
+        "Richardson-Zaki (coarse): n = {n:.2}, V_0/V_Stokes = {:.3}",
+        v0 / stokes
+    );
+    assert!(n.is_finite() && n >= 4.0, "n = {n}");
+}
+
+/// The three moving-sphere tutorials validate (`-dry-run`): their grid and particle count,
+/// and no error.
+#[test]
+fn tutorials_validate_at_dry_run() {
+    for (name, cells, particles) in [
+        ("settlingSphere", "36x36x36 = 46656 cells", "1 particles"),
+        ("sedimentation", "32x64x32 = 65536 cells", "48 particles"),
+        ("benchmark", "60x180x60 = 648000 cells", "500 particles"),
+    ] {
+        let s = Scratch::new(&format!("dry-{name}"));
+        let case = copy_tutorial(name, &s.0, name);
+        let out = fsim(&case, &["-dry-run"]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {stderr}");
+        assert!(stdout.contains(cells), "{name}: {stdout}");
+        assert!(stdout.contains(particles), "{name}: {stdout}");
+        assert!(!stderr.contains("fsimFoam: error"), "{name}: {stderr}");
+    }
+}
+
+/// A continued run (`startFrom latestTime`) of a settling sphere equals the uninterrupted one
+/// bit for bit: the restart state carries the DEM, the fluid, the stress integral's shell
+/// momentum and the moving spheres' state (virtual-mass velocities, drive correction).
+#[test]
+fn continued_settling_run_is_bit_identical() {
+    let s = Scratch::new("direct-restart");
+    let setup = |name: &str| {
+        let case = copy_tutorial("settlingSphere", &s.0, name);
+        let coupling = case.join("constant/couplingProperties");
+        let text = fs::read_to_string(&coupling).unwrap();
+        fs::write(&coupling, text + "direct { interpolation linear; }\n").unwrap();
+        let control = case.join("system/controlDict");
+        set_entry(&control, "adjustTimeStep", "no");
+        set_entry(&control, "deltaT", "2e-6");
+        set_entry(&control, "writeControl", "timeStep");
+        set_entry(&control, "writeInterval", "20");
+        set_entry(&control, "endTime", "8e-5");
+        case
+    };
+    let whole = setup("whole");
+    let out = fsim(&whole, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let parts = setup("parts");
+    set_entry(&parts.join("system/controlDict"), "endTime", "4e-5");
+    let out = fsim(&parts, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    set_entry(&parts.join("system/controlDict"), "endTime", "8e-5");
+    set_entry(&parts.join("system/controlDict"), "startFrom", "latestTime");
+    let out = fsim(&parts, &[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for file in ["particles.vtu", "fluid.vtk"] {
+        let a = fs::read(whole.join("8e-05").join(file)).unwrap();
+        let b = fs::read(parts.join("8e-05").join(file)).unwrap();
+        assert!(
+            a == b,
+            "{file} differs between the whole and the continued run"
+        );
+    }
+}

@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""Sedimentation sweep: mean settling velocity against solid fraction, fitted to
+Richardson & Zaki (paper eq. 21), v_m / V_0 = (1 - phi)^n.
+
+    tools/sedimentation_sweep.py [--phi 0.02 0.05 0.1 0.15 0.2 0.25 0.3] [--particles 27]
+                                 [--cells-per-radius 3] [--reynolds 0.15] [--run-length 0.15]
+                                 [--csv out.csv]
+
+Each run is a fully periodic box (cubic) holding `--particles` spheres at the solid fraction
+phi, packed at random without overlap (seeded), released from rest with the direct model.
+The mixture's weight is carried by the imposed mean pressure gradient, so the settling
+velocity is measured in the frame of zero volume flux (a container's):
+v_m = <v_p> - <u>_box along gravity (fsim's `postProcessing/sedimentation` monitor), averaged
+over the second half of the run. The viscosity is set for the particle Reynolds number
+Re = V_0 d / nu of `--reynolds` (below 0.2), the run length is `--run-length` L^2/nu (0.15:
+about six e-foldings of the slowest box mode, so that the flow has settled), i.e. about
+(L/h)^2 steps of the Euler scheme at its viscous bound.
+
+The fit is the least-squares line log v_m = log V_0 + n log(1 - phi), weighted by the
+run-to-run scatter of each mean (the standard error of the time average, from block means);
+n is reported with its standard error, and also with V_0 held at the Stokes velocity.
+Results go to CSV (one row per phi) and to stdout.
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import direct_cases  # noqa: E402
+
+# A liquid; the viscosity follows from the Reynolds number asked for
+RHO_F = 1000.0
+RHO_P = 2000.0
+
+
+def read_monitor(case):
+    path = os.path.join(case, "postProcessing", "sedimentation", "0", "sedimentation.dat")
+    names = open(path).readline().lstrip("#").split()
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def block_mean(values, blocks=5):
+    """Mean and standard error of a correlated series by block averaging."""
+    parts = np.array_split(values, blocks)
+    means = np.array([p.mean() for p in parts if len(p)])
+    return float(values.mean()), float(means.std(ddof=1) / math.sqrt(len(means)))
+
+
+def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed):
+    h = 1e-4
+    d = 2 * cells_per_radius * h
+    volume = count * direct_cases.sphere_volume(d) / phi
+    n = max(int(round(volume ** (1 / 3) / h)), int(math.ceil(2.3 * d / h)))
+    L = [n * h] * 3
+    phi_actual = count * direct_cases.sphere_volume(d) / (n * h) ** 3
+    # Re = V_0 d / nu with V_0 = (rho_p/rho_f - 1) g d^2 / (18 nu)
+    nu = math.sqrt((RHO_P / RHO_F - 1) * 9.81 * d ** 3 / (18 * reynolds))
+    v0 = direct_cases.stokes_velocity(d, RHO_P, RHO_F, nu)
+    end = run_length * (n * h) ** 2 / nu
+    case = os.path.join(scratch, f"phi{phi:g}")
+    shutil.rmtree(case, ignore_errors=True)
+    # random sequential addition jams near phi = 0.38: keep the gaps small when dense
+    centres = direct_cases.periodic_packing(L, d, count, seed=seed,
+                                            min_gap=(0.5 if phi < 0.25 else 0.1) * h)
+    direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=nu, rho_p=RHO_P,
+                            end_time=end, write_interval=end, centres=centres, max_co=0.5,
+                            max_dt=end / 400, restitution=0.5,
+                            coupling_extra=direct_cases.LINEAR,
+                            title=f"sedimentation sweep, phi = {phi_actual:.4f}")
+    log = os.path.join(case, "log.fsimFoam")
+    with open(log, "w") as f:
+        subprocess.run(["nice", binary, "-case", case, "-threads", str(threads)], stdout=f,
+                       stderr=subprocess.STDOUT, check=True)
+    m = read_monitor(case)
+    t = m["Time"]
+    late = t >= 0.5 * t[-1]
+    vm, err = block_mean(m["settlingVelocity"][late])
+    return dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
+                v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
+                reynolds=vm * d / nu, end_time=end)
+
+
+def fit(rows):
+    """Weighted least squares of log v_m on log(1 - phi): returns (n, sigma_n, V0)."""
+    x = np.array([math.log(1 - r["phi"]) for r in rows])
+    y = np.array([math.log(r["v_m"]) for r in rows])
+    s = np.array([max(r["v_m_error"] / r["v_m"], 1e-3) for r in rows])
+    w = 1 / s ** 2
+    A = np.stack([np.ones_like(x), x], axis=1)
+    cov = np.linalg.inv(A.T @ (A * w[:, None]))
+    coef = cov @ (A.T @ (w * y))
+    resid = y - A @ coef
+    dof = max(len(rows) - 2, 1)
+    scale = max(float(np.sum(w * resid ** 2) / dof), 1.0)  # inflate by the misfit
+    return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), float(math.exp(coef[0]))
+
+
+def fit_fixed_v0(rows):
+    x = np.array([math.log(1 - r["phi"]) for r in rows])
+    y = np.array([math.log(r["v_m"] / r["stokes"]) for r in rows])
+    n = float(np.sum(x * y) / np.sum(x * x))
+    resid = y - n * x
+    sigma = float(math.sqrt(np.sum(resid ** 2) / max(len(rows) - 1, 1) / np.sum(x * x)))
+    return n, sigma
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--phi", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3])
+    ap.add_argument("--particles", type=int, default=27)
+    ap.add_argument("--cells-per-radius", type=float, default=3.0)
+    ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
+    ap.add_argument("--run-length", type=float, default=0.15, help="in units of L^2 / nu")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--csv", default="sedimentation_sweep.csv")
+    ap.add_argument("--keep", help="keep the cases in this directory")
+    ap.add_argument("--no-build", action="store_true")
+    a = ap.parse_args()
+
+    if not a.no_build:
+        subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    binary = os.path.join(target, "release", "fsimFoam")
+    scratch = a.keep or tempfile.mkdtemp(prefix="fsim-sedimentation-")
+    os.makedirs(scratch, exist_ok=True)
+    rows = []
+    try:
+        for phi in a.phi:
+            r = run_one(binary, scratch, phi, a.particles, a.cells_per_radius,
+                        a.reynolds, a.run_length, a.threads, a.seed)
+            rows.append(r)
+            print(f"phi {r['phi']:.4f}: v_m = {r['v_m']:.4e} +- {r['v_m_error']:.1e} m/s, "
+                  f"v_m/V_Stokes = {r['ratio']:.4f}, Re = {r['reynolds']:.3f}, "
+                  f"{r['cells']} cells", flush=True)
+    finally:
+        if not a.keep:
+            shutil.rmtree(scratch, ignore_errors=True)
+    with open(a.csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    if len(rows) >= 2:
+        n, sn, v0 = fit(rows)
+        n1, sn1 = fit_fixed_v0(rows)
+        print(f"Richardson-Zaki fit: n = {n:.2f} +- {sn:.2f} (V_0 = {v0:.4e} m/s, "
+              f"{v0 / rows[0]['stokes']:.3f} of Stokes); with V_0 = Stokes: n = {n1:.2f} +- {sn1:.2f}")
+    print(f"wrote {a.csv}")
+
+
+if __name__ == "__main__":
+    main()
