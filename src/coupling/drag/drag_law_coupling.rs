@@ -28,9 +28,10 @@
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
 
+use super::chunked_scatter::ChunkedScatter;
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::{DragLawSettings, Stencil};
-use super::grid_transfer::GridTransfer;
+use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{
     FluidSolver, Preconditioner, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport,
 };
@@ -64,6 +65,14 @@ pub struct DragLawCoupling {
     drag: Vec<[f64; 3]>,
     beta: Vec<f64>,
     hydro: Vec<[f64; 3]>,
+    /// Per particle: the stencils spreading the reaction (computed with the forces) and the
+    /// volume (computed at the new positions).
+    write_faces: Vec<[SampleStencil; 3]>,
+    write_cells: Vec<SampleStencil>,
+    /// Deterministic parallel spreading of the reaction (3 source + 3 coefficient fields) and
+    /// of the volume.
+    face_scatter: ChunkedScatter,
+    cell_scatter: ChunkedScatter,
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
@@ -112,6 +121,10 @@ impl DragLawCoupling {
             drag: Vec::new(),
             beta: Vec::new(),
             hydro: Vec::new(),
+            write_faces: Vec::new(),
+            write_cells: Vec::new(),
+            face_scatter: ChunkedScatter::new(),
+            cell_scatter: ChunkedScatter::new(),
             last_fluid: None,
             last: ExchangeReport::default(),
         };
@@ -142,17 +155,26 @@ impl DragLawCoupling {
     /// `ε = 1 − (solid volume)/(cell volume)` from the particles, into `self.cells`; fails
     /// below `1 − alphaMax` naming the cell.
     fn compute_fluid_fraction(&mut self, p: &ParticleState) -> Result<f64, String> {
-        self.solid.iter_mut().for_each(|x| *x = 0.0);
         let stencil = self.settings.averaging;
-        for i in 0..p.len() {
-            let d = p.diameter[i];
-            self.transfer.spread_to_cells(
-                &mut self.solid,
-                p.position[i],
-                PI * d * d * d / 6.0,
-                stencil,
-            );
-        }
+        let transfer = &self.transfer;
+        self.write_cells.resize(p.len(), SampleStencil::default());
+        self.write_cells
+            .par_iter_mut()
+            .zip(p.position.par_iter())
+            .for_each(|(st, &x)| *st = transfer.write_cell_stencil(x, stencil));
+        let stencils = &self.write_cells;
+        let diameter = &p.diameter;
+        self.cell_scatter.spread(
+            p.len(),
+            1,
+            |i| stencils[i].index_range(),
+            |i, chunk| {
+                let d = diameter[i];
+                let base = chunk.base();
+                stencils[i].scatter(chunk.field_mut(0), base, PI * d * d * d / 6.0);
+            },
+        );
+        self.cell_scatter.reduce_into(0, &mut self.solid);
         let grid = self.fluid.grid();
         let [n0, n1, n2] = grid.n;
         let l = self.fluid.layout();
@@ -196,6 +218,7 @@ impl DragLawCoupling {
         self.drag.resize(n, [0.0; 3]);
         self.beta.resize(n, 0.0);
         self.hydro.resize(n, [0.0; 3]);
+        self.write_faces.resize(n, [SampleStencil::default(); 3]);
         let s = &self.settings;
         let want = match s.form {
             VolumeAveragedForm::Paper => Convention::DragOnly,
@@ -215,7 +238,8 @@ impl DragLawCoupling {
             s.averaging,
             s.analytical,
         );
-        // Particle loop: reads only, each particle writes its own slots.
+        // Particle loop: reads only, each particle writes its own slots. Each stencil is
+        // computed once and serves every read (u, ∇p) or write (source, coefficient).
         {
             let p = dem.particles();
             let (position, vel, diameter, density, fixed, contact) = (
@@ -230,11 +254,14 @@ impl DragLawCoupling {
                 .par_iter_mut()
                 .zip(self.drag.par_iter_mut())
                 .zip(self.beta.par_iter_mut())
+                .zip(self.write_faces.par_iter_mut())
                 .enumerate()
-                .for_each(|(i, ((hydro, drag), beta))| {
+                .for_each(|(i, (((hydro, drag), beta), write))| {
                     let x = position[i];
-                    let u = transfer.interpolate_faces(velocity, x, interpolation);
-                    let eps = transfer.interpolate_cells(eps_cells, x, averaging);
+                    let read = transfer.read_face_stencils(x, interpolation);
+                    let u: [f64; 3] = std::array::from_fn(|c| read[c].gather(&velocity[c]));
+                    let eps = transfer.read_cell_stencil(x, averaging).gather(eps_cells);
+                    *write = transfer.write_face_stencils(x, averaging);
                     let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
                     let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
                     let d = diameter[i];
@@ -249,7 +276,8 @@ impl DragLawCoupling {
                     let volume = q.volume();
                     let pressure = match form {
                         VolumeAveragedForm::Paper => {
-                            let gp = transfer.interpolate_faces(gradient, x, interpolation);
+                            let gp: [f64; 3] =
+                                std::array::from_fn(|c| read[c].gather(&gradient[c]));
                             std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
                         }
                         VolumeAveragedForm::DpmFoam => [0.0; 3],
@@ -292,12 +320,7 @@ impl DragLawCoupling {
     /// to the faces; one pass in particle order, so the sums are deterministic.
     fn spread_reaction(&mut self, p: &ParticleState) {
         let scale = 1.0 / (self.settings.rho * self.transfer.cell_volume());
-        let stencil = self.settings.averaging;
         let semi_implicit = self.settings.semi_implicit;
-        let (source, coefficient) = self.fluid.sources_mut();
-        for a in source.iter_mut().chain(coefficient.iter_mut()) {
-            a.iter_mut().for_each(|x| *x = 0.0);
-        }
         let mut on_particles = [0.0; 3];
         for f in &self.drag {
             for a in 0..3 {
@@ -306,19 +329,45 @@ impl DragLawCoupling {
         }
         // One-way coupling: the fluid does not feel the particles' drag.
         let count = if self.settings.coupled { p.len() } else { 0 };
-        for i in 0..count {
-            let f = self.drag[i];
-            let x = p.position[i];
-            self.transfer.spread_to_faces(
-                source,
-                x,
-                [-f[0] * scale, -f[1] * scale, -f[2] * scale],
-                stencil,
-            );
+        let (stencils, drag, beta) = (&self.write_faces, &self.drag, &self.beta);
+        // Fields 0–2: the source per component; 3–5: the coefficient.
+        let fields = if semi_implicit { 6 } else { 3 };
+        self.face_scatter.spread(
+            count,
+            fields,
+            |i| {
+                let r = stencils[i].map(|st| st.index_range());
+                (
+                    r[0].0.min(r[1].0).min(r[2].0),
+                    r[0].1.max(r[1].1).max(r[2].1),
+                )
+            },
+            |i, chunk| {
+                let base = chunk.base();
+                let f = drag[i];
+                for c in 0..3 {
+                    let value = -f[c] * scale;
+                    if value != 0.0 {
+                        stencils[i][c].scatter(chunk.field_mut(c), base, value);
+                    }
+                }
+                if semi_implicit {
+                    let b = beta[i] * scale;
+                    if b != 0.0 {
+                        for c in 0..3 {
+                            stencils[i][c].scatter(chunk.field_mut(3 + c), base, b);
+                        }
+                    }
+                }
+            },
+        );
+        let (source, coefficient) = self.fluid.sources_mut();
+        for c in 0..3 {
+            self.face_scatter.reduce_into(c, &mut source[c]);
             if semi_implicit {
-                let b = self.beta[i] * scale;
-                self.transfer
-                    .spread_to_faces(coefficient, x, [b, b, b], stencil);
+                self.face_scatter.reduce_into(3 + c, &mut coefficient[c]);
+            } else {
+                coefficient[c].iter_mut().for_each(|x| *x = 0.0);
             }
         }
         let mut on_fluid = [0.0; 3];

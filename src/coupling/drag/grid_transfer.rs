@@ -66,7 +66,9 @@ impl GridTransfer {
         self.grid.h.iter().product()
     }
 
-    /// The two samples and weights along axis `d` for position `x_d`.
+    /// The two samples and weights along axis `d` for position `x_d`. Called nine times per
+    /// stencil set and particle, so it is written without closures or library `floor`.
+    #[inline(always)]
     fn axis(
         &self,
         samples: Samples,
@@ -83,15 +85,16 @@ impl GridTransfer {
             return None;
         }
         let xi = (x - self.grid.origin[d]) / h;
+        let ni = n as isize;
         let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
             Stencil::Trilinear => {
                 let s = if on_faces { xi } else { xi - 0.5 };
-                let i0 = s.floor();
-                let t = s - i0;
-                ([i0 as isize, i0 as isize + 1], [1.0 - t, t])
+                let i0 = floor_index(s);
+                let t = s - i0 as f64;
+                ([i0, i0 + 1], [1.0 - t, t])
             }
             Stencil::Cell => {
-                let m = (xi.floor() as isize).clamp(0, n as isize - 1);
+                let m = floor_index(xi).clamp(0, ni - 1);
                 if on_faces {
                     ([m, m + 1], [0.5, 0.5])
                 } else {
@@ -99,68 +102,76 @@ impl GridTransfer {
                 }
             }
         };
-        let ni = n as isize;
-        let slot = |i: isize| -> usize {
-            if self.empty[d] {
-                return 1;
-            }
-            if self.periodic[d] {
-                return (i.rem_euclid(ni) + 1) as usize;
-            }
-            match (on_faces, purpose) {
-                // Boundary faces hold the conditions' values.
-                (true, Purpose::Read) => (i.clamp(0, ni) + 1) as usize,
-                // Ghost cells hold the conditions' mirror values.
-                (false, Purpose::Read) if samples != Samples::Cell => {
-                    (i.clamp(-1, ni) + 1) as usize
+        if self.empty[d] {
+            return Some(([1, 1], weight));
+        }
+        if self.periodic[d] {
+            let wrap = |i: isize| (i.rem_euclid(ni) + 1) as usize;
+            return Some(([wrap(index[0]), wrap(index[1])], weight));
+        }
+        // Reading: boundary faces hold the conditions' values, ghost cells their mirror values
+        // (for a velocity component across the axis); cell samples stay on the unknowns.
+        // Writing: weight beyond the unknowns folds onto the nearest one.
+        let (lo, hi) = match (on_faces, purpose, samples) {
+            (true, Purpose::Read, _) => (1, ni + 1),
+            (false, Purpose::Read, Samples::Face(_)) => (0, ni + 1),
+            (false, _, _) => (1, ni),
+            (true, Purpose::Write, _) => {
+                // `on_faces` means the samples are component `d`'s faces.
+                let (lo, hi) = self.momentum_ranges[d][d];
+                if lo > hi {
+                    return None;
                 }
-                (false, _) => (i.clamp(0, ni - 1) + 1) as usize,
-                (true, Purpose::Write) => unreachable!("handled below"),
+                (lo as isize, hi as isize)
             }
         };
-        if on_faces && purpose == Purpose::Write && !self.periodic[d] {
-            let Samples::Face(c) = samples else {
-                unreachable!()
-            };
-            let (lo, hi) = self.momentum_ranges[c][d];
-            if lo > hi {
-                return None;
-            }
-            let fold = |i: isize| ((i + 1).clamp(lo as isize, hi as isize)) as usize;
-            return Some(([fold(index[0]), fold(index[1])], weight));
-        }
-        Some(([slot(index[0]), slot(index[1])], weight))
+        let fold = |i: isize| (i + 1).clamp(lo, hi) as usize;
+        Some(([fold(index[0]), fold(index[1])], weight))
     }
 
-    /// Calls `f(padded index, weight)` for the 8 samples of the stencil at `x`.
-    #[inline]
-    fn for_each_sample(
+    /// The stencil of one sample set at `x`; a dropped stencil has zero weights.
+    #[inline(always)]
+    fn stencil(
         &self,
         samples: Samples,
         stencil: Stencil,
         purpose: Purpose,
         x: [f64; 3],
-        mut f: impl FnMut(usize, f64),
-    ) {
-        let ax: [AxisStencil; 3] =
-            std::array::from_fn(|d| self.axis(samples, stencil, purpose, d, x[d]));
-        let (Some(a0), Some(a1), Some(a2)) = (ax[0], ax[1], ax[2]) else {
-            return;
-        };
-        for c in 0..2 {
-            for b in 0..2 {
-                let wbc = a1.1[b] * a2.1[c];
-                if wbc == 0.0 {
-                    continue;
-                }
-                for a in 0..2 {
-                    let w = a0.1[a] * wbc;
-                    if w != 0.0 {
-                        f(self.layout.index(a0.0[a], a1.0[b], a2.0[c]), w);
-                    }
-                }
-            }
+    ) -> SampleStencil {
+        let mut out = SampleStencil::default();
+        for d in 0..3 {
+            let Some((slot, weight)) = self.axis(samples, stencil, purpose, d, x[d]) else {
+                return SampleStencil::default();
+            };
+            let stride = self.layout.stride[d];
+            out.offset[d] = [(slot[0] * stride) as u32, (slot[1] * stride) as u32];
+            out.weight[d] = weight;
         }
+        out
+    }
+
+    /// The stencils reading each velocity component at `x` (faces and ghosts filled).
+    #[inline]
+    pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil) -> [SampleStencil; 3] {
+        [0, 1, 2].map(|c| self.stencil(Samples::Face(c), stencil, Purpose::Read, x))
+    }
+
+    /// The stencil reading a cell field at `x`.
+    #[inline]
+    pub fn read_cell_stencil(&self, x: [f64; 3], stencil: Stencil) -> SampleStencil {
+        self.stencil(Samples::Cell, stencil, Purpose::Read, x)
+    }
+
+    /// The stencils spreading each component of a force at `x` to the momentum faces.
+    #[inline]
+    pub fn write_face_stencils(&self, x: [f64; 3], stencil: Stencil) -> [SampleStencil; 3] {
+        [0, 1, 2].map(|c| self.stencil(Samples::Face(c), stencil, Purpose::Write, x))
+    }
+
+    /// The stencil spreading a cell quantity at `x` to the cells.
+    #[inline]
+    pub fn write_cell_stencil(&self, x: [f64; 3], stencil: Stencil) -> SampleStencil {
+        self.stencil(Samples::Cell, stencil, Purpose::Write, x)
     }
 
     /// The staggered vector field `faces` (padded, ghosts filled) at `x` (eq. 14).
@@ -170,22 +181,13 @@ impl GridTransfer {
         x: [f64; 3],
         stencil: Stencil,
     ) -> [f64; 3] {
-        std::array::from_fn(|c| {
-            let mut v = 0.0;
-            self.for_each_sample(Samples::Face(c), stencil, Purpose::Read, x, |i, w| {
-                v += w * faces[c][i]
-            });
-            v
-        })
+        let st = self.read_face_stencils(x, stencil);
+        std::array::from_fn(|c| st[c].gather(&faces[c]))
     }
 
     /// The cell field `cells` (padded, ghosts filled) at `x`.
     pub fn interpolate_cells(&self, cells: &[f64], x: [f64; 3], stencil: Stencil) -> f64 {
-        let mut v = 0.0;
-        self.for_each_sample(Samples::Cell, stencil, Purpose::Read, x, |i, w| {
-            v += w * cells[i]
-        });
-        v
+        self.read_cell_stencil(x, stencil).gather(cells)
     }
 
     /// Adds `value[c] · w` to the momentum faces of each component `c` (eq. 16 without the
@@ -197,22 +199,99 @@ impl GridTransfer {
         value: [f64; 3],
         stencil: Stencil,
     ) {
+        let st = self.write_face_stencils(x, stencil);
         for c in 0..3 {
-            if value[c] == 0.0 {
-                continue;
+            if value[c] != 0.0 {
+                st[c].scatter(&mut target[c], 0, value[c]);
             }
-            let t = &mut target[c];
-            self.for_each_sample(Samples::Face(c), stencil, Purpose::Write, x, |i, w| {
-                t[i] += w * value[c]
-            });
         }
     }
 
     /// Adds `value · w` to the cells (padded array) around `x`.
     pub fn spread_to_cells(&self, target: &mut [f64], x: [f64; 3], value: f64, stencil: Stencil) {
-        self.for_each_sample(Samples::Cell, stencil, Purpose::Write, x, |i, w| {
-            target[i] += w * value
-        });
+        self.write_cell_stencil(x, stencil)
+            .scatter(target, 0, value);
+    }
+}
+
+/// `⌊s⌋` as an integer (exact for |s| < 2⁵³; the library `floor` is a call without SSE4.1).
+#[inline(always)]
+fn floor_index(s: f64) -> isize {
+    let i = s as isize;
+    if (i as f64) > s {
+        i - 1
+    } else {
+        i
+    }
+}
+
+/// One particle's stencil on one sample set: the tensor product of two samples per axis
+/// (weights `w = w₀[a] w₁[b] w₂[c]`, eq. 14–15), the samples' padded index being
+/// `offset₀[a] + offset₁[b] + offset₂[c]`. Computed once per particle and step, it serves every
+/// read and write of that step; zero-weight samples are skipped.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleStencil {
+    /// Per axis, the two samples' padded slots times the layout stride.
+    offset: [[u32; 2]; 3],
+    /// Per axis, the two weights (all zero for a dropped stencil).
+    weight: [[f64; 2]; 3],
+}
+
+impl SampleStencil {
+    /// `Σ w f[i]` over the samples.
+    #[inline]
+    pub fn gather(&self, field: &[f64]) -> f64 {
+        let mut v = 0.0;
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = self.weight[1][b] * self.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
+                for a in 0..2 {
+                    let w = self.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        v += w * field[self.offset[0][a] as usize + obc];
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    /// `target[i − base] += w · value` over the samples (`base`: the first padded index
+    /// `target` holds).
+    #[inline]
+    pub fn scatter(&self, target: &mut [f64], base: usize, value: f64) {
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = self.weight[1][b] * self.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
+                for a in 0..2 {
+                    let w = self.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        target[self.offset[0][a] as usize + obc - base] += w * value;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The padded indices `lo..hi` the samples can touch.
+    #[inline]
+    pub fn index_range(&self) -> (usize, usize) {
+        let mut lo = 0usize;
+        let mut hi = 1usize;
+        for d in 0..3 {
+            let [p, q] = self.offset[d];
+            lo += p.min(q) as usize;
+            hi += p.max(q) as usize;
+        }
+        (lo, hi)
     }
 }
 
