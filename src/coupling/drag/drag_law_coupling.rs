@@ -161,7 +161,7 @@ impl DragLawCoupling {
         self.write_cells
             .par_iter_mut()
             .zip(p.position.par_iter())
-            .for_each(|(st, &x)| *st = transfer.write_cell_stencil(x, stencil));
+            .for_each(|(st, &x)| transfer.write_cell_stencil(x, stencil, st));
         let stencils = &self.write_cells;
         let diameter = &p.diameter;
         self.cell_scatter.spread(
@@ -258,10 +258,17 @@ impl DragLawCoupling {
                 .enumerate()
                 .for_each(|(i, (((hydro, drag), beta), write))| {
                     let x = position[i];
-                    let read = transfer.read_face_stencils(x, interpolation);
-                    let u: [f64; 3] = std::array::from_fn(|c| read[c].gather(&velocity[c]));
-                    let eps = transfer.read_cell_stencil(x, averaging).gather(eps_cells);
-                    *write = transfer.write_face_stencils(x, averaging);
+                    let mut read = [SampleStencil::default(); 3];
+                    transfer.read_face_stencils(x, interpolation, &mut read);
+                    let u = [
+                        read[0].gather(&velocity[0]),
+                        read[1].gather(&velocity[1]),
+                        read[2].gather(&velocity[2]),
+                    ];
+                    let mut read_cell = SampleStencil::default();
+                    transfer.read_cell_stencil(x, averaging, &mut read_cell);
+                    let eps = read_cell.gather(eps_cells);
+                    transfer.write_face_stencils(x, averaging, write);
                     let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
                     let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
                     let d = diameter[i];
@@ -276,8 +283,11 @@ impl DragLawCoupling {
                     let volume = q.volume();
                     let pressure = match form {
                         VolumeAveragedForm::Paper => {
-                            let gp: [f64; 3] =
-                                std::array::from_fn(|c| read[c].gather(&gradient[c]));
+                            let gp = [
+                                read[0].gather(&gradient[0]),
+                                read[1].gather(&gradient[1]),
+                                read[2].gather(&gradient[2]),
+                            ];
                             std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
                         }
                         VolumeAveragedForm::DpmFoam => [0.0; 3],

@@ -75,16 +75,14 @@ impl GridTransfer {
         stencil: Stencil,
         purpose: Purpose,
         d: usize,
-        x: f64,
+        xi: f64,
     ) -> AxisStencil {
         let n = self.grid.n[d];
-        let h = self.grid.h[d];
         let on_faces = samples == Samples::Face(d);
         if on_faces && self.empty[d] {
             // No velocity across an empty direction.
             return None;
         }
-        let xi = (x - self.grid.origin[d]) / h;
         let ni = n as isize;
         let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
             Stencil::Trilinear => {
@@ -129,49 +127,69 @@ impl GridTransfer {
         Some(([fold(index[0]), fold(index[1])], weight))
     }
 
-    /// The stencil of one sample set at `x`; a dropped stencil has zero weights.
+    /// `x` in cell units from the origin, `(x_d − o_d)/h_d`.
     #[inline(always)]
-    fn stencil(
+    fn cell_units(&self, x: [f64; 3]) -> [f64; 3] {
+        let (o, h) = (&self.grid.origin, &self.grid.h);
+        [
+            (x[0] - o[0]) / h[0],
+            (x[1] - o[1]) / h[1],
+            (x[2] - o[2]) / h[2],
+        ]
+    }
+
+    /// The stencil of one sample set at `xi` (cell units) into `out`; a dropped stencil has
+    /// zero weights.
+    #[inline(always)]
+    fn stencil_into(
         &self,
         samples: Samples,
         stencil: Stencil,
         purpose: Purpose,
-        x: [f64; 3],
-    ) -> SampleStencil {
-        let mut out = SampleStencil::default();
+        xi: &[f64; 3],
+        out: &mut SampleStencil,
+    ) {
         for d in 0..3 {
-            let Some((slot, weight)) = self.axis(samples, stencil, purpose, d, x[d]) else {
-                return SampleStencil::default();
+            let Some((slot, weight)) = self.axis(samples, stencil, purpose, d, xi[d]) else {
+                *out = SampleStencil::default();
+                return;
             };
             let stride = self.layout.stride[d];
             out.offset[d] = [(slot[0] * stride) as u32, (slot[1] * stride) as u32];
             out.weight[d] = weight;
         }
-        out
     }
 
     /// The stencils reading each velocity component at `x` (faces and ghosts filled).
     #[inline]
-    pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil) -> [SampleStencil; 3] {
-        [0, 1, 2].map(|c| self.stencil(Samples::Face(c), stencil, Purpose::Read, x))
+    pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
+        let xi = self.cell_units(x);
+        for c in 0..3 {
+            self.stencil_into(Samples::Face(c), stencil, Purpose::Read, &xi, &mut out[c]);
+        }
     }
 
     /// The stencil reading a cell field at `x`.
     #[inline]
-    pub fn read_cell_stencil(&self, x: [f64; 3], stencil: Stencil) -> SampleStencil {
-        self.stencil(Samples::Cell, stencil, Purpose::Read, x)
+    pub fn read_cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
+        let xi = self.cell_units(x);
+        self.stencil_into(Samples::Cell, stencil, Purpose::Read, &xi, out);
     }
 
     /// The stencils spreading each component of a force at `x` to the momentum faces.
     #[inline]
-    pub fn write_face_stencils(&self, x: [f64; 3], stencil: Stencil) -> [SampleStencil; 3] {
-        [0, 1, 2].map(|c| self.stencil(Samples::Face(c), stencil, Purpose::Write, x))
+    pub fn write_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
+        let xi = self.cell_units(x);
+        for c in 0..3 {
+            self.stencil_into(Samples::Face(c), stencil, Purpose::Write, &xi, &mut out[c]);
+        }
     }
 
     /// The stencil spreading a cell quantity at `x` to the cells.
     #[inline]
-    pub fn write_cell_stencil(&self, x: [f64; 3], stencil: Stencil) -> SampleStencil {
-        self.stencil(Samples::Cell, stencil, Purpose::Write, x)
+    pub fn write_cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
+        let xi = self.cell_units(x);
+        self.stencil_into(Samples::Cell, stencil, Purpose::Write, &xi, out);
     }
 
     /// The staggered vector field `faces` (padded, ghosts filled) at `x` (eq. 14).
@@ -181,13 +199,16 @@ impl GridTransfer {
         x: [f64; 3],
         stencil: Stencil,
     ) -> [f64; 3] {
-        let st = self.read_face_stencils(x, stencil);
+        let mut st = [SampleStencil::default(); 3];
+        self.read_face_stencils(x, stencil, &mut st);
         std::array::from_fn(|c| st[c].gather(&faces[c]))
     }
 
     /// The cell field `cells` (padded, ghosts filled) at `x`.
     pub fn interpolate_cells(&self, cells: &[f64], x: [f64; 3], stencil: Stencil) -> f64 {
-        self.read_cell_stencil(x, stencil).gather(cells)
+        let mut st = SampleStencil::default();
+        self.read_cell_stencil(x, stencil, &mut st);
+        st.gather(cells)
     }
 
     /// Adds `value[c] · w` to the momentum faces of each component `c` (eq. 16 without the
@@ -199,7 +220,8 @@ impl GridTransfer {
         value: [f64; 3],
         stencil: Stencil,
     ) {
-        let st = self.write_face_stencils(x, stencil);
+        let mut st = [SampleStencil::default(); 3];
+        self.write_face_stencils(x, stencil, &mut st);
         for c in 0..3 {
             if value[c] != 0.0 {
                 st[c].scatter(&mut target[c], 0, value[c]);
@@ -209,8 +231,9 @@ impl GridTransfer {
 
     /// Adds `value · w` to the cells (padded array) around `x`.
     pub fn spread_to_cells(&self, target: &mut [f64], x: [f64; 3], value: f64, stencil: Stencil) {
-        self.write_cell_stencil(x, stencil)
-            .scatter(target, 0, value);
+        let mut st = SampleStencil::default();
+        self.write_cell_stencil(x, stencil, &mut st);
+        st.scatter(target, 0, value);
     }
 }
 
