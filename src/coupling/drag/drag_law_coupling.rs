@@ -161,7 +161,7 @@ impl DragLawCoupling {
         self.write_cells
             .par_iter_mut()
             .zip(p.position.par_iter())
-            .for_each(|(st, &x)| transfer.write_cell_stencil(x, stencil, st));
+            .for_each(|(st, &x)| transfer.cell_stencil(x, stencil, st));
         let stencils = &self.write_cells;
         let diameter = &p.diameter;
         self.cell_scatter.spread(
@@ -265,10 +265,9 @@ impl DragLawCoupling {
                         read[1].gather(&velocity[1]),
                         read[2].gather(&velocity[2]),
                     ];
-                    let mut read_cell = SampleStencil::default();
-                    transfer.read_cell_stencil(x, averaging, &mut read_cell);
-                    let eps = read_cell.gather(eps_cells);
-                    transfer.write_face_stencils(x, averaging, write);
+                    let mut cell = SampleStencil::default();
+                    transfer.write_stencils(x, averaging, write, &mut cell);
+                    let eps = cell.gather(eps_cells);
                     let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
                     let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
                     let d = diameter[i];

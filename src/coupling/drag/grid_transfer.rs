@@ -19,22 +19,12 @@ use super::drag_law_settings::Stencil;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
 use crate::grid::Grid;
 
-/// Which samples a stencil addresses: a velocity component's faces or the cell centres.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Samples {
-    Face(usize),
-    Cell,
-}
-
 /// Reading or writing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Purpose {
     Read,
     Write,
 }
-
-/// Two padded slots and their weights along one axis (`None` when the stencil is dropped).
-type AxisStencil = Option<([usize; 2], [f64; 2])>;
 
 /// Interpolation and spreading between particles and the staggered grid.
 #[derive(Clone, Debug)]
@@ -66,67 +56,6 @@ impl GridTransfer {
         self.grid.h.iter().product()
     }
 
-    /// The two samples and weights along axis `d` for position `x_d`. Called nine times per
-    /// stencil set and particle, so it is written without closures or library `floor`.
-    #[inline(always)]
-    fn axis(
-        &self,
-        samples: Samples,
-        stencil: Stencil,
-        purpose: Purpose,
-        d: usize,
-        xi: f64,
-    ) -> AxisStencil {
-        let n = self.grid.n[d];
-        let on_faces = samples == Samples::Face(d);
-        if on_faces && self.empty[d] {
-            // No velocity across an empty direction.
-            return None;
-        }
-        let ni = n as isize;
-        let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
-            Stencil::Trilinear => {
-                let s = if on_faces { xi } else { xi - 0.5 };
-                let i0 = floor_index(s);
-                let t = s - i0 as f64;
-                ([i0, i0 + 1], [1.0 - t, t])
-            }
-            Stencil::Cell => {
-                let m = floor_index(xi).clamp(0, ni - 1);
-                if on_faces {
-                    ([m, m + 1], [0.5, 0.5])
-                } else {
-                    ([m, m], [1.0, 0.0])
-                }
-            }
-        };
-        if self.empty[d] {
-            return Some(([1, 1], weight));
-        }
-        if self.periodic[d] {
-            let wrap = |i: isize| (i.rem_euclid(ni) + 1) as usize;
-            return Some(([wrap(index[0]), wrap(index[1])], weight));
-        }
-        // Reading: boundary faces hold the conditions' values, ghost cells their mirror values
-        // (for a velocity component across the axis); cell samples stay on the unknowns.
-        // Writing: weight beyond the unknowns folds onto the nearest one.
-        let (lo, hi) = match (on_faces, purpose, samples) {
-            (true, Purpose::Read, _) => (1, ni + 1),
-            (false, Purpose::Read, Samples::Face(_)) => (0, ni + 1),
-            (false, _, _) => (1, ni),
-            (true, Purpose::Write, _) => {
-                // `on_faces` means the samples are component `d`'s faces.
-                let (lo, hi) = self.momentum_ranges[d][d];
-                if lo > hi {
-                    return None;
-                }
-                (lo as isize, hi as isize)
-            }
-        };
-        let fold = |i: isize| (i + 1).clamp(lo, hi) as usize;
-        Some(([fold(index[0]), fold(index[1])], weight))
-    }
-
     /// `x` in cell units from the origin, `(x_d − o_d)/h_d`.
     #[inline(always)]
     fn cell_units(&self, x: [f64; 3]) -> [f64; 3] {
@@ -138,58 +67,137 @@ impl GridTransfer {
         ]
     }
 
-    /// The stencil of one sample set at `xi` (cell units) into `out`; a dropped stencil has
-    /// zero weights.
+    /// The two sample indices (unpadded, possibly outside `0..n`) and weights along an axis of
+    /// `n` cells at `xi` (cell units), for samples on that axis's faces or on the cell centres.
     #[inline(always)]
-    fn stencil_into(
+    fn axis_samples(stencil: Stencil, on_faces: bool, n: isize, xi: f64) -> ([isize; 2], [f64; 2]) {
+        match stencil {
+            Stencil::Trilinear => {
+                let s = if on_faces { xi } else { xi - 0.5 };
+                let i0 = floor_index(s);
+                let t = s - i0 as f64;
+                ([i0, i0 + 1], [1.0 - t, t])
+            }
+            Stencil::Cell => {
+                let m = floor_index(xi).clamp(0, n - 1);
+                if on_faces {
+                    ([m, m + 1], [0.5, 0.5])
+                } else {
+                    ([m, m], [1.0, 0.0])
+                }
+            }
+        }
+    }
+
+    /// The padded slots of `index` along axis `d` times its stride: wrapped when periodic,
+    /// slot 1 when empty, else clamped to the padded slots `lo..=hi`.
+    #[inline(always)]
+    fn axis_offsets(&self, d: usize, index: [isize; 2], lo: isize, hi: isize) -> [u32; 2] {
+        let stride = self.layout.stride[d];
+        let slot = |i: isize| -> usize {
+            if self.empty[d] {
+                1
+            } else if self.periodic[d] {
+                (i.rem_euclid(self.grid.n[d] as isize) + 1) as usize
+            } else {
+                (i + 1).clamp(lo, hi) as usize
+            }
+        };
+        [
+            (slot(index[0]) * stride) as u32,
+            (slot(index[1]) * stride) as u32,
+        ]
+    }
+
+    /// The stencils of the three velocity components at `x` and, when asked, of the cell
+    /// centres, from one pass over the axes. Along axis `d`, component `d` samples its faces and
+    /// the others the cell centres. Reading: boundary faces hold the conditions' values and
+    /// ghost cells their mirror values; writing: weight beyond the unknowns folds onto the
+    /// nearest one; cell samples stay on the cells. No velocity across an empty direction.
+    #[inline(always)]
+    fn face_stencils(
         &self,
-        samples: Samples,
+        x: [f64; 3],
         stencil: Stencil,
         purpose: Purpose,
-        xi: &[f64; 3],
-        out: &mut SampleStencil,
+        faces: &mut [SampleStencil; 3],
+        mut cell: Option<&mut SampleStencil>,
     ) {
+        let xi = self.cell_units(x);
+        let mut dropped = [false; 3];
         for d in 0..3 {
-            let Some((slot, weight)) = self.axis(samples, stencil, purpose, d, xi[d]) else {
-                *out = SampleStencil::default();
-                return;
+            let n = self.grid.n[d] as isize;
+            let (centre, centre_weight) = Self::axis_samples(stencil, false, n, xi[d]);
+            let cell_offsets = self.axis_offsets(d, centre, 1, n);
+            let across = match purpose {
+                Purpose::Read => self.axis_offsets(d, centre, 0, n + 1),
+                Purpose::Write => cell_offsets,
             };
-            let stride = self.layout.stride[d];
-            out.offset[d] = [(slot[0] * stride) as u32, (slot[1] * stride) as u32];
-            out.weight[d] = weight;
+            if let Some(cell) = cell.as_deref_mut() {
+                cell.offset[d] = cell_offsets;
+                cell.weight[d] = centre_weight;
+            }
+            let along = if self.empty[d] {
+                None
+            } else {
+                let (face, face_weight) = Self::axis_samples(stencil, true, n, xi[d]);
+                let bounds = match purpose {
+                    Purpose::Read => Some((1, n + 1)),
+                    Purpose::Write => {
+                        let (lo, hi) = self.momentum_ranges[d][d];
+                        (self.periodic[d] || lo <= hi).then_some((lo as isize, hi as isize))
+                    }
+                };
+                bounds.map(|(lo, hi)| (self.axis_offsets(d, face, lo, hi), face_weight))
+            };
+            for c in 0..3 {
+                if c != d {
+                    faces[c].offset[d] = across;
+                    faces[c].weight[d] = centre_weight;
+                } else if let Some((offsets, weight)) = along {
+                    faces[c].offset[d] = offsets;
+                    faces[c].weight[d] = weight;
+                } else {
+                    dropped[c] = true;
+                }
+            }
+        }
+        for c in 0..3 {
+            if dropped[c] {
+                faces[c] = SampleStencil::default();
+            }
         }
     }
 
     /// The stencils reading each velocity component at `x` (faces and ghosts filled).
     #[inline]
     pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
+        self.face_stencils(x, stencil, Purpose::Read, out, None);
+    }
+
+    /// The stencils spreading each component of a force at `x` to the momentum faces, and the
+    /// stencil of the cell centres (the same for reading and writing a cell field).
+    #[inline]
+    pub fn write_stencils(
+        &self,
+        x: [f64; 3],
+        stencil: Stencil,
+        faces: &mut [SampleStencil; 3],
+        cell: &mut SampleStencil,
+    ) {
+        self.face_stencils(x, stencil, Purpose::Write, faces, Some(cell));
+    }
+
+    /// The stencil of a cell field at `x` (reading or writing: cell samples stay on the cells).
+    #[inline]
+    pub fn cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
         let xi = self.cell_units(x);
-        for c in 0..3 {
-            self.stencil_into(Samples::Face(c), stencil, Purpose::Read, &xi, &mut out[c]);
+        for d in 0..3 {
+            let n = self.grid.n[d] as isize;
+            let (centre, weight) = Self::axis_samples(stencil, false, n, xi[d]);
+            out.offset[d] = self.axis_offsets(d, centre, 1, n);
+            out.weight[d] = weight;
         }
-    }
-
-    /// The stencil reading a cell field at `x`.
-    #[inline]
-    pub fn read_cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
-        let xi = self.cell_units(x);
-        self.stencil_into(Samples::Cell, stencil, Purpose::Read, &xi, out);
-    }
-
-    /// The stencils spreading each component of a force at `x` to the momentum faces.
-    #[inline]
-    pub fn write_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
-        let xi = self.cell_units(x);
-        for c in 0..3 {
-            self.stencil_into(Samples::Face(c), stencil, Purpose::Write, &xi, &mut out[c]);
-        }
-    }
-
-    /// The stencil spreading a cell quantity at `x` to the cells.
-    #[inline]
-    pub fn write_cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
-        let xi = self.cell_units(x);
-        self.stencil_into(Samples::Cell, stencil, Purpose::Write, &xi, out);
     }
 
     /// The staggered vector field `faces` (padded, ghosts filled) at `x` (eq. 14).
@@ -207,7 +215,7 @@ impl GridTransfer {
     /// The cell field `cells` (padded, ghosts filled) at `x`.
     pub fn interpolate_cells(&self, cells: &[f64], x: [f64; 3], stencil: Stencil) -> f64 {
         let mut st = SampleStencil::default();
-        self.read_cell_stencil(x, stencil, &mut st);
+        self.cell_stencil(x, stencil, &mut st);
         st.gather(cells)
     }
 
@@ -221,7 +229,8 @@ impl GridTransfer {
         stencil: Stencil,
     ) {
         let mut st = [SampleStencil::default(); 3];
-        self.write_face_stencils(x, stencil, &mut st);
+        let mut cell = SampleStencil::default();
+        self.write_stencils(x, stencil, &mut st, &mut cell);
         for c in 0..3 {
             if value[c] != 0.0 {
                 st[c].scatter(&mut target[c], 0, value[c]);
@@ -232,7 +241,7 @@ impl GridTransfer {
     /// Adds `value · w` to the cells (padded array) around `x`.
     pub fn spread_to_cells(&self, target: &mut [f64], x: [f64; 3], value: f64, stencil: Stencil) {
         let mut st = SampleStencil::default();
-        self.write_cell_stencil(x, stencil, &mut st);
+        self.cell_stencil(x, stencil, &mut st);
         st.scatter(target, 0, value);
     }
 }
