@@ -33,6 +33,17 @@ pub struct ChunkPartial {
 }
 
 impl ChunkPartial {
+    /// Makes the partial hold `fields` zero arrays over the padded indices `lo..hi` (an empty
+    /// range when `lo >= hi`); no allocation once the capacity suffices.
+    pub fn reset(&mut self, lo: usize, hi: usize, fields: usize) {
+        let (lo, hi) = if lo < hi { (lo, hi) } else { (0, 0) };
+        self.lo = lo;
+        self.hi = hi;
+        self.fields = fields;
+        self.values.clear();
+        self.values.resize(fields * (hi - lo), 0.0);
+    }
+
     /// The first padded index this chunk holds.
     #[inline]
     pub fn base(&self) -> usize {
@@ -58,6 +69,15 @@ impl ChunkedScatter {
         Self::default()
     }
 
+    /// The partials of the chunks of `count` particles (chunk `k` holds particles
+    /// `k·PARTICLES_PER_CHUNK ..`), for a caller that fills each with [`ChunkPartial::reset`]
+    /// and its particles' deposits in order.
+    pub fn partials_mut(&mut self, count: usize) -> &mut [ChunkPartial] {
+        self.chunks
+            .resize_with(count.div_ceil(PARTICLES_PER_CHUNK), ChunkPartial::default);
+        &mut self.chunks
+    }
+
     /// Spreads the quantities of `count` particles into `fields` partial arrays per chunk.
     /// `range(p)` gives the padded indices `lo..hi` particle `p` may touch; `deposit(p, chunk)`
     /// adds particle `p`'s contributions to the chunk's fields.
@@ -66,9 +86,7 @@ impl ChunkedScatter {
         R: Fn(usize) -> (usize, usize) + Sync,
         D: Fn(usize, &mut ChunkPartial) + Sync,
     {
-        let chunk_count = count.div_ceil(PARTICLES_PER_CHUNK);
-        self.chunks.resize_with(chunk_count, ChunkPartial::default);
-        self.chunks
+        self.partials_mut(count)
             .par_iter_mut()
             .enumerate()
             .for_each(|(k, chunk)| {
@@ -80,15 +98,7 @@ impl ChunkedScatter {
                     lo = lo.min(a);
                     hi = hi.max(b);
                 }
-                if lo >= hi {
-                    lo = 0;
-                    hi = 0;
-                }
-                chunk.lo = lo;
-                chunk.hi = hi;
-                chunk.fields = fields;
-                chunk.values.clear();
-                chunk.values.resize(fields * (hi - lo), 0.0);
+                chunk.reset(lo, hi, fields);
                 for p in first..last {
                     deposit(p, chunk);
                 }
