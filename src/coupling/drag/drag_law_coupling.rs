@@ -157,23 +157,32 @@ impl DragLawCoupling {
     fn compute_fluid_fraction(&mut self, p: &ParticleState) -> Result<f64, String> {
         let stencil = self.settings.averaging;
         let transfer = &self.transfer;
-        self.write_cells.resize(p.len(), SampleStencil::default());
-        self.write_cells
+        let n = p.len();
+        self.write_cells.resize(n, SampleStencil::default());
+        let (position, diameter) = (&p.position, &p.diameter);
+        // Per chunk: the stencils, then the volumes into the chunk's partial (chunked_scatter.rs).
+        self.cell_scatter
+            .partials_mut(n)
             .par_iter_mut()
-            .zip(p.position.par_iter())
-            .for_each(|(st, &x)| transfer.cell_stencil(x, stencil, st));
-        let stencils = &self.write_cells;
-        let diameter = &p.diameter;
-        self.cell_scatter.spread(
-            p.len(),
-            1,
-            |i| stencils[i].index_range(),
-            |i, chunk| {
-                let d = diameter[i];
-                let base = chunk.base();
-                stencils[i].scatter(chunk.field_mut(0), base, PI * d * d * d / 6.0);
-            },
-        );
+            .zip(self.write_cells.par_chunks_mut(PARTICLES_PER_CHUNK))
+            .enumerate()
+            .for_each(|(k, (partial, stencils))| {
+                let first = k * PARTICLES_PER_CHUNK;
+                let (mut lo, mut hi) = (usize::MAX, 0);
+                for (j, st) in stencils.iter_mut().enumerate() {
+                    transfer.cell_stencil(position[first + j], stencil, st);
+                    let (a, b) = st.index_range();
+                    lo = lo.min(a);
+                    hi = hi.max(b);
+                }
+                partial.reset(lo, hi, 1);
+                let base = partial.base();
+                let solid = partial.field_mut(0);
+                for (j, st) in stencils.iter().enumerate() {
+                    let d = diameter[first + j];
+                    st.scatter(solid, base, PI * d * d * d / 6.0);
+                }
+            });
         self.cell_scatter.reduce_into(0, &mut self.solid);
         let grid = self.fluid.grid();
         let [n0, n1, n2] = grid.n;
