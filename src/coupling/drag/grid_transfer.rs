@@ -434,6 +434,178 @@ mod tests {
         }
     }
 
+    /// The per-sample algorithm the stencils replaced (one axis at a time, library `floor`),
+    /// kept as the reference they must reproduce bit for bit.
+    fn reference_axis(
+        t: &GridTransfer,
+        face: Option<usize>,
+        stencil: Stencil,
+        write: bool,
+        d: usize,
+        x: f64,
+    ) -> Option<([usize; 2], [f64; 2])> {
+        let n = t.grid.n[d];
+        let on_faces = face == Some(d);
+        if on_faces && t.empty[d] {
+            return None;
+        }
+        let xi = (x - t.grid.origin[d]) / t.grid.h[d];
+        let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
+            Stencil::Trilinear => {
+                let s = if on_faces { xi } else { xi - 0.5 };
+                let i0 = s.floor();
+                ([i0 as isize, i0 as isize + 1], [1.0 - (s - i0), s - i0])
+            }
+            Stencil::Cell => {
+                let m = (xi.floor() as isize).clamp(0, n as isize - 1);
+                if on_faces {
+                    ([m, m + 1], [0.5, 0.5])
+                } else {
+                    ([m, m], [1.0, 0.0])
+                }
+            }
+        };
+        let ni = n as isize;
+        if on_faces && write && !t.periodic[d] {
+            let (lo, hi) = t.momentum_ranges[face.unwrap()][d];
+            if lo > hi {
+                return None;
+            }
+            let fold = |i: isize| ((i + 1).clamp(lo as isize, hi as isize)) as usize;
+            return Some(([fold(index[0]), fold(index[1])], weight));
+        }
+        let slot = |i: isize| -> usize {
+            if t.empty[d] {
+                1
+            } else if t.periodic[d] {
+                (i.rem_euclid(ni) + 1) as usize
+            } else if on_faces {
+                (i.clamp(0, ni) + 1) as usize
+            } else if !write && face.is_some() {
+                (i.clamp(-1, ni) + 1) as usize
+            } else {
+                (i.clamp(0, ni - 1) + 1) as usize
+            }
+        };
+        Some(([slot(index[0]), slot(index[1])], weight))
+    }
+
+    /// `(padded index, weight)` of the reference stencil's non-zero samples, in loop order.
+    fn reference_samples(
+        t: &GridTransfer,
+        face: Option<usize>,
+        stencil: Stencil,
+        write: bool,
+        x: [f64; 3],
+    ) -> Vec<(usize, f64)> {
+        let ax: Vec<_> = (0..3)
+            .map(|d| reference_axis(t, face, stencil, write, d, x[d]))
+            .collect();
+        let (Some(a0), Some(a1), Some(a2)) = (ax[0], ax[1], ax[2]) else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = a1.1[b] * a2.1[c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                for a in 0..2 {
+                    let w = a0.1[a] * wbc;
+                    if w != 0.0 {
+                        out.push((t.layout.index(a0.0[a], a1.0[b], a2.0[c]), w));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The same list from a [`SampleStencil`].
+    fn samples_of(st: &SampleStencil) -> Vec<(usize, f64)> {
+        let mut out = Vec::new();
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = st.weight[1][b] * st.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                for a in 0..2 {
+                    let w = st.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        let i = (st.offset[0][a] + st.offset[1][b] + st.offset[2][c]) as usize;
+                        out.push((i, w));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn stencils_reproduce_the_per_sample_reference_for_every_boundary_kind() {
+        // Walls, an inlet/outlet pair, periodic and empty directions; seeded positions over the
+        // box and a little beyond; both stencils, reading and writing, faces and cells.
+        let grid = Grid::new([4, 3, 5], [0.1, 0.2, 0.15], [0.3, -0.2, 0.0]);
+        let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+        let cases = [
+            walls(),
+            BoundaryConditions {
+                faces: [
+                    FaceCondition::Periodic,
+                    FaceCondition::Periodic,
+                    wall.clone(),
+                    FaceCondition::Slip,
+                    FaceCondition::Inlet {
+                        velocity: [0.0, 0.0, 1.0],
+                    },
+                    FaceCondition::Outlet { pressure: 0.0 },
+                ],
+            },
+            BoundaryConditions {
+                faces: [
+                    FaceCondition::Empty,
+                    FaceCondition::Empty,
+                    FaceCondition::Periodic,
+                    FaceCondition::Periodic,
+                    wall.clone(),
+                    FaceCondition::Outlet { pressure: 0.0 },
+                ],
+            },
+        ];
+        let mut state = 99u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for bc in &cases {
+            let t = transfer(bc, &grid);
+            for _ in 0..300 {
+                let x: [f64; 3] = std::array::from_fn(|d| {
+                    grid.origin[d] + (1.2 * next() - 0.1) * grid.n[d] as f64 * grid.h[d]
+                });
+                for stencil in [Stencil::Trilinear, Stencil::Cell] {
+                    let mut read = [SampleStencil::default(); 3];
+                    let mut write = [SampleStencil::default(); 3];
+                    let mut cell = SampleStencil::default();
+                    t.read_face_stencils(x, stencil, &mut read);
+                    t.write_stencils(x, stencil, &mut write, &mut cell);
+                    for c in 0..3 {
+                        let r = reference_samples(&t, Some(c), stencil, false, x);
+                        assert_eq!(samples_of(&read[c]), r, "read {c} at {x:?}");
+                        let w = reference_samples(&t, Some(c), stencil, true, x);
+                        assert_eq!(samples_of(&write[c]), w, "write {c} at {x:?}");
+                    }
+                    let r = reference_samples(&t, None, stencil, false, x);
+                    assert_eq!(samples_of(&cell), r, "cell at {x:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn fast_floor_matches_floor() {
         for s in [-2.5, -2.0, -0.3, 0.0, 0.7, 1.0, 3.999] {
