@@ -2,15 +2,17 @@
 // Component loops index several per-component arrays at once.
 #![allow(clippy::needless_range_loop)]
 
+mod chunked_scatter;
 mod drag_closure;
 mod drag_law_coupling;
 mod drag_law_settings;
 mod grid_transfer;
 
+pub use chunked_scatter::{ChunkPartial, ChunkedScatter, PARTICLES_PER_CHUNK};
 pub use drag_closure::{
     beetstra, di_felice, ergun_wen_yu_drag, gidaspow, koch_hill, paper, plessis_masliyah_drag,
     sphere_drag, tenneti, wen_yu_drag, Convention, DragClosure, DragInput,
 };
 pub use drag_law_coupling::{interpolation_from_name, DragLawCoupling, ExchangeReport};
 pub use drag_law_settings::{DragLawSettings, Stencil};
-pub use grid_transfer::GridTransfer;
+pub use grid_transfer::{GridTransfer, SampleStencil};

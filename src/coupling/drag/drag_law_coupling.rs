@@ -28,9 +28,10 @@
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
 
+use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::{DragLawSettings, Stencil};
-use super::grid_transfer::GridTransfer;
+use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{
     FluidSolver, Preconditioner, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport,
 };
@@ -64,6 +65,14 @@ pub struct DragLawCoupling {
     drag: Vec<[f64; 3]>,
     beta: Vec<f64>,
     hydro: Vec<[f64; 3]>,
+    /// Per particle: the stencils spreading the reaction (computed with the forces) and the
+    /// volume (computed at the new positions).
+    write_faces: Vec<[SampleStencil; 3]>,
+    write_cells: Vec<SampleStencil>,
+    /// Deterministic parallel spreading of the reaction (3 source + 3 coefficient fields) and
+    /// of the volume.
+    face_scatter: ChunkedScatter,
+    cell_scatter: ChunkedScatter,
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
@@ -112,6 +121,10 @@ impl DragLawCoupling {
             drag: Vec::new(),
             beta: Vec::new(),
             hydro: Vec::new(),
+            write_faces: Vec::new(),
+            write_cells: Vec::new(),
+            face_scatter: ChunkedScatter::new(),
+            cell_scatter: ChunkedScatter::new(),
             last_fluid: None,
             last: ExchangeReport::default(),
         };
@@ -142,17 +155,35 @@ impl DragLawCoupling {
     /// `ε = 1 − (solid volume)/(cell volume)` from the particles, into `self.cells`; fails
     /// below `1 − alphaMax` naming the cell.
     fn compute_fluid_fraction(&mut self, p: &ParticleState) -> Result<f64, String> {
-        self.solid.iter_mut().for_each(|x| *x = 0.0);
         let stencil = self.settings.averaging;
-        for i in 0..p.len() {
-            let d = p.diameter[i];
-            self.transfer.spread_to_cells(
-                &mut self.solid,
-                p.position[i],
-                PI * d * d * d / 6.0,
-                stencil,
-            );
-        }
+        let transfer = &self.transfer;
+        let n = p.len();
+        self.write_cells.resize(n, SampleStencil::default());
+        let (position, diameter) = (&p.position, &p.diameter);
+        // Per chunk: the stencils, then the volumes into the chunk's partial (chunked_scatter.rs).
+        self.cell_scatter
+            .partials_mut(n)
+            .par_iter_mut()
+            .zip(self.write_cells.par_chunks_mut(PARTICLES_PER_CHUNK))
+            .enumerate()
+            .for_each(|(k, (partial, stencils))| {
+                let first = k * PARTICLES_PER_CHUNK;
+                let (mut lo, mut hi) = (usize::MAX, 0);
+                for (j, st) in stencils.iter_mut().enumerate() {
+                    transfer.cell_stencil(position[first + j], stencil, st);
+                    let (a, b) = st.index_range();
+                    lo = lo.min(a);
+                    hi = hi.max(b);
+                }
+                partial.reset(lo, hi, 1);
+                let base = partial.base();
+                let solid = partial.field_mut(0);
+                for (j, st) in stencils.iter().enumerate() {
+                    let d = diameter[first + j];
+                    st.scatter(solid, base, PI * d * d * d / 6.0);
+                }
+            });
+        self.cell_scatter.reduce_into(0, &mut self.solid);
         let grid = self.fluid.grid();
         let [n0, n1, n2] = grid.n;
         let l = self.fluid.layout();
@@ -196,6 +227,7 @@ impl DragLawCoupling {
         self.drag.resize(n, [0.0; 3]);
         self.beta.resize(n, 0.0);
         self.hydro.resize(n, [0.0; 3]);
+        self.write_faces.resize(n, [SampleStencil::default(); 3]);
         let s = &self.settings;
         let want = match s.form {
             VolumeAveragedForm::Paper => Convention::DragOnly,
@@ -215,7 +247,15 @@ impl DragLawCoupling {
             s.averaging,
             s.analytical,
         );
-        // Particle loop: reads only, each particle writes its own slots.
+        // Particle loop in chunks: each particle writes its own slots, then the chunk spreads
+        // its particles' reaction into its partial (chunked_scatter.rs). Each stencil is
+        // computed once and serves every read (u, ε, ∇p) and write (source, coefficient).
+        let scale = 1.0 / (rho * transfer.cell_volume());
+        let semi_implicit = s.semi_implicit;
+        // One-way coupling: the fluid does not feel the particles' drag.
+        let coupled = s.coupled;
+        // Fields 0–2: the source per component; 3–5: the coefficient.
+        let fields = if semi_implicit { 6 } else { 3 };
         {
             let p = dem.particles();
             let (position, vel, diameter, density, fixed, contact) = (
@@ -226,52 +266,103 @@ impl DragLawCoupling {
                 &p.fixed,
                 &p.contact_force,
             );
-            self.hydro
+            self.face_scatter
+                .partials_mut(n)
                 .par_iter_mut()
-                .zip(self.drag.par_iter_mut())
-                .zip(self.beta.par_iter_mut())
+                .zip(self.hydro.par_chunks_mut(PARTICLES_PER_CHUNK))
+                .zip(self.drag.par_chunks_mut(PARTICLES_PER_CHUNK))
+                .zip(self.beta.par_chunks_mut(PARTICLES_PER_CHUNK))
+                .zip(self.write_faces.par_chunks_mut(PARTICLES_PER_CHUNK))
                 .enumerate()
-                .for_each(|(i, ((hydro, drag), beta))| {
-                    let x = position[i];
-                    let (u, gp) =
-                        transfer.interpolate_faces_pair(velocity, gradient, x, interpolation);
-                    let eps = transfer.interpolate_cells(eps_cells, x, averaging);
-                    let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
-                    let speed = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
-                    let d = diameter[i];
-                    let q = DragInput {
-                        d,
-                        eps,
-                        slip: speed,
-                        rho,
-                        mu,
-                    };
-                    let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
-                    let volume = q.volume();
-                    let pressure = match form {
-                        VolumeAveragedForm::Paper => {
-                            std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
+                .for_each(|(k, ((((partial, hydro), drag), beta), write))| {
+                    let first = k * PARTICLES_PER_CHUNK;
+                    let (mut lo, mut hi) = (usize::MAX, 0);
+                    for j in 0..hydro.len() {
+                        let i = first + j;
+                        let (hydro, drag, beta, write) =
+                            (&mut hydro[j], &mut drag[j], &mut beta[j], &mut write[j]);
+                        let x = position[i];
+                        let mut read = [SampleStencil::default(); 3];
+                        transfer.read_face_stencils(x, interpolation, &mut read);
+                        let u = [
+                            read[0].gather(&velocity[0]),
+                            read[1].gather(&velocity[1]),
+                            read[2].gather(&velocity[2]),
+                        ];
+                        let mut cell = SampleStencil::default();
+                        transfer.write_stencils(x, averaging, write, &mut cell);
+                        let eps = cell.gather(eps_cells);
+                        let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
+                        let speed =
+                            (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+                        let d = diameter[i];
+                        let q = DragInput {
+                            d,
+                            eps,
+                            slip: speed,
+                            rho,
+                            mu,
+                        };
+                        let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
+                        let volume = q.volume();
+                        let pressure = match form {
+                            VolumeAveragedForm::Paper => {
+                                let gp = [
+                                    read[0].gather(&gradient[0]),
+                                    read[1].gather(&gradient[1]),
+                                    read[2].gather(&gradient[2]),
+                                ];
+                                std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
+                            }
+                            VolumeAveragedForm::DpmFoam => [0.0; 3],
+                        };
+                        let mass = density[i] * volume;
+                        // The fraction of the force imbalance the implicit drag relaxes in one step:
+                        // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
+                        let x_imp = if fixed[i] { 0.0 } else { dt * b / mass };
+                        let relax = if x_imp == 0.0 {
+                            1.0
+                        } else if analytical {
+                            -(-x_imp).exp_m1() / x_imp
+                        } else {
+                            1.0 / (1.0 + x_imp)
+                        };
+                        let buoyant = 1.0 - rho_cloud / density[i];
+                        *drag = std::array::from_fn(|a| {
+                            let other = mass * buoyant * g_cloud[a] + pressure[a] + contact[i][a];
+                            relax * (b * slip[a] + other) - other
+                        });
+                        *beta = b;
+                        *hydro = std::array::from_fn(|a| drag[a] + pressure[a]);
+                        for st in write.iter() {
+                            let (a, b) = st.index_range();
+                            lo = lo.min(a);
+                            hi = hi.max(b);
                         }
-                        VolumeAveragedForm::DpmFoam => [0.0; 3],
-                    };
-                    let mass = density[i] * volume;
-                    // The fraction of the force imbalance the implicit drag relaxes in one step:
-                    // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
-                    let x_imp = if fixed[i] { 0.0 } else { dt * b / mass };
-                    let relax = if x_imp == 0.0 {
-                        1.0
-                    } else if analytical {
-                        -(-x_imp).exp_m1() / x_imp
-                    } else {
-                        1.0 / (1.0 + x_imp)
-                    };
-                    let buoyant = 1.0 - rho_cloud / density[i];
-                    *drag = std::array::from_fn(|a| {
-                        let other = mass * buoyant * g_cloud[a] + pressure[a] + contact[i][a];
-                        relax * (b * slip[a] + other) - other
-                    });
-                    *beta = b;
-                    *hydro = std::array::from_fn(|a| drag[a] + pressure[a]);
+                    }
+                    if !coupled {
+                        partial.reset(0, 0, fields);
+                        return;
+                    }
+                    partial.reset(lo, hi, fields);
+                    let base = partial.base();
+                    for j in 0..hydro.len() {
+                        let (f, st) = (drag[j], &write[j]);
+                        for c in 0..3 {
+                            let value = -f[c] * scale;
+                            if value != 0.0 {
+                                st[c].scatter(partial.field_mut(c), base, value);
+                            }
+                        }
+                        if semi_implicit {
+                            let b = beta[j] * scale;
+                            if b != 0.0 {
+                                for c in 0..3 {
+                                    st[c].scatter(partial.field_mut(3 + c), base, b);
+                                }
+                            }
+                        }
+                    }
                 });
         }
         {
@@ -285,37 +376,28 @@ impl DragLawCoupling {
             }
             self.last.hydrodynamic_force = total;
         }
-        self.spread_reaction(dem.particles());
+        self.spread_reaction();
     }
 
-    /// The reaction `−f_d/(ρ V_cell)` (and `β/(ρ V_cell)` for the semi-implicit source) spread
-    /// to the faces; one pass in particle order, so the sums are deterministic.
-    fn spread_reaction(&mut self, p: &ParticleState) {
+    /// The reaction `−f_d/(ρ V_cell)` (and `β/(ρ V_cell)` for the semi-implicit source) the
+    /// particle loop spread into the chunks' partials, summed into the fluid's sources in chunk
+    /// order (deterministic for any thread count).
+    fn spread_reaction(&mut self) {
         let scale = 1.0 / (self.settings.rho * self.transfer.cell_volume());
-        let stencil = self.settings.averaging;
         let semi_implicit = self.settings.semi_implicit;
-        let (source, coefficient) = self.fluid.sources_mut();
-        for a in source.iter_mut().chain(coefficient.iter_mut()) {
-            a.iter_mut().for_each(|x| *x = 0.0);
-        }
         let mut on_particles = [0.0; 3];
         for f in &self.drag {
             for a in 0..3 {
                 on_particles[a] += f[a];
             }
         }
-        // One-way coupling: the fluid does not feel the particles' drag.
-        let count = if self.settings.coupled { p.len() } else { 0 };
-        for i in 0..count {
-            let f = self.drag[i];
-            let x = p.position[i];
-            let value = [-f[0] * scale, -f[1] * scale, -f[2] * scale];
+        let (source, coefficient) = self.fluid.sources_mut();
+        for c in 0..3 {
+            self.face_scatter.reduce_into(c, &mut source[c]);
             if semi_implicit {
-                let b = self.beta[i] * scale;
-                self.transfer
-                    .spread_to_faces_pair(source, value, coefficient, b, x, stencil);
+                self.face_scatter.reduce_into(3 + c, &mut coefficient[c]);
             } else {
-                self.transfer.spread_to_faces(source, x, value, stencil);
+                coefficient[c].iter_mut().for_each(|x| *x = 0.0);
             }
         }
         let mut on_fluid = [0.0; 3];

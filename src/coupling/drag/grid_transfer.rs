@@ -19,22 +19,12 @@ use super::drag_law_settings::Stencil;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
 use crate::grid::Grid;
 
-/// Which samples a stencil addresses: a velocity component's faces or the cell centres.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Samples {
-    Face(usize),
-    Cell,
-}
-
 /// Reading or writing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Purpose {
     Read,
     Write,
 }
-
-/// Two padded slots and their weights along one axis (`None` when the stencil is dropped).
-type AxisStencil = Option<([usize; 2], [f64; 2])>;
 
 /// Interpolation and spreading between particles and the staggered grid.
 #[derive(Clone, Debug)]
@@ -66,25 +56,22 @@ impl GridTransfer {
         self.grid.h.iter().product()
     }
 
-    /// The two samples and weights along axis `d` for position `x_d`.
+    /// `x` in cell units from the origin, `(x_d − o_d)/h_d`.
     #[inline(always)]
-    fn axis(
-        &self,
-        samples: Samples,
-        stencil: Stencil,
-        purpose: Purpose,
-        d: usize,
-        x: f64,
-    ) -> AxisStencil {
-        let n = self.grid.n[d];
-        let h = self.grid.h[d];
-        let on_faces = samples == Samples::Face(d);
-        if on_faces && self.empty[d] {
-            // No velocity across an empty direction.
-            return None;
-        }
-        let xi = (x - self.grid.origin[d]) / h;
-        let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
+    fn cell_units(&self, x: [f64; 3]) -> [f64; 3] {
+        let (o, h) = (&self.grid.origin, &self.grid.h);
+        [
+            (x[0] - o[0]) / h[0],
+            (x[1] - o[1]) / h[1],
+            (x[2] - o[2]) / h[2],
+        ]
+    }
+
+    /// The two sample indices (unpadded, possibly outside `0..n`) and weights along an axis of
+    /// `n` cells at `xi` (cell units), for samples on that axis's faces or on the cell centres.
+    #[inline(always)]
+    fn axis_samples(stencil: Stencil, on_faces: bool, n: isize, xi: f64) -> ([isize; 2], [f64; 2]) {
+        match stencil {
             Stencil::Trilinear => {
                 let s = if on_faces { xi } else { xi - 0.5 };
                 let i0 = fast_floor(s);
@@ -92,81 +79,124 @@ impl GridTransfer {
                 ([i0, i0 + 1], [1.0 - t, t])
             }
             Stencil::Cell => {
-                let m = fast_floor(xi).clamp(0, n as isize - 1);
+                let m = fast_floor(xi).clamp(0, n - 1);
                 if on_faces {
                     ([m, m + 1], [0.5, 0.5])
                 } else {
                     ([m, m], [1.0, 0.0])
                 }
             }
-        };
-        let ni = n as isize;
+        }
+    }
+
+    /// The padded slots of `index` along axis `d` times its stride: wrapped when periodic,
+    /// slot 1 when empty, else clamped to the padded slots `lo..=hi`.
+    #[inline(always)]
+    fn axis_offsets(&self, d: usize, index: [isize; 2], lo: isize, hi: isize) -> [u32; 2] {
+        let stride = self.layout.stride[d];
         let slot = |i: isize| -> usize {
             if self.empty[d] {
-                return 1;
-            }
-            if self.periodic[d] {
-                return (i.rem_euclid(ni) + 1) as usize;
-            }
-            match (on_faces, purpose) {
-                // Boundary faces hold the conditions' values.
-                (true, Purpose::Read) => (i.clamp(0, ni) + 1) as usize,
-                // Ghost cells hold the conditions' mirror values.
-                (false, Purpose::Read) if samples != Samples::Cell => {
-                    (i.clamp(-1, ni) + 1) as usize
-                }
-                (false, _) => (i.clamp(0, ni - 1) + 1) as usize,
-                (true, Purpose::Write) => unreachable!("handled below"),
+                1
+            } else if self.periodic[d] {
+                (i.rem_euclid(self.grid.n[d] as isize) + 1) as usize
+            } else {
+                (i + 1).clamp(lo, hi) as usize
             }
         };
-        if on_faces && purpose == Purpose::Write && !self.periodic[d] {
-            let Samples::Face(c) = samples else {
-                unreachable!()
-            };
-            let (lo, hi) = self.momentum_ranges[c][d];
-            if lo > hi {
-                return None;
-            }
-            let fold = |i: isize| ((i + 1).clamp(lo as isize, hi as isize)) as usize;
-            return Some(([fold(index[0]), fold(index[1])], weight));
-        }
-        Some(([slot(index[0]), slot(index[1])], weight))
+        [
+            (slot(index[0]) * stride) as u32,
+            (slot(index[1]) * stride) as u32,
+        ]
     }
 
-    /// Calls `f(padded index, weight)` for the 8 samples of the stencil at `x`.
-    #[inline]
-    fn for_each_sample(
+    /// The stencils of the three velocity components at `x` and, when asked, of the cell
+    /// centres, from one pass over the axes. Along axis `d`, component `d` samples its faces and
+    /// the others the cell centres. Reading: boundary faces hold the conditions' values and
+    /// ghost cells their mirror values; writing: weight beyond the unknowns folds onto the
+    /// nearest one; cell samples stay on the cells. No velocity across an empty direction.
+    #[inline(always)]
+    fn face_stencils(
         &self,
-        samples: Samples,
+        x: [f64; 3],
         stencil: Stencil,
         purpose: Purpose,
-        x: [f64; 3],
-        f: impl FnMut(usize, f64),
+        faces: &mut [SampleStencil; 3],
+        mut cell: Option<&mut SampleStencil>,
     ) {
-        let ax: [AxisStencil; 3] =
-            std::array::from_fn(|d| self.axis(samples, stencil, purpose, d, x[d]));
-        self.for_each_in(&ax, f);
-    }
-
-    /// Calls `f(padded index, weight)` for the samples of a precomputed tensor stencil.
-    #[inline]
-    fn for_each_in(&self, ax: &[AxisStencil; 3], mut f: impl FnMut(usize, f64)) {
-        let (Some(a0), Some(a1), Some(a2)) = (ax[0], ax[1], ax[2]) else {
-            return;
-        };
-        for c in 0..2 {
-            for b in 0..2 {
-                let wbc = a1.1[b] * a2.1[c];
-                if wbc == 0.0 {
-                    continue;
-                }
-                for a in 0..2 {
-                    let w = a0.1[a] * wbc;
-                    if w != 0.0 {
-                        f(self.layout.index(a0.0[a], a1.0[b], a2.0[c]), w);
+        let xi = self.cell_units(x);
+        let mut dropped = [false; 3];
+        for d in 0..3 {
+            let n = self.grid.n[d] as isize;
+            let (centre, centre_weight) = Self::axis_samples(stencil, false, n, xi[d]);
+            let cell_offsets = self.axis_offsets(d, centre, 1, n);
+            let across = match purpose {
+                Purpose::Read => self.axis_offsets(d, centre, 0, n + 1),
+                Purpose::Write => cell_offsets,
+            };
+            if let Some(cell) = cell.as_deref_mut() {
+                cell.offset[d] = cell_offsets;
+                cell.weight[d] = centre_weight;
+            }
+            let along = if self.empty[d] {
+                None
+            } else {
+                let (face, face_weight) = Self::axis_samples(stencil, true, n, xi[d]);
+                let bounds = match purpose {
+                    Purpose::Read => Some((1, n + 1)),
+                    Purpose::Write => {
+                        let (lo, hi) = self.momentum_ranges[d][d];
+                        (self.periodic[d] || lo <= hi).then_some((lo as isize, hi as isize))
                     }
+                };
+                bounds.map(|(lo, hi)| (self.axis_offsets(d, face, lo, hi), face_weight))
+            };
+            for c in 0..3 {
+                if c != d {
+                    faces[c].offset[d] = across;
+                    faces[c].weight[d] = centre_weight;
+                } else if let Some((offsets, weight)) = along {
+                    faces[c].offset[d] = offsets;
+                    faces[c].weight[d] = weight;
+                } else {
+                    dropped[c] = true;
                 }
             }
+        }
+        for c in 0..3 {
+            if dropped[c] {
+                faces[c] = SampleStencil::default();
+            }
+        }
+    }
+
+    /// The stencils reading each velocity component at `x` (faces and ghosts filled).
+    #[inline]
+    pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
+        self.face_stencils(x, stencil, Purpose::Read, out, None);
+    }
+
+    /// The stencils spreading each component of a force at `x` to the momentum faces, and the
+    /// stencil of the cell centres (the same for reading and writing a cell field).
+    #[inline]
+    pub fn write_stencils(
+        &self,
+        x: [f64; 3],
+        stencil: Stencil,
+        faces: &mut [SampleStencil; 3],
+        cell: &mut SampleStencil,
+    ) {
+        self.face_stencils(x, stencil, Purpose::Write, faces, Some(cell));
+    }
+
+    /// The stencil of a cell field at `x` (reading or writing: cell samples stay on the cells).
+    #[inline]
+    pub fn cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
+        let xi = self.cell_units(x);
+        for d in 0..3 {
+            let n = self.grid.n[d] as isize;
+            let (centre, weight) = Self::axis_samples(stencil, false, n, xi[d]);
+            out.offset[d] = self.axis_offsets(d, centre, 1, n);
+            out.weight[d] = weight;
         }
     }
 
@@ -177,13 +207,9 @@ impl GridTransfer {
         x: [f64; 3],
         stencil: Stencil,
     ) -> [f64; 3] {
-        std::array::from_fn(|c| {
-            let mut v = 0.0;
-            self.for_each_sample(Samples::Face(c), stencil, Purpose::Read, x, |i, w| {
-                v += w * faces[c][i]
-            });
-            v
-        })
+        let mut st = [SampleStencil::default(); 3];
+        self.read_face_stencils(x, stencil, &mut st);
+        std::array::from_fn(|c| st[c].gather(&faces[c]))
     }
 
     /// Two staggered fields at `x` with one stencil evaluation (the velocity and the pressure
@@ -195,18 +221,12 @@ impl GridTransfer {
         x: [f64; 3],
         stencil: Stencil,
     ) -> ([f64; 3], [f64; 3]) {
-        let mut va = [0.0; 3];
-        let mut vb = [0.0; 3];
-        for c in 0..3 {
-            let ax: [AxisStencil; 3] = std::array::from_fn(|d| {
-                self.axis(Samples::Face(c), stencil, Purpose::Read, d, x[d])
-            });
-            self.for_each_in(&ax, |i, w| {
-                va[c] += w * a[c][i];
-                vb[c] += w * b[c][i];
-            });
-        }
-        (va, vb)
+        let mut st = [SampleStencil::default(); 3];
+        self.read_face_stencils(x, stencil, &mut st);
+        (
+            std::array::from_fn(|c| st[c].gather(&a[c])),
+            std::array::from_fn(|c| st[c].gather(&b[c])),
+        )
     }
 
     /// Adds `value[c] · w` to `target` and `other · w` to `second` on the momentum faces of
@@ -221,26 +241,20 @@ impl GridTransfer {
         x: [f64; 3],
         stencil: Stencil,
     ) {
+        let mut st = [SampleStencil::default(); 3];
+        let mut cell = SampleStencil::default();
+        self.write_stencils(x, stencil, &mut st, &mut cell);
         for c in 0..3 {
-            let ax: [AxisStencil; 3] = std::array::from_fn(|d| {
-                self.axis(Samples::Face(c), stencil, Purpose::Write, d, x[d])
-            });
-            let (t, o) = (&mut target[c], &mut second[c]);
-            let v = value[c];
-            self.for_each_in(&ax, |i, w| {
-                t[i] += w * v;
-                o[i] += w * other;
-            });
+            st[c].scatter(&mut target[c], 0, value[c]);
+            st[c].scatter(&mut second[c], 0, other);
         }
     }
 
     /// The cell field `cells` (padded, ghosts filled) at `x`.
     pub fn interpolate_cells(&self, cells: &[f64], x: [f64; 3], stencil: Stencil) -> f64 {
-        let mut v = 0.0;
-        self.for_each_sample(Samples::Cell, stencil, Purpose::Read, x, |i, w| {
-            v += w * cells[i]
-        });
-        v
+        let mut st = SampleStencil::default();
+        self.cell_stencil(x, stencil, &mut st);
+        st.gather(cells)
     }
 
     /// Adds `value[c] · w` to the momentum faces of each component `c` (eq. 16 without the
@@ -252,33 +266,103 @@ impl GridTransfer {
         value: [f64; 3],
         stencil: Stencil,
     ) {
+        let mut st = [SampleStencil::default(); 3];
+        let mut cell = SampleStencil::default();
+        self.write_stencils(x, stencil, &mut st, &mut cell);
         for c in 0..3 {
-            if value[c] == 0.0 {
-                continue;
+            if value[c] != 0.0 {
+                st[c].scatter(&mut target[c], 0, value[c]);
             }
-            let t = &mut target[c];
-            self.for_each_sample(Samples::Face(c), stencil, Purpose::Write, x, |i, w| {
-                t[i] += w * value[c]
-            });
         }
     }
 
     /// Adds `value · w` to the cells (padded array) around `x`.
     pub fn spread_to_cells(&self, target: &mut [f64], x: [f64; 3], value: f64, stencil: Stencil) {
-        self.for_each_sample(Samples::Cell, stencil, Purpose::Write, x, |i, w| {
-            target[i] += w * value
-        });
+        let mut st = SampleStencil::default();
+        self.cell_stencil(x, stencil, &mut st);
+        st.scatter(target, 0, value);
     }
 }
 
-/// `⌊s⌋` without a libm call (the hot loops run it 20 times per particle and step).
-#[inline]
+/// `⌊s⌋` without a libm call (exact for |s| < 2⁵³; the library `floor` is a call without
+/// SSE4.1, and the hot loops run it for every particle and step).
+#[inline(always)]
 fn fast_floor(s: f64) -> isize {
-    let t = s as isize;
-    if (t as f64) > s {
-        t - 1
+    let i = s as isize;
+    if (i as f64) > s {
+        i - 1
     } else {
-        t
+        i
+    }
+}
+
+/// One particle's stencil on one sample set: the tensor product of two samples per axis
+/// (weights `w = w₀[a] w₁[b] w₂[c]`, eq. 14–15), the samples' padded index being
+/// `offset₀[a] + offset₁[b] + offset₂[c]`. Computed once per particle and step, it serves every
+/// read and write of that step; zero-weight samples are skipped.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleStencil {
+    /// Per axis, the two samples' padded slots times the layout stride.
+    offset: [[u32; 2]; 3],
+    /// Per axis, the two weights (all zero for a dropped stencil).
+    weight: [[f64; 2]; 3],
+}
+
+impl SampleStencil {
+    /// `Σ w f[i]` over the samples.
+    #[inline]
+    pub fn gather(&self, field: &[f64]) -> f64 {
+        let mut v = 0.0;
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = self.weight[1][b] * self.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
+                for a in 0..2 {
+                    let w = self.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        v += w * field[self.offset[0][a] as usize + obc];
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    /// `target[i − base] += w · value` over the samples (`base`: the first padded index
+    /// `target` holds).
+    #[inline]
+    pub fn scatter(&self, target: &mut [f64], base: usize, value: f64) {
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = self.weight[1][b] * self.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
+                for a in 0..2 {
+                    let w = self.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        target[self.offset[0][a] as usize + obc - base] += w * value;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The padded indices `lo..hi` the samples can touch.
+    #[inline]
+    pub fn index_range(&self) -> (usize, usize) {
+        let mut lo = 0usize;
+        let mut hi = 1usize;
+        for d in 0..3 {
+            let [p, q] = self.offset[d];
+            lo += p.min(q) as usize;
+            hi += p.max(q) as usize;
+        }
+        (lo, hi)
     }
 }
 
@@ -296,6 +380,229 @@ mod tests {
         let wall = FaceCondition::Wall { velocity: [0.0; 3] };
         BoundaryConditions {
             faces: std::array::from_fn(|_| wall.clone()),
+        }
+    }
+
+    #[test]
+    fn one_pass_stencils_match_the_single_set_ones() {
+        // The cell stencil from the writing pass is the cell stencil; the pair functions give
+        // what two single calls give, bit for bit (seeded positions over the whole box and a
+        // little beyond, walls and a periodic direction).
+        let grid = Grid::new([5, 4, 6], [0.1, 0.2, 0.15], [0.3, -0.2, 0.0]);
+        let mut bc = walls();
+        bc.faces[0] = FaceCondition::Periodic;
+        bc.faces[1] = FaceCondition::Periodic;
+        let t = transfer(&bc, &grid);
+        let l = PaddedLayout::new(grid.n);
+        let field = |seed: usize| -> [Vec<f64>; 3] {
+            std::array::from_fn(|c| {
+                (0..l.len)
+                    .map(|i| ((i * 7919 + c * 104729 + seed) % 1000) as f64 * 1e-3 - 0.5)
+                    .collect()
+            })
+        };
+        let (a, b) = (field(1), field(2));
+        let mut state = 12345u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let x: [f64; 3] = std::array::from_fn(|d| {
+                grid.origin[d] + (1.2 * next() - 0.1) * grid.n[d] as f64 * grid.h[d]
+            });
+            for stencil in [Stencil::Trilinear, Stencil::Cell] {
+                let mut faces = [SampleStencil::default(); 3];
+                let mut cell = SampleStencil::default();
+                let mut alone = SampleStencil::default();
+                t.write_stencils(x, stencil, &mut faces, &mut cell);
+                t.cell_stencil(x, stencil, &mut alone);
+                assert_eq!(cell, alone);
+                let (va, vb) = t.interpolate_faces_pair(&a, &b, x, stencil);
+                assert_eq!(va, t.interpolate_faces(&a, x, stencil));
+                assert_eq!(vb, t.interpolate_faces(&b, x, stencil));
+                let mut one: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; l.len]);
+                let mut two = one.clone();
+                let (mut p, mut q) = (one.clone(), one.clone());
+                t.spread_to_faces(&mut one, x, [1.0, -2.0, 3.0], stencil);
+                t.spread_to_faces(&mut two, x, [0.5; 3], stencil);
+                t.spread_to_faces_pair(&mut p, [1.0, -2.0, 3.0], &mut q, 0.5, x, stencil);
+                assert_eq!((one, two), (p, q));
+            }
+        }
+    }
+
+    /// The per-sample algorithm the stencils replaced (one axis at a time, library `floor`),
+    /// kept as the reference they must reproduce bit for bit.
+    fn reference_axis(
+        t: &GridTransfer,
+        face: Option<usize>,
+        stencil: Stencil,
+        write: bool,
+        d: usize,
+        x: f64,
+    ) -> Option<([usize; 2], [f64; 2])> {
+        let n = t.grid.n[d];
+        let on_faces = face == Some(d);
+        if on_faces && t.empty[d] {
+            return None;
+        }
+        let xi = (x - t.grid.origin[d]) / t.grid.h[d];
+        let (index, weight): ([isize; 2], [f64; 2]) = match stencil {
+            Stencil::Trilinear => {
+                let s = if on_faces { xi } else { xi - 0.5 };
+                let i0 = s.floor();
+                ([i0 as isize, i0 as isize + 1], [1.0 - (s - i0), s - i0])
+            }
+            Stencil::Cell => {
+                let m = (xi.floor() as isize).clamp(0, n as isize - 1);
+                if on_faces {
+                    ([m, m + 1], [0.5, 0.5])
+                } else {
+                    ([m, m], [1.0, 0.0])
+                }
+            }
+        };
+        let ni = n as isize;
+        if on_faces && write && !t.periodic[d] {
+            let (lo, hi) = t.momentum_ranges[face.unwrap()][d];
+            if lo > hi {
+                return None;
+            }
+            let fold = |i: isize| ((i + 1).clamp(lo as isize, hi as isize)) as usize;
+            return Some(([fold(index[0]), fold(index[1])], weight));
+        }
+        let slot = |i: isize| -> usize {
+            if t.empty[d] {
+                1
+            } else if t.periodic[d] {
+                (i.rem_euclid(ni) + 1) as usize
+            } else if on_faces {
+                (i.clamp(0, ni) + 1) as usize
+            } else if !write && face.is_some() {
+                (i.clamp(-1, ni) + 1) as usize
+            } else {
+                (i.clamp(0, ni - 1) + 1) as usize
+            }
+        };
+        Some(([slot(index[0]), slot(index[1])], weight))
+    }
+
+    /// `(padded index, weight)` of the reference stencil's non-zero samples, in loop order.
+    fn reference_samples(
+        t: &GridTransfer,
+        face: Option<usize>,
+        stencil: Stencil,
+        write: bool,
+        x: [f64; 3],
+    ) -> Vec<(usize, f64)> {
+        let ax: Vec<_> = (0..3)
+            .map(|d| reference_axis(t, face, stencil, write, d, x[d]))
+            .collect();
+        let (Some(a0), Some(a1), Some(a2)) = (ax[0], ax[1], ax[2]) else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = a1.1[b] * a2.1[c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                for a in 0..2 {
+                    let w = a0.1[a] * wbc;
+                    if w != 0.0 {
+                        out.push((t.layout.index(a0.0[a], a1.0[b], a2.0[c]), w));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The same list from a [`SampleStencil`].
+    fn samples_of(st: &SampleStencil) -> Vec<(usize, f64)> {
+        let mut out = Vec::new();
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = st.weight[1][b] * st.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                for a in 0..2 {
+                    let w = st.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        let i = (st.offset[0][a] + st.offset[1][b] + st.offset[2][c]) as usize;
+                        out.push((i, w));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn stencils_reproduce_the_per_sample_reference_for_every_boundary_kind() {
+        // Walls, an inlet/outlet pair, periodic and empty directions; seeded positions over the
+        // box and a little beyond; both stencils, reading and writing, faces and cells.
+        let grid = Grid::new([4, 3, 5], [0.1, 0.2, 0.15], [0.3, -0.2, 0.0]);
+        let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+        let cases = [
+            walls(),
+            BoundaryConditions {
+                faces: [
+                    FaceCondition::Periodic,
+                    FaceCondition::Periodic,
+                    wall.clone(),
+                    FaceCondition::Slip,
+                    FaceCondition::Inlet {
+                        velocity: [0.0, 0.0, 1.0],
+                    },
+                    FaceCondition::Outlet { pressure: 0.0 },
+                ],
+            },
+            BoundaryConditions {
+                faces: [
+                    FaceCondition::Empty,
+                    FaceCondition::Empty,
+                    FaceCondition::Periodic,
+                    FaceCondition::Periodic,
+                    wall.clone(),
+                    FaceCondition::Outlet { pressure: 0.0 },
+                ],
+            },
+        ];
+        let mut state = 99u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for bc in &cases {
+            let t = transfer(bc, &grid);
+            for _ in 0..300 {
+                let x: [f64; 3] = std::array::from_fn(|d| {
+                    grid.origin[d] + (1.2 * next() - 0.1) * grid.n[d] as f64 * grid.h[d]
+                });
+                for stencil in [Stencil::Trilinear, Stencil::Cell] {
+                    let mut read = [SampleStencil::default(); 3];
+                    let mut write = [SampleStencil::default(); 3];
+                    let mut cell = SampleStencil::default();
+                    t.read_face_stencils(x, stencil, &mut read);
+                    t.write_stencils(x, stencil, &mut write, &mut cell);
+                    for c in 0..3 {
+                        let r = reference_samples(&t, Some(c), stencil, false, x);
+                        assert_eq!(samples_of(&read[c]), r, "read {c} at {x:?}");
+                        let w = reference_samples(&t, Some(c), stencil, true, x);
+                        assert_eq!(samples_of(&write[c]), w, "write {c} at {x:?}");
+                    }
+                    let r = reference_samples(&t, None, stencil, false, x);
+                    assert_eq!(samples_of(&cell), r, "cell at {x:?}");
+                }
+            }
         }
     }
 
