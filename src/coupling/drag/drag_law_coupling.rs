@@ -16,6 +16,14 @@
 //!   plus `m g` (`p` includes the fluid's weight, so `−Vρ∇p` holds the buoyancy);
 //! - DPMFoam's form: `f_h = f_d` (its `gravity` force carries the buoyancy).
 //!
+//! In a box periodic on all six faces with gravity, the pressure is periodic and cannot carry
+//! the mixture's weight; [`mean_pressure_gradient`] gives the uniform kinematic gradient
+//! `G = (ρ_mix/ρ_f) g`, `ρ_mix = (ρ_f (V_box − V_s) + Σ m)/V_box`, that does. The fluid's body
+//! acceleration becomes `c (g − G)`, and in the paper's form each particle also feels the mean
+//! part of its pressure-gradient force (eq. 10), `−V ρ_f G`. Then the external forces on fluid
+//! and particles sum to zero in both forms: DPMFoam's `ρ_f V_box (g − G) + Σ (m − ρ_f V) g`,
+//! the paper's `ρ_f (V_box − V_s)(g − G) + Σ m g − ρ_f V_s G`, both `(M_f + M_p) g − ρ_f V_box G`.
+//!
 //! The drag `f_d = β (u − v)` is integrated as OpenFOAM's `Euler` scheme for `U` does: implicit
 //! in the particle's velocity over the fluid step, with `F` the other forces held:
 //! `f_d = (β (u − vⁿ) − x F)/(1 + x)`, `x = Δt β / m` (`analytical`: the factor `1/(1 + x)`
@@ -101,6 +109,14 @@ impl DragLawCoupling {
             settings.gravity,
             Preconditioner::DEFAULT,
         )?;
+        let mut va = va;
+        va.set_mean_pressure_gradient(mean_pressure_gradient(
+            &grid,
+            &bc,
+            dem.particles(),
+            settings.rho,
+            settings.gravity,
+        ));
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
         let len = va.layout().len;
         let mut coupling = DragLawCoupling {
@@ -208,6 +224,7 @@ impl DragLawCoupling {
         let eps_cells = self.fluid.fluid_fraction();
         let gradient = self.fluid.pressure_gradient();
         let g_fluid = self.fluid.gravity();
+        let mean_gradient = self.fluid.mean_pressure_gradient();
         let (closure, form, interpolation, averaging, analytical) = (
             s.closure,
             s.form,
@@ -250,7 +267,11 @@ impl DragLawCoupling {
                     let volume = q.volume();
                     let pressure = match form {
                         VolumeAveragedForm::Paper => {
-                            std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
+                            // ∇p is the periodic part; G its uniform mean (zero if not
+                            // fully periodic).
+                            std::array::from_fn(|a| {
+                                -volume * rho * (gp[a] + mean_gradient[a] - g_fluid[a])
+                            })
                         }
                         VolumeAveragedForm::DpmFoam => [0.0; 3],
                     };
@@ -391,11 +412,20 @@ impl DragLawCoupling {
         self.settings.rho * (layer(0) - layer(n[axis] - 1) + self.settings.gravity[axis] * span)
     }
 
-    /// The stencil names for the banner.
+    /// The stencil names for the banner (and `G` when the box is fully periodic).
     pub fn describe(&self) -> String {
         let s = &self.settings;
+        let g = self.fluid.mean_pressure_gradient();
+        let mean = if g == [0.0; 3] {
+            String::new()
+        } else {
+            format!(
+                ", mean pressure gradient G = ({:.6e} {:.6e} {:.6e}) m/s² (fully periodic box)",
+                g[0], g[1], g[2]
+            )
+        };
         format!(
-            "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}",
+            "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}{mean}",
             s.closure.map_or("no", |c| c.name()),
             s.form.name(),
             s.interpolation.name(),
@@ -408,6 +438,66 @@ impl DragLawCoupling {
             s.alpha_max
         )
     }
+
+    /// Total momentum of fluid and particles, kg·m/s: `ρ_f Σ_faces ε_f u_f V_cell + Σ m v`
+    /// (each component over the faces where it is advanced).
+    pub fn mixture_momentum(&self, fluid: &FluidSolver, dem: &Dem) -> [f64; 3] {
+        let l = self.fluid.layout();
+        let eps = self.fluid.fluid_fraction();
+        let u = fluid.velocity();
+        let volume = self.transfer.cell_volume();
+        let mut total = [0.0; 3];
+        for (c, r) in self.fluid.momentum_ranges().iter().enumerate() {
+            let sc = l.stride[c];
+            let mut sum = 0.0;
+            for k in r[2].0..=r[2].1 {
+                for j in r[1].0..=r[1].1 {
+                    for i in r[0].0..=r[0].1 {
+                        let f = l.index(i, j, k);
+                        sum += 0.5 * (eps[f] + eps[f - sc]) * u[c][f];
+                    }
+                }
+            }
+            total[c] = self.settings.rho * volume * sum;
+        }
+        let p = dem.particles();
+        for i in 0..p.len() {
+            let d = p.diameter[i];
+            let m = p.density[i] * PI * d * d * d / 6.0;
+            for a in 0..3 {
+                total[a] += m * p.velocity[i][a];
+            }
+        }
+        total
+    }
+}
+
+/// The uniform kinematic mean pressure gradient `G = (ρ_mix/ρ_f) g` that carries the weight of
+/// fluid and particles in a box periodic on all six faces (zero otherwise, or without gravity):
+/// `ρ_mix = (ρ_f (V_box − V_s) + Σ ρ_p V)/V_box`.
+pub fn mean_pressure_gradient(
+    grid: &crate::grid::Grid,
+    bc: &crate::fluid::BoundaryConditions,
+    particles: &ParticleState,
+    rho: f64,
+    gravity: [f64; 3],
+) -> [f64; 3] {
+    let periodic = (0..3).all(|d| {
+        (0..2).all(|side| matches!(bc.face(d, side), crate::fluid::FaceCondition::Periodic))
+    });
+    if !periodic || gravity == [0.0; 3] {
+        return [0.0; 3];
+    }
+    let box_volume: f64 = (0..3).map(|d| grid.n[d] as f64 * grid.h[d]).product();
+    let (mut solid, mut mass) = (0.0, 0.0);
+    for i in 0..particles.len() {
+        let d = particles.diameter[i];
+        let v = PI * d * d * d / 6.0;
+        solid += v;
+        mass += particles.density[i] * v;
+    }
+    let rho_mix = (rho * (box_volume - solid) + mass) / box_volume;
+    gravity.map(|g| rho_mix / rho * g)
 }
 
 /// Whether a stencil name from DPMFoam's `interpolationSchemes` maps to one of fsim's.
