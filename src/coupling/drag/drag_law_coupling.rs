@@ -17,8 +17,9 @@
 //! - DPMFoam's form: `f_h = f_d` (its `gravity` force carries the buoyancy).
 //!
 //! In a box periodic on all six faces with gravity, the pressure is periodic and cannot carry
-//! the mixture's weight; [`mean_pressure_gradient`] gives the uniform kinematic gradient
-//! `G = (ρ_mix/ρ_f) g`, `ρ_mix = (ρ_f (V_box − V_s) + Σ m)/V_box`, that does. The fluid's body
+//! the mixture's weight; [`DragLawCoupling::carry_mixture_weight`] (called by case runs)
+//! imposes the uniform kinematic gradient `G = (ρ_mix/ρ_f) g` that does, with
+//! `ρ_mix = (ρ_f (V_box − V_s) + Σ m)/V_box`. The fluid's body
 //! acceleration becomes `c (g − G)`, and in the paper's form each particle also feels the mean
 //! part of its pressure-gradient force (eq. 10), `−V ρ_f G`. Then the external forces on fluid
 //! and particles sum to zero in both forms: DPMFoam's `ρ_f V_box (g − G) + Σ (m − ρ_f V) g`,
@@ -111,14 +112,6 @@ impl DragLawCoupling {
             settings.gravity,
             Preconditioner::DEFAULT,
         )?;
-        let mut va = va;
-        va.set_mean_pressure_gradient(mean_pressure_gradient(
-            &grid,
-            &bc,
-            dem.particles(),
-            settings.rho,
-            settings.gravity,
-        ));
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
         let len = va.layout().len;
         let mut coupling = DragLawCoupling {
@@ -137,6 +130,22 @@ impl DragLawCoupling {
         coupling.compute_fluid_fraction(dem.particles())?;
         coupling.fluid.reset_fluid_fraction(&coupling.cells);
         Ok(coupling)
+    }
+
+    /// Imposes the mean pressure gradient `G` of [`mean_pressure_gradient`] (the settings'
+    /// gravity taken as the physical one) and returns it: zero unless every face is periodic
+    /// and gravity is non-zero. Case runs call it; a caller that drives a periodic box through
+    /// the fluid's gravity (a porous-media flow, a study holding the weight itself) does not.
+    pub fn carry_mixture_weight(&mut self, dem: &Dem) -> [f64; 3] {
+        let g = mean_pressure_gradient(
+            self.fluid.grid(),
+            self.fluid.boundary_conditions(),
+            dem.particles(),
+            self.settings.rho,
+            self.settings.gravity,
+        );
+        self.fluid.set_mean_pressure_gradient(g);
+        g
     }
 
     /// Re-establishes `εⁿ` and `∇p` after a restart (the velocity and pressure come from the
