@@ -629,6 +629,8 @@ fn drag_law(
         )
     });
     coupling.fluid.set_superficial_inlets(superficial);
+    // A box periodic on all faces cannot hold the mixture's weight with its periodic pressure.
+    coupling.carry_mixture_weight(dem);
     Ok(Some(coupling))
 }
 

@@ -29,6 +29,14 @@
 //!
 //! The pressure includes the fluid's weight (as DPMFoam's `p`), so `g` also serves as a
 //! uniform driving acceleration for periodic porous-media flows.
+//!
+//! In a fully periodic box the pressure is periodic and cannot hold up the mixture's weight,
+//! so the whole suspension would free-fall. A uniform kinematic mean pressure gradient `G`
+//! (set by the coupling, [`VolumeAveragedFluid::set_mean_pressure_gradient`]) stands for the
+//! non-periodic part of the pressure: the body acceleration `c g` becomes `c (g − G)`. With
+//! `G = (ρ_mix/ρ_f) g`, `ρ_mix = (M_fluid + M_particles)/V_box`, fluid and particles together
+//! feel no net external force (in the paper's form the particles' share `−V_p ρ_f G` of eq. 10
+//! is added by the coupling).
 
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::fluid_solver::FluidSolver;
@@ -70,6 +78,8 @@ pub struct VolumeAveragedReport {
 pub struct VolumeAveragedFluid {
     form: VolumeAveragedForm,
     gravity: [f64; 3],
+    /// Uniform kinematic mean pressure gradient `G`, m/s² (zero unless set).
+    mean_pressure_gradient: [f64; 3],
     nu: f64,
     grid: Grid,
     layout: PaddedLayout,
@@ -135,6 +145,7 @@ impl VolumeAveragedFluid {
         Ok(VolumeAveragedFluid {
             form,
             gravity,
+            mean_pressure_gradient: [0.0; 3],
             nu: fluid.settings().nu,
             momentum_ranges: std::array::from_fn(|c| {
                 std::array::from_fn(|d| bc.momentum_range(grid.n, c, d))
@@ -167,6 +178,14 @@ impl VolumeAveragedFluid {
     }
     pub fn gravity(&self) -> [f64; 3] {
         self.gravity
+    }
+    /// The uniform kinematic mean pressure gradient `G` (m/s²) added to the periodic pressure.
+    pub fn mean_pressure_gradient(&self) -> [f64; 3] {
+        self.mean_pressure_gradient
+    }
+    /// Sets `G`: the fluid's body acceleration becomes `c (g − G)` (see the module notes).
+    pub fn set_mean_pressure_gradient(&mut self, gradient: [f64; 3]) {
+        self.mean_pressure_gradient = gradient;
     }
     pub fn layout(&self) -> &PaddedLayout {
         &self.layout
@@ -356,7 +375,9 @@ impl VolumeAveragedFluid {
         let nu = self.nu;
         let (eps, eps_old) = (&self.eps[..], &self.eps_old[..]);
         let form = self.form;
-        let gravity = self.gravity;
+        // Body acceleration `g − G` (G = 0 unless the box is fully periodic).
+        let gravity: [f64; 3] =
+            std::array::from_fn(|c| self.gravity[c] - self.mean_pressure_gradient[c]);
         let plane = l.plane_len();
         for c in 0..3 {
             let r = self.momentum_ranges[c];

@@ -16,6 +16,15 @@
 //!   plus `m g` (`p` includes the fluid's weight, so `−Vρ∇p` holds the buoyancy);
 //! - DPMFoam's form: `f_h = f_d` (its `gravity` force carries the buoyancy).
 //!
+//! In a box periodic on all six faces with gravity, the pressure is periodic and cannot carry
+//! the mixture's weight; [`DragLawCoupling::carry_mixture_weight`] (called by case runs)
+//! imposes the uniform kinematic gradient `G = (ρ_mix/ρ_f) g` that does, with
+//! `ρ_mix = (ρ_f (V_box − V_s) + Σ m)/V_box`. The fluid's body
+//! acceleration becomes `c (g − G)`, and in the paper's form each particle also feels the mean
+//! part of its pressure-gradient force (eq. 10), `−V ρ_f G`. Then the external forces on fluid
+//! and particles sum to zero in both forms: DPMFoam's `ρ_f V_box (g − G) + Σ (m − ρ_f V) g`,
+//! the paper's `ρ_f (V_box − V_s)(g − G) + Σ m g − ρ_f V_s G`, both `(M_f + M_p) g − ρ_f V_box G`.
+//!
 //! The drag `f_d = β (u − v)` is integrated as OpenFOAM's `Euler` scheme for `U` does: implicit
 //! in the particle's velocity over the fluid step, with `F` the other forces held:
 //! `f_d = (β (u − vⁿ) − x F)/(1 + x)`, `x = Δt β / m` (`analytical`: the factor `1/(1 + x)`
@@ -73,6 +82,8 @@ pub struct DragLawCoupling {
     /// of the volume.
     face_scatter: ChunkedScatter,
     cell_scatter: ChunkedScatter,
+    /// Cell-centred pressure gradient, padded (ghosts filled), used in a fully periodic box.
+    cell_gradient: [Vec<f64>; 3],
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
@@ -125,12 +136,29 @@ impl DragLawCoupling {
             write_cells: Vec::new(),
             face_scatter: ChunkedScatter::new(),
             cell_scatter: ChunkedScatter::new(),
+            cell_gradient: [(); 3].map(|_| vec![0.0; len]),
             last_fluid: None,
             last: ExchangeReport::default(),
         };
         coupling.compute_fluid_fraction(dem.particles())?;
         coupling.fluid.reset_fluid_fraction(&coupling.cells);
         Ok(coupling)
+    }
+
+    /// Imposes the mean pressure gradient `G` of [`mean_pressure_gradient`] (the settings'
+    /// gravity taken as the physical one) and returns it: zero unless every face is periodic
+    /// and gravity is non-zero. Case runs call it; a caller that drives a periodic box through
+    /// the fluid's gravity (a porous-media flow, a study holding the weight itself) does not.
+    pub fn carry_mixture_weight(&mut self, dem: &Dem) -> [f64; 3] {
+        let g = mean_pressure_gradient(
+            self.fluid.grid(),
+            self.fluid.boundary_conditions(),
+            dem.particles(),
+            self.settings.rho,
+            self.settings.gravity,
+        );
+        self.fluid.set_mean_pressure_gradient(g);
+        g
     }
 
     /// Re-establishes `εⁿ` and `∇p` after a restart (the velocity and pressure come from the
@@ -235,11 +263,38 @@ impl DragLawCoupling {
         };
         let (g_cloud, rho_cloud) = (dem.config().gravity, dem.config().fluid_density);
         let (rho, mu) = (s.rho, s.mu());
+        // In a fully periodic box (G set) the particles read ∇p from cell centres, averaged
+        // from the two faces of each cell, with the stencil that spreads their volume into ε:
+        // then Σ_p V_p ∇p(x_p) = Σ_faces (1 − ε_f) ∇p_f V_cell exactly, the counterpart of
+        // the fluid's −ε_f ∇p, and with Σ_faces ∇p_f = 0 the pressure exchange conserves
+        // momentum (face-staggered reading would not, by a few % of the weight).
+        let cell_centred =
+            s.form == VolumeAveragedForm::Paper && self.fluid.mean_pressure_gradient() != [0.0; 3];
+        if cell_centred {
+            let l = self.fluid.layout();
+            let [n0, n1, n2] = l.n;
+            let gradient = self.fluid.pressure_gradient();
+            for c in 0..3 {
+                let sc = l.stride[c];
+                let (g, out) = (&gradient[c], &mut self.cell_gradient[c]);
+                for k in 1..=n2 {
+                    for j in 1..=n1 {
+                        for i in 1..=n0 {
+                            let f = l.index(i, j, k);
+                            out[f] = 0.5 * (g[f] + g[f + sc]);
+                        }
+                    }
+                }
+                crate::fluid::fill_cell_ghosts(l, self.fluid.boundary_conditions(), out);
+            }
+        }
+        let cell_gradient = &self.cell_gradient;
         let transfer = &self.transfer;
         let velocity = fluid.velocity();
         let eps_cells = self.fluid.fluid_fraction();
         let gradient = self.fluid.pressure_gradient();
         let g_fluid = self.fluid.gravity();
+        let mean_gradient = self.fluid.mean_pressure_gradient();
         let (closure, form, interpolation, averaging, analytical) = (
             s.closure,
             s.form,
@@ -307,12 +362,17 @@ impl DragLawCoupling {
                         let volume = q.volume();
                         let pressure = match form {
                             VolumeAveragedForm::Paper => {
-                                let gp = [
-                                    read[0].gather(&gradient[0]),
-                                    read[1].gather(&gradient[1]),
-                                    read[2].gather(&gradient[2]),
-                                ];
-                                std::array::from_fn(|a| -volume * rho * (gp[a] - g_fluid[a]))
+                                // ∇p is the periodic part; G its uniform mean (zero if not
+                                // fully periodic). With G, ∇p is read from cell centres with
+                                // the ε stencil: the exact adjoint of the fluid's −ε_f∇p.
+                                let gp: [f64; 3] = if cell_centred {
+                                    std::array::from_fn(|c| cell.gather(&cell_gradient[c]))
+                                } else {
+                                    std::array::from_fn(|c| read[c].gather(&gradient[c]))
+                                };
+                                std::array::from_fn(|a| {
+                                    -volume * rho * (gp[a] + mean_gradient[a] - g_fluid[a])
+                                })
                             }
                             VolumeAveragedForm::DpmFoam => [0.0; 3],
                         };
@@ -473,11 +533,20 @@ impl DragLawCoupling {
         self.settings.rho * (layer(0) - layer(n[axis] - 1) + self.settings.gravity[axis] * span)
     }
 
-    /// The stencil names for the banner.
+    /// The stencil names for the banner (and `G` when the box is fully periodic).
     pub fn describe(&self) -> String {
         let s = &self.settings;
+        let g = self.fluid.mean_pressure_gradient();
+        let mean = if g == [0.0; 3] {
+            String::new()
+        } else {
+            format!(
+                ", mean pressure gradient G = ({:.6e} {:.6e} {:.6e}) m/s² (fully periodic box)",
+                g[0], g[1], g[2]
+            )
+        };
         format!(
-            "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}",
+            "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}{mean}",
             s.closure.map_or("no", |c| c.name()),
             s.form.name(),
             s.interpolation.name(),
@@ -490,6 +559,66 @@ impl DragLawCoupling {
             s.alpha_max
         )
     }
+
+    /// Total momentum of fluid and particles, kg·m/s: `ρ_f Σ_faces ε_f u_f V_cell + Σ m v`
+    /// (each component over the faces where it is advanced).
+    pub fn mixture_momentum(&self, fluid: &FluidSolver, dem: &Dem) -> [f64; 3] {
+        let l = self.fluid.layout();
+        let eps = self.fluid.fluid_fraction();
+        let u = fluid.velocity();
+        let volume = self.transfer.cell_volume();
+        let mut total = [0.0; 3];
+        for (c, r) in self.fluid.momentum_ranges().iter().enumerate() {
+            let sc = l.stride[c];
+            let mut sum = 0.0;
+            for k in r[2].0..=r[2].1 {
+                for j in r[1].0..=r[1].1 {
+                    for i in r[0].0..=r[0].1 {
+                        let f = l.index(i, j, k);
+                        sum += 0.5 * (eps[f] + eps[f - sc]) * u[c][f];
+                    }
+                }
+            }
+            total[c] = self.settings.rho * volume * sum;
+        }
+        let p = dem.particles();
+        for i in 0..p.len() {
+            let d = p.diameter[i];
+            let m = p.density[i] * PI * d * d * d / 6.0;
+            for a in 0..3 {
+                total[a] += m * p.velocity[i][a];
+            }
+        }
+        total
+    }
+}
+
+/// The uniform kinematic mean pressure gradient `G = (ρ_mix/ρ_f) g` that carries the weight of
+/// fluid and particles in a box periodic on all six faces (zero otherwise, or without gravity):
+/// `ρ_mix = (ρ_f (V_box − V_s) + Σ ρ_p V)/V_box`.
+pub fn mean_pressure_gradient(
+    grid: &crate::grid::Grid,
+    bc: &crate::fluid::BoundaryConditions,
+    particles: &ParticleState,
+    rho: f64,
+    gravity: [f64; 3],
+) -> [f64; 3] {
+    let periodic = (0..3).all(|d| {
+        (0..2).all(|side| matches!(bc.face(d, side), crate::fluid::FaceCondition::Periodic))
+    });
+    if !periodic || gravity == [0.0; 3] {
+        return [0.0; 3];
+    }
+    let box_volume: f64 = (0..3).map(|d| grid.n[d] as f64 * grid.h[d]).product();
+    let (mut solid, mut mass) = (0.0, 0.0);
+    for i in 0..particles.len() {
+        let d = particles.diameter[i];
+        let v = PI * d * d * d / 6.0;
+        solid += v;
+        mass += particles.density[i] * v;
+    }
+    let rho_mix = (rho * (box_volume - solid) + mass) / box_volume;
+    gravity.map(|g| rho_mix / rho * g)
 }
 
 /// Whether a stencil name from DPMFoam's `interpolationSchemes` maps to one of fsim's.
