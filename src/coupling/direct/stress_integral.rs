@@ -3,6 +3,7 @@
 use super::field_view::{FieldView, Interpolation};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::SphereQuadrature;
+use nalgebra::{Matrix3, Vector3};
 
 /// Force and torque on one particle, SI (N, N·m).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -101,36 +102,31 @@ pub fn stress_integral_force(
     let h = fields.grid.h.iter().cloned().fold(0.0, f64::max);
     let radius = integral.surface_radius(sphere.radius, h);
     let nu = fields.nu;
-    let mut force = [0.0; 3];
-    let mut torque = [0.0; 3];
+    let centre = Vector3::from(sphere.centre);
+    let v_sphere = Vector3::from(sphere.velocity);
+    let mut force = Vector3::zeros();
+    let mut torque = Vector3::zeros();
     for (&n, &w) in quadrature.points.iter().zip(&quadrature.weights) {
-        let arm = [radius * n[0], radius * n[1], radius * n[2]];
-        let x = [
-            sphere.centre[0] + arm[0],
-            sphere.centre[1] + arm[1],
-            sphere.centre[2] + arm[2],
-        ];
-        let (u, g) = fields.velocity_and_gradient(x, integral.interpolation);
-        let p = fields.pressure_at(x, integral.interpolation);
-        let relative_flux = (0..3)
-            .map(|d| (u[d] - sphere.velocity[d]) * n[d])
-            .sum::<f64>();
-        let mut traction = [0.0; 3];
-        for i in 0..3 {
-            let strain: f64 = (0..3).map(|j| (g[i][j] + g[j][i]) * n[j]).sum();
-            traction[i] = -p * n[i] + nu * strain - u[i] * relative_flux;
-        }
+        let n = Vector3::from(n);
+        let arm = radius * n;
+        let x = centre + arm;
+        let (u, g) = fields.velocity_and_gradient(x.into(), integral.interpolation);
+        let p = fields.pressure_at(x.into(), integral.interpolation);
+        let u = Vector3::from(u);
+        // ∇u with rows i and columns j: ∂u_i/∂x_j
+        let grad = Matrix3::from_fn(|i, j| g[i][j]);
+        // σ/ρ = −p I + ν(∇u + ∇uᵀ) (eq. 5), minus the momentum flux through a surface that is
+        // not the sphere's own: traction t = σ·n − u ((u − v_p)·n)
+        let stress = Matrix3::from_diagonal_element(-p) + nu * (grad + grad.transpose());
+        let traction = stress * n - u * (u - v_sphere).dot(&n);
         let weight = w * radius * radius;
-        let moment = cross(arm, traction);
-        for i in 0..3 {
-            force[i] += weight * traction[i];
-            torque[i] += weight * moment[i];
-        }
+        force += weight * traction;
+        torque += weight * arm.cross(&traction);
     }
     let enclosed = 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
     HydrodynamicLoad {
         force: std::array::from_fn(|i| rho * (force[i] + body_force[i] * enclosed)),
-        torque: torque.map(|t| rho * t),
+        torque: std::array::from_fn(|i| rho * torque[i]),
     }
 }
 
