@@ -341,11 +341,18 @@ impl Simulation {
             StepSizing::Fixed(dt) => {
                 let bound = self.stability_bound();
                 if dt > bound {
+                    let scheme = match self.drag {
+                        Some(_) => "drag-law model's explicit Euler predictor \
+                                    (1/(Σ|u|/h + 2ν Σ1/h²))"
+                            .to_string(),
+                        None => format!(
+                            "{} scheme (paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2))",
+                            self.fluid.settings().scheme.name()
+                        ),
+                    };
                     return Err(FsimError::run(format!(
-                        "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the {} \
-                         scheme at t = {} s (paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)); lower \
-                         deltaT or set adjustTimeStep yes",
-                        self.fluid.settings().scheme.name(),
+                        "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the \
+                         {scheme} at t = {} s; lower deltaT or set adjustTimeStep yes",
                         self.time.time
                     )));
                 }
