@@ -11,28 +11,14 @@ centres (kinematicCloudPositions) or by fsim's randomPacking injection, gravity 
 import math
 import os
 import random
+import sys
 
-HEADER = """/*--------------------------------*- C++ -*----------------------------------*\\
-  fsim: particles in a fluid at the particle scale
-\\*---------------------------------------------------------------------------*/
-FoamFile
-{{
-    version     2.0;
-    format      ascii;
-    class       {cls};
-    location    "{loc}";
-    object      {obj};
-}}
-
-"""
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import foam_case  # noqa: E402
 
 
 def _write(case, rel, cls, body):
-    path = os.path.join(case, rel)
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    loc, obj = os.path.split(rel)
-    with open(path, "w") as f:
-        f.write(HEADER.format(cls=cls, loc=loc, obj=obj) + body.lstrip("\n"))
+    foam_case.write(case, rel, cls, body, gap="\n")
 
 
 def sphere_volume(d):

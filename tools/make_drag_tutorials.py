@@ -16,27 +16,8 @@ import math
 import os
 import sys
 
-HEADER = """/*--------------------------------*- C++ -*----------------------------------*\\
-  fsim: particles in a fluid at the particle scale
-\\*---------------------------------------------------------------------------*/
-FoamFile
-{{
-    version     2.0;
-    format      ascii;
-    class       {cls};
-    location    "{loc}";
-    object      {obj};
-}}
-"""
-
-
-def write(root, rel, cls, body):
-    path = os.path.join(root, rel)
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    loc, obj = os.path.split(rel)
-    with open(path, "w") as f:
-        f.write(HEADER.format(cls=cls, loc=loc, obj=obj))
-        f.write(body.lstrip("\n"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from foam_case import write  # noqa: E402
 
 
 def block_mesh(size_mm, cells, patches):
