@@ -1853,20 +1853,7 @@ mod tests {
             collision_resolution_steps: 30.0,
         };
         let cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), wall);
-        let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
-                let h = dem.collision_time_step();
-                for _ in 0..1500 {
-                    dem.step(h);
-                }
-                dem
-            })
-        };
+        let run = |threads: usize| run_on_threads(threads, &cfg, &dom, &p, 1500, |_, _| {});
         let dem = run(2);
         assert!(dem.list_rebuilds() > 2, "rebuilds {}", dem.list_rebuilds());
         let q = dem.particles();
@@ -1924,28 +1911,10 @@ mod tests {
         }
         let mut cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), WallModel::None);
         cfg.gravity = [0.0; 3];
-        let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
-                let h = dem.collision_time_step();
-                for _ in 0..300 {
-                    dem.step(h);
-                }
-                dem
-            })
-        };
-        let dem = run(2);
-        // every step, across rebuilds that change the block size
-        let mut probe = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
-        let h = probe.collision_time_step();
+        // the balance every step, across rebuilds that change the block size
         let mut sizes = std::collections::BTreeSet::new();
         let mut any_far = false;
-        for step in 0..300 {
-            probe.step(h);
+        let dem = run_on_threads(2, &cfg, &dom, &p, 300, |step, probe| {
             sizes.insert(probe.lists.block);
             any_far |= !probe.lists.far_pair.is_empty();
             let f = &probe.particles().contact_force;
@@ -1958,7 +1927,7 @@ mod tests {
                 net <= 1e-12 * scale_f.max(1e-300),
                 "step {step}: net {net} of {scale_f}"
             );
-        }
+        });
         assert!(sizes.len() > 1, "block size never changed: {sizes:?}");
         let n = dem.particles().len();
         let smallest = *sizes.iter().next().unwrap();
@@ -1976,7 +1945,32 @@ mod tests {
             norm(total) < 1e-12 * scale_f,
             "net force {total:?} of {scale_f}"
         );
-        let one = run(1);
+        let one = run_on_threads(1, &cfg, &dom, &p, 300, |_, _| {});
         assert_eq!(one.particles(), dem.particles());
+    }
+
+    /// `steps` collision steps of the largest stable size on a pool of `threads` threads,
+    /// calling `each(step, &dem)` after every step.
+    fn run_on_threads(
+        threads: usize,
+        cfg: &DemConfig,
+        dom: &DomainBox,
+        p: &ParticleState,
+        steps: usize,
+        mut each: impl FnMut(usize, &Dem) + Send,
+    ) -> Dem {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut dem = Dem::new(cfg.clone(), dom.clone(), p.clone()).unwrap();
+            let h = dem.collision_time_step();
+            for step in 0..steps {
+                dem.step(h);
+                each(step, &dem);
+            }
+            dem
+        })
     }
 }
