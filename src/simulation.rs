@@ -226,6 +226,14 @@ impl Simulation {
                         notes: cloud.warnings,
                     });
                 }
+                // The initial field need not be discretely divergence-free: project it once,
+                // as the first pressure correction would. Not in DPMFoam's form: DPMFoam's
+                // first cloud evolution sees the case's field as given (a bed at rest in a
+                // column whose inlet is open), and only its first pressure correction
+                // makes the flow through the column.
+                if sim.drag.as_ref().is_none_or(|d| d.projects_initial_field()) {
+                    sim.fluid.project();
+                }
                 if let Some(drag) = sim.drag.as_mut() {
                     drag.initialise_pressure(&mut sim.fluid, sim.dt);
                 }
@@ -294,9 +302,6 @@ impl Simulation {
                     .set_cell_velocity(&vec![*u; case.mesh.grid.cell_count()])
             }
         }
-        // The initial field need not be discretely divergence-free: project it once, as the
-        // first pressure correction would.
-        self.fluid.project();
         self.fluid.set_time(self.time.time);
     }
 

@@ -13,7 +13,7 @@
 //!   transient, so any `c` is accepted and a value other than 1 is noted.
 //! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
 //!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
-//!   interpolation, which fsim replaces by trilinear interpolation, with a note); fsim's
+//!   interpolation, [`crate::coupling::drag::CellPointInterpolation`]); fsim's
 //!   `trilinear` (paper eq. 14–15) only through `dragLawCoeffs`. `rho.<phase>`, `mu.<phase>`
 //!   and `alpha.<phase>` may name any of OpenFOAM's schemes: the first two are constants of
 //!   fsim's fluid, and ε at a particle follows [`VoidFraction`].
@@ -142,8 +142,8 @@ impl DragLawOptions {
     }
 
     /// The coupling code's settings, with the fluid's properties and gravity from the case.
-    /// `cellPoint` and `trilinear` both map to the trilinear stencil (see
-    /// [`Interpolation::CellPoint`]).
+    /// `cellPoint` reads the velocity by OpenFOAM's cell-point rule and, in the paper's form,
+    /// the pressure gradient trilinearly.
     pub fn settings(&self, transport: &Transport, gravity: [f64; 3]) -> DragLawSettings {
         let stencil = |trilinear: bool| {
             if trilinear {
@@ -158,6 +158,7 @@ impl DragLawOptions {
             analytical: self.integration == ParticleIntegration::Analytical,
             form: self.form,
             interpolation: stencil(self.velocity_interpolation != Interpolation::Cell),
+            cell_point: self.velocity_interpolation == Interpolation::CellPoint,
             averaging: stencil(self.void_fraction == VoidFraction::Trilinear),
             semi_implicit: self.source == SourceTreatment::SemiImplicit,
             alpha_max: self.alpha_max,
@@ -285,14 +286,6 @@ impl DragLawOptions {
                     loc.file.display
                 ));
             }
-        }
-        if velocity_interpolation == Interpolation::CellPoint {
-            notes.push(format!(
-                "{}: U.{phase} cellPoint: fsim interpolates the fluid velocity trilinearly from \
-                 the 8 nearest cell centres (OpenFOAM's cellPoint is linear on the tetrahedra \
-                 of each cell; both are exact for linear fields)",
-                cloud.file()
-            ));
         }
         match (form, forces.pressure_gradient) {
             (VolumeAveragedForm::DpmFoam, true) => {
@@ -801,6 +794,7 @@ subModels
                 analytical: false,
                 form: VolumeAveragedForm::DpmFoam,
                 interpolation: Stencil::Cell,
+                cell_point: false,
                 averaging: Stencil::Cell,
                 semi_implicit: true,
                 alpha_max: 0.99,
@@ -809,18 +803,12 @@ subModels
                 gravity: [0.0, 0.0, -9.81],
             }
         );
-        // cellPoint: trilinear, with a note saying so
+        // cellPoint: the cell-point rule for the velocity, no note
         let (s, notes) =
             read(&GOLDSCHMIDT_LIKE.replace("U.air cell;", "U.air cellPoint;")).unwrap();
         assert_eq!(s.velocity_interpolation, Interpolation::CellPoint);
-        assert_eq!(
-            s.settings(&transport, [0.0; 3]).interpolation,
-            Stencil::Trilinear
-        );
-        assert!(
-            notes[0].contains("U.air cellPoint: fsim interpolates"),
-            "{notes:?}"
-        );
+        assert!(s.settings(&transport, [0.0; 3]).cell_point);
+        assert!(!notes.iter().any(|n| n.contains("cellPoint")), "{notes:?}");
     }
 
     #[test]

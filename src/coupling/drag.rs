@@ -2,12 +2,14 @@
 // Component loops index several per-component arrays at once.
 #![allow(clippy::needless_range_loop)]
 
+mod cell_point_interpolation;
 mod chunked_scatter;
 mod drag_closure;
 mod drag_law_coupling;
 mod drag_law_settings;
 mod grid_transfer;
 
+pub use cell_point_interpolation::CellPointInterpolation;
 pub use chunked_scatter::{ChunkPartial, ChunkedScatter, PARTICLES_PER_CHUNK};
 pub use drag_closure::{
     beetstra, di_felice, ergun_wen_yu_drag, gidaspow, koch_hill, paper, plessis_masliyah_drag,

@@ -70,6 +70,8 @@ pub use boundary_conditions::{BoundaryConditions, FaceCondition};
 pub use coefficient_fields::{comparison_beta, seeded_uniform};
 pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
+#[cfg(test)]
+pub(crate) use ghost_fill::fill_velocity_ghosts;
 pub use mean_velocity_force::MeanVelocityForce;
 pub use multigrid::{FaceAveraging, Multigrid};
 pub use padded_layout::PaddedLayout;

@@ -37,6 +37,7 @@
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
 
+use super::cell_point_interpolation::CellPointInterpolation;
 use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::{DragLawSettings, Stencil};
@@ -67,6 +68,8 @@ pub struct DragLawCoupling {
     pub settings: DragLawSettings,
     pub fluid: VolumeAveragedFluid,
     transfer: GridTransfer,
+    /// The velocity's cell-point interpolation, when the settings ask for it.
+    cell_point: Option<CellPointInterpolation>,
     /// Solid volume per cell, padded (ghosts unused), then the new ε.
     solid: Vec<f64>,
     cells: Vec<f64>,
@@ -122,11 +125,13 @@ impl DragLawCoupling {
             Preconditioner::DEFAULT,
         )?;
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
+        let settings_cell_point = settings.cell_point;
         let len = va.layout().len;
         let mut coupling = DragLawCoupling {
             settings,
             fluid: va,
             transfer,
+            cell_point: settings_cell_point.then(|| CellPointInterpolation::new(&grid, &bc)),
             solid: vec![0.0; len],
             cells: vec![0.0; grid.cell_count()],
             drag: Vec::new(),
@@ -168,6 +173,13 @@ impl DragLawCoupling {
         self.fluid.reset_fluid_fraction(&self.cells);
         self.fluid.update_pressure_gradient(fluid);
         Ok(())
+    }
+
+    /// Whether a fresh run starts from the projected initial field: in the paper's form, yes;
+    /// in DPMFoam's form the first cloud evolution sees the case's field as given, as
+    /// DPMFoam's does (DPMFoam projects only in its first pressure correction).
+    pub fn projects_initial_field(&self) -> bool {
+        self.settings.form == VolumeAveragedForm::Paper
     }
 
     /// The pressure of the initial velocity and ε (so that the first particle forces see the
@@ -288,6 +300,10 @@ impl DragLawCoupling {
                 crate::fluid::fill_cell_ghosts(l, self.fluid.boundary_conditions(), out);
             }
         }
+        if let Some(cp) = self.cell_point.as_mut() {
+            cp.update(fluid.velocity());
+        }
+        let cell_point = self.cell_point.as_ref();
         let cell_gradient = &self.cell_gradient;
         let transfer = &self.transfer;
         let velocity = fluid.velocity();
@@ -339,11 +355,14 @@ impl DragLawCoupling {
                         let x = position[i];
                         let mut read = [SampleStencil::default(); 3];
                         transfer.read_face_stencils(x, interpolation, &mut read);
-                        let u = [
-                            read[0].gather(&velocity[0]),
-                            read[1].gather(&velocity[1]),
-                            read[2].gather(&velocity[2]),
-                        ];
+                        let u = match cell_point {
+                            Some(cp) => cp.sample(x),
+                            None => [
+                                read[0].gather(&velocity[0]),
+                                read[1].gather(&velocity[1]),
+                                read[2].gather(&velocity[2]),
+                            ],
+                        };
                         let mut cell = SampleStencil::default();
                         transfer.write_stencils(x, averaging, write, &mut cell);
                         let eps = cell.gather(eps_cells);
@@ -483,9 +502,15 @@ impl DragLawCoupling {
     }
 
     /// The fluid velocity a particle at `x` reads (the interpolation stencil of the settings).
+    /// With cell-point interpolation, the point values of the last force evaluation.
     pub fn fluid_velocity_at(&self, fluid: &FluidSolver, x: [f64; 3]) -> [f64; 3] {
-        self.transfer
-            .interpolate_faces(fluid.velocity(), x, self.settings.interpolation)
+        match &self.cell_point {
+            Some(cp) => cp.sample(x),
+            None => {
+                self.transfer
+                    .interpolate_faces(fluid.velocity(), x, self.settings.interpolation)
+            }
+        }
     }
 
     /// The fluid fraction a particle at `x` reads (the averaging stencil of the settings).
@@ -549,7 +574,11 @@ impl DragLawCoupling {
             "{} drag, {} form, interpolation {}, averaging {}, {} source, alphaMax {}{mean}",
             s.closure.map_or("no", |c| c.name()),
             s.form.name(),
-            s.interpolation.name(),
+            if s.cell_point {
+                "cellPoint"
+            } else {
+                s.interpolation.name()
+            },
             s.averaging.name(),
             if s.semi_implicit {
                 "semi-implicit"

@@ -37,6 +37,9 @@ pub struct DragLawSettings {
     pub form: VolumeAveragedForm,
     /// Fluid velocity and pressure gradient at a particle.
     pub interpolation: Stencil,
+    /// DPMFoam's `cellPoint`: the fluid velocity at a particle by
+    /// [`super::CellPointInterpolation`] instead of `interpolation` (which still reads ∇p).
+    pub cell_point: bool,
     /// Particle volume → ε, ε at a particle, and the reaction force → fluid.
     pub averaging: Stencil,
     /// DPMFoam's `sourceTerms { schemes { U semiImplicit 1; } }`: the drag's reaction is
@@ -63,6 +66,7 @@ impl DragLawSettings {
             analytical: false,
             form: VolumeAveragedForm::Paper,
             interpolation: Stencil::Trilinear,
+            cell_point: false,
             averaging: Stencil::Trilinear,
             semi_implicit: false,
             alpha_max: 0.99,

@@ -1,0 +1,466 @@
+//! OpenFOAM's `cellPoint` interpolation of the fluid velocity at a particle, on fsim's
+//! uniform staggered grid, so that a DPMFoam case asking for it gets it.
+//!
+//! OpenFOAM (`interpolationCellPoint`, `volPointInterpolation`, v1912) interpolates linearly
+//! inside the tetrahedron of the particle's cell that holds it. A cell is split into one
+//! pyramid per face (apex at the cell centre), each face into two triangles, so a hexahedron
+//! has 12 tetrahedra with the corners `(x_c, p_a, p_b, p_d)`:
+//!
+//! `u(x) = λ_c u_c + λ_a u_a + λ_b u_b + λ_d u_d`, `λ` the barycentric coordinates of `x`.
+//!
+//! - `u_c`: the cell-centred velocity (on the staggered grid the mean of the cell's two faces
+//!   per component, as for the `cell` interpolation).
+//! - `u_p` at an interior point: the inverse-distance weighted mean of the cells around it
+//!   (on a uniform grid, the plain mean of 8 cells; periodic directions wrap).
+//! - `u_p` at a boundary point: the inverse-distance weighted mean of the boundary faces
+//!   around it, over every boundary plane it lies on (`w = 1/|x_p − x_f|`). A boundary face
+//!   holds the condition's value: the normal component is the staggered face velocity, a
+//!   tangential one the mean of the cell and its ghost (zero at a no-slip wall, the cell's
+//!   value at a symmetry plane or a zero-gradient outlet, the inlet's value at an inlet).
+//!   At a symmetry plane the normal component is zero, which is OpenFOAM's point constraint.
+//!
+//! Which diagonal splits a face into triangles follows, in OpenFOAM, the point order of the
+//! face (its base point). fsim takes the diagonal through the face's corner nearest the
+//! origin for every face. Both choices are exact for linear fields and differ by
+//! `O(h² ∇²u)` inside a cell.
+//!
+//! The point values are refreshed once per step ([`CellPointInterpolation::update`]); a sample
+//! then reads 4 values per component ([`CellPointInterpolation::sample`]).
+
+use rayon::prelude::*;
+
+use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
+use crate::grid::Grid;
+
+/// Cell-point interpolation of the velocity (see the module docs).
+#[derive(Clone, Debug)]
+pub struct CellPointInterpolation {
+    grid: Grid,
+    layout: PaddedLayout,
+    periodic: [bool; 3],
+    empty: [bool; 3],
+    /// Cell-centred velocity per component on the padded layout (ghost cells included where
+    /// their faces exist).
+    cell: [Vec<f64>; 3],
+    /// Velocity per component at the `(n₀+1)(n₁+1)(n₂+1)` points, x fastest.
+    point: [Vec<f64>; 3],
+}
+
+impl CellPointInterpolation {
+    pub fn new(grid: &Grid, bc: &BoundaryConditions) -> Self {
+        let layout = PaddedLayout::new(grid.n);
+        let points = (grid.n[0] + 1) * (grid.n[1] + 1) * (grid.n[2] + 1);
+        CellPointInterpolation {
+            grid: grid.clone(),
+            periodic: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Periodic)),
+            empty: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Empty)),
+            cell: [(); 3].map(|_| vec![0.0; layout.len]),
+            point: [(); 3].map(|_| vec![0.0; points]),
+            layout,
+        }
+    }
+
+    /// Linear index of point `(i, j, k)`, `0 ≤ i ≤ n₀`.
+    #[inline(always)]
+    fn point_index(&self, i: usize, j: usize, k: usize) -> usize {
+        let n = self.grid.n;
+        i + (n[0] + 1) * (j + (n[1] + 1) * k)
+    }
+
+    /// Refreshes the cell-centred and point velocities from the face velocities `velocity`
+    /// (padded, ghosts filled by the fluid solver).
+    pub fn update(&mut self, velocity: &[Vec<f64>; 3]) {
+        let l = &self.layout;
+        for c in 0..3 {
+            let (u, cell) = (&velocity[c], &mut self.cell[c]);
+            let s = l.stride[c];
+            // Every padded cell whose high face along c exists: slots 0..=n_c along c.
+            let mut hi = l.dims;
+            hi[c] = l.n[c] + 1;
+            for k in 0..hi[2] {
+                for j in 0..hi[1] {
+                    for i in 0..hi[0] {
+                        let f = l.index(i, j, k);
+                        cell[f] = if self.empty[c] {
+                            0.0
+                        } else {
+                            0.5 * (u[f] + u[f + s])
+                        };
+                    }
+                }
+            }
+        }
+        let n = self.grid.n;
+        let plane = (n[0] + 1) * (n[1] + 1);
+        let mut point = std::mem::take(&mut self.point);
+        for (c, values) in point.iter_mut().enumerate() {
+            let this = &*self;
+            values
+                .par_chunks_mut(plane)
+                .enumerate()
+                .for_each(|(k, row)| {
+                    for j in 0..=n[1] {
+                        for i in 0..=n[0] {
+                            row[i + (n[0] + 1) * j] = this.point_value(c, [i, j, k], velocity);
+                        }
+                    }
+                });
+        }
+        self.point = point;
+    }
+
+    /// Along direction `d`, the padded slots of the cells around point index `p` and whether
+    /// the point lies on a boundary plane (low or high).
+    fn cells_around(&self, d: usize, p: usize) -> (usize, usize, Option<bool>) {
+        let n = self.grid.n[d];
+        if self.empty[d] {
+            return (1, 1, None);
+        }
+        if self.periodic[d] {
+            let below = if p == 0 { n } else { p };
+            let above = if p == n { 1 } else { p + 1 };
+            return (below, above, None);
+        }
+        match p {
+            0 => (1, 1, Some(false)),
+            _ if p == n => (n, n, Some(true)),
+            _ => (p, p + 1, None),
+        }
+    }
+
+    /// The velocity component `c` at point `p` (module docs).
+    fn point_value(&self, c: usize, p: [usize; 3], velocity: &[Vec<f64>; 3]) -> f64 {
+        let l = &self.layout;
+        let around: [(usize, usize, Option<bool>); 3] =
+            std::array::from_fn(|d| self.cells_around(d, p[d]));
+        let cell = &self.cell[c];
+        if around.iter().all(|a| a.2.is_none()) {
+            let mut sum = 0.0;
+            for k in [around[2].0, around[2].1] {
+                for j in [around[1].0, around[1].1] {
+                    for i in [around[0].0, around[0].1] {
+                        sum += cell[l.index(i, j, k)];
+                    }
+                }
+            }
+            return sum / 8.0;
+        }
+        let h = self.grid.h;
+        let (mut sum, mut weights) = (0.0, 0.0);
+        for d in 0..3 {
+            let Some(high) = around[d].2 else {
+                continue;
+            };
+            let (a, b) = ((d + 1) % 3, (d + 2) % 3);
+            let w = 1.0 / (0.25 * (h[a] * h[a] + h[b] * h[b])).sqrt();
+            let faces_a = distinct(around[a].0, around[a].1);
+            let faces_b = distinct(around[b].0, around[b].1);
+            for &sa in faces_a.iter().flatten() {
+                for &sb in faces_b.iter().flatten() {
+                    let mut slot = [0usize; 3];
+                    slot[a] = sa;
+                    slot[b] = sb;
+                    let value = if c == d {
+                        // the staggered face on the boundary plane
+                        slot[d] = if high { l.n[d] + 1 } else { 1 };
+                        velocity[c][l.index(slot[0], slot[1], slot[2])]
+                    } else {
+                        slot[d] = if high { l.n[d] } else { 1 };
+                        let inside = cell[l.index(slot[0], slot[1], slot[2])];
+                        slot[d] = if high { l.n[d] + 1 } else { 0 };
+                        0.5 * (inside + cell[l.index(slot[0], slot[1], slot[2])])
+                    };
+                    sum += w * value;
+                    weights += w;
+                }
+            }
+        }
+        sum / weights
+    }
+
+    /// The velocity at `x` (clamped into the box).
+    #[inline]
+    pub fn sample(&self, x: [f64; 3]) -> [f64; 3] {
+        let (o, h, n) = (self.grid.origin, self.grid.h, self.grid.n);
+        // Cell and local coordinates ξ ∈ [−1, 1] about its centre.
+        let mut cell = [0usize; 3];
+        let mut xi = [0.0; 3];
+        for d in 0..3 {
+            let s = ((x[d] - o[d]) / h[d]).clamp(0.0, n[d] as f64);
+            let m = (s.floor() as usize).min(n[d] - 1);
+            cell[d] = m;
+            xi[d] = if self.empty[d] {
+                0.0
+            } else {
+                2.0 * (s - m as f64) - 1.0
+            };
+        }
+        // The pyramid: the face d, side `sign` the point is nearest in ξ.
+        let mut d = 0;
+        for e in 1..3 {
+            if xi[e].abs() > xi[d].abs() {
+                d = e;
+            }
+        }
+        let t = xi[d].abs();
+        let mut corner_weight = [0.0; 3];
+        let mut corners = [[0usize; 3]; 3];
+        let centre_weight = 1.0 - t;
+        if t > 0.0 {
+            let (a, b) = if d == 0 {
+                (1, 2)
+            } else if d == 1 {
+                (0, 2)
+            } else {
+                (0, 1)
+            };
+            let side = usize::from(xi[d] > 0.0);
+            let (alpha, beta) = (xi[a] / t, xi[b] / t);
+            // Triangles of the face split by its diagonal from (−1, −1) to (1, 1) in (a, b).
+            let (local, weight): ([[usize; 2]; 3], [f64; 3]) = if alpha >= beta {
+                (
+                    [[0, 0], [1, 0], [1, 1]],
+                    [
+                        0.5 * (1.0 - alpha),
+                        0.5 * (alpha - beta),
+                        0.5 * (beta + 1.0),
+                    ],
+                )
+            } else {
+                (
+                    [[0, 0], [1, 1], [0, 1]],
+                    [
+                        0.5 * (1.0 - beta),
+                        0.5 * (alpha + 1.0),
+                        0.5 * (beta - alpha),
+                    ],
+                )
+            };
+            for q in 0..3 {
+                let mut p = cell;
+                p[d] += side;
+                p[a] += local[q][0];
+                p[b] += local[q][1];
+                corners[q] = p;
+                corner_weight[q] = t * weight[q];
+            }
+        }
+        let l = &self.layout;
+        let centre = l.index(cell[0] + 1, cell[1] + 1, cell[2] + 1);
+        std::array::from_fn(|c| {
+            let mut u = centre_weight * self.cell[c][centre];
+            for q in 0..3 {
+                if corner_weight[q] != 0.0 {
+                    let p = corners[q];
+                    u += corner_weight[q] * self.point[c][self.point_index(p[0], p[1], p[2])];
+                }
+            }
+            u
+        })
+    }
+}
+
+/// The distinct padded slots of a pair (one when both are the same).
+#[inline]
+fn distinct(a: usize, b: usize) -> [Option<usize>; 2] {
+    if a == b {
+        [Some(a), None]
+    } else {
+        [Some(a), Some(b)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fluid::{fill_velocity_ghosts, BoundaryConditions, FaceCondition};
+
+    /// A small LCG for seeded positions.
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn grid() -> Grid {
+        Grid {
+            n: [5, 6, 7],
+            h: [0.3, 0.2, 0.25],
+            origin: [-0.4, 0.1, 0.0],
+        }
+    }
+
+    /// Face velocities of the linear field `u_c(x) = a_c + B_c · x`.
+    fn linear_faces(g: &Grid, a: [f64; 3], b: [[f64; 3]; 3]) -> [Vec<f64>; 3] {
+        let l = PaddedLayout::new(g.n);
+        std::array::from_fn(|c| {
+            let mut u = vec![0.0; l.len];
+            for k in 0..l.dims[2] {
+                for j in 0..l.dims[1] {
+                    for i in 0..l.dims[0] {
+                        let slot = [i, j, k];
+                        let x: [f64; 3] = std::array::from_fn(|d| {
+                            let offset = if d == c { 1.0 } else { 0.5 };
+                            g.origin[d] + (slot[d] as f64 - offset) * g.h[d]
+                        });
+                        u[l.index(i, j, k)] =
+                            a[c] + b[c][0] * x[0] + b[c][1] * x[1] + b[c][2] * x[2];
+                    }
+                }
+            }
+            u
+        })
+    }
+
+    fn linear_value(a: [f64; 3], b: [[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|c| a[c] + b[c][0] * x[0] + b[c][1] * x[1] + b[c][2] * x[2])
+    }
+
+    #[test]
+    fn linear_field_is_exact_inside_cells_away_from_the_boundary() {
+        let g = grid();
+        let bc = BoundaryConditions {
+            faces: std::array::from_fn(|_| FaceCondition::Wall { velocity: [0.0; 3] }),
+        };
+        let (a, b) = (
+            [0.3, -1.2, 2.0],
+            [[0.5, -0.2, 1.1], [2.0, 0.3, -0.7], [-1.5, 0.9, 0.4]],
+        );
+        let mut interp = CellPointInterpolation::new(&g, &bc);
+        interp.update(&linear_faces(&g, a, b));
+        let mut state = 7;
+        for _ in 0..500 {
+            // in cells 1..n−2: every corner point is interior
+            let x: [f64; 3] = std::array::from_fn(|d| {
+                g.origin[d] + g.h[d] * (1.0 + (g.n[d] - 2) as f64 * lcg(&mut state))
+            });
+            let (got, want) = (interp.sample(x), linear_value(a, b, x));
+            for c in 0..3 {
+                assert!(
+                    (got[c] - want[c]).abs() < 1e-12,
+                    "{x:?} {c}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn sample_is_the_cell_value_at_the_centre_and_the_point_value_at_a_corner() {
+        let g = grid();
+        let bc = BoundaryConditions::periodic();
+        let l = PaddedLayout::new(g.n);
+        let mut state = 3;
+        let mut faces: [Vec<f64>; 3] =
+            std::array::from_fn(|_| (0..l.len).map(|_| lcg(&mut state) - 0.5).collect());
+        fill_velocity_ghosts(&l, &bc, &mut faces);
+        let mut interp = CellPointInterpolation::new(&g, &bc);
+        interp.update(&faces);
+        let (i, j, k) = (2, 3, 4);
+        let centre: [f64; 3] =
+            std::array::from_fn(|d| g.origin[d] + ([i, j, k][d] as f64 + 0.5) * g.h[d]);
+        let at_centre = interp.sample(centre);
+        let f = l.index(i + 1, j + 1, k + 1);
+        for c in 0..3 {
+            let want = 0.5 * (faces[c][f] + faces[c][f + l.stride[c]]);
+            assert!((at_centre[c] - want).abs() < 1e-14);
+        }
+        // the corner (i+1, j+1, k+1) is the mean of the 8 cells around it
+        let corner: [f64; 3] =
+            std::array::from_fn(|d| g.origin[d] + ([i, j, k][d] as f64 + 1.0) * g.h[d]);
+        let at_corner = interp.sample(corner);
+        for c in 0..3 {
+            let mut want = 0.0;
+            for dk in 0..2 {
+                for dj in 0..2 {
+                    for di in 0..2 {
+                        let f = l.index(i + 1 + di, j + 1 + dj, k + 1 + dk);
+                        want += 0.5 * (faces[c][f] + faces[c][f + l.stride[c]]) / 8.0;
+                    }
+                }
+            }
+            assert!((at_corner[c] - want).abs() < 1e-14, "{c}");
+        }
+    }
+
+    #[test]
+    fn interpolation_is_continuous_across_cell_faces_and_tetrahedra() {
+        let g = grid();
+        let bc = BoundaryConditions::periodic();
+        let l = PaddedLayout::new(g.n);
+        let mut state = 11;
+        let mut faces: [Vec<f64>; 3] =
+            std::array::from_fn(|_| (0..l.len).map(|_| lcg(&mut state) - 0.5).collect());
+        fill_velocity_ghosts(&l, &bc, &mut faces);
+        let mut interp = CellPointInterpolation::new(&g, &bc);
+        interp.update(&faces);
+        let eps = 1e-9;
+        for _ in 0..2000 {
+            let x: [f64; 3] = std::array::from_fn(|d| {
+                g.origin[d] + g.h[d] * (0.01 + (g.n[d] as f64 - 0.02) * lcg(&mut state))
+            });
+            let dx: [f64; 3] = std::array::from_fn(|_| (lcg(&mut state) - 0.5) * eps);
+            let y = [x[0] + dx[0], x[1] + dx[1], x[2] + dx[2]];
+            let (u, v) = (interp.sample(x), interp.sample(y));
+            for c in 0..3 {
+                // the field is piecewise linear with slopes of order 1/h
+                assert!((u[c] - v[c]).abs() < 50.0 * eps / 0.2, "{x:?}: {u:?} {v:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn boundary_points_take_the_faces_values_weighted_by_inverse_distance() {
+        let g = Grid {
+            n: [2, 3, 4],
+            h: [0.75, 0.5, 0.5],
+            origin: [0.0; 3],
+        };
+        // x: symmetry planes; y: no-slip walls; z: periodic
+        let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+        let bc = BoundaryConditions {
+            faces: [
+                FaceCondition::Slip,
+                FaceCondition::Slip,
+                wall.clone(),
+                wall,
+                FaceCondition::Periodic,
+                FaceCondition::Periodic,
+            ],
+        };
+        let l = PaddedLayout::new(g.n);
+        let mut faces: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; l.len]);
+        // a uniform vertical flow, w = 2
+        faces[2].iter_mut().for_each(|w| *w = 2.0);
+        fill_velocity_ghosts(&l, &bc, &mut faces);
+        let mut interp = CellPointInterpolation::new(&g, &bc);
+        interp.update(&faces);
+        let w_at = |i: usize, j: usize, k: usize| interp.point[2][interp.point_index(i, j, k)];
+        // interior (x = 0.75, y = 0.5): every cell around holds 2
+        assert!((w_at(1, 1, 2) - 2.0).abs() < 1e-14);
+        // on a symmetry plane only: its faces hold the cells' tangential value 2
+        assert!((w_at(0, 1, 2) - 2.0).abs() < 1e-14);
+        // on a wall only: 0
+        assert!(w_at(1, 0, 2).abs() < 1e-14);
+        // on the wall–symmetry edge: 2 symmetry faces (0.5 × 0.5, value 2) and 2 wall faces
+        // (0.75 × 0.5, value 0) around the point, weighted by 1/|x_p − x_f|
+        let (ws, ww) = (
+            1.0 / (0.25f64 * 0.5).sqrt(),
+            1.0 / (0.25f64 * (0.5625 + 0.25)).sqrt(),
+        );
+        let want = 2.0 * ws / (ws + ww);
+        assert!(
+            (w_at(0, 0, 2) - want).abs() < 1e-14,
+            "{} {want}",
+            w_at(0, 0, 2)
+        );
+        // the symmetry planes' normal component is zero
+        faces[0].iter_mut().for_each(|u| *u = 1.0);
+        fill_velocity_ghosts(&l, &bc, &mut faces);
+        interp.update(&faces);
+        for j in 0..=3 {
+            assert_eq!(interp.point[0][interp.point_index(0, j, 1)], 0.0);
+            assert_eq!(interp.point[0][interp.point_index(2, j, 1)], 0.0);
+        }
+    }
+}
