@@ -6,6 +6,9 @@ Richardson & Zaki (paper eq. 21), v_m / V_0 = (1 - phi)^n.
                                  [--cells-per-radius 3] [--reynolds 0.15] [--run-length 0.15]
                                  [--csv out.csv]
 
+`--gap-cells G` raises r/h per phi so that the mean gap between neighbours holds G cells
+(dense suspensions need finer grids: the paper's section 3.2).
+
 Each run is a fully periodic box (cubic) holding `--particles` spheres at the solid fraction
 phi, packed at random without overlap (seeded), released from rest with the direct model.
 The mixture's weight is carried by the imposed mean pressure gradient, so the settling
@@ -97,6 +100,16 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
                 reynolds=vm * d / nu, end_time=end)
 
 
+def resolution(phi, cells_per_radius, gap_cells):
+    """r/h: at least `cells_per_radius`, and enough for the mean surface gap of a suspension at
+    phi, (4 pi / 3 phi)^{1/3} r - 2r (the spacing of its number density), to span `gap_cells`
+    cells. A sharp-interface boundary blocks a gap of one or two cells: the porous-media
+    errors of docs/direct_model.md grow from -0.3 % (gap of 5.7 cells, phi = 0.216, r/h = 8)
+    to +10 % (2.8 cells) and +56 % (1.1 cells, phi = 0.343, r/h = 4)."""
+    gap_over_r = (4 * math.pi / (3 * phi)) ** (1 / 3) - 2
+    return max(cells_per_radius, gap_cells / gap_over_r)
+
+
 def extrapolate(runs):
     """v_m at N -> infinity from runs at one phi and several N: least squares of
     v_m = v_inf - A N^{-1/3}, the error of v_inf propagated from the runs' errors (at least
@@ -145,6 +158,8 @@ def main():
     ap.add_argument("--particles", type=int, nargs="+", default=[27],
                     help="spheres per periodic box; two or more: extrapolate to N -> infinity")
     ap.add_argument("--cells-per-radius", type=float, default=3.0)
+    ap.add_argument("--gap-cells", type=float, default=0.0,
+                    help="raise r/h so that the mean gap between neighbours spans this many cells")
     ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
     ap.add_argument("--run-length", type=float, default=0.15, help="in units of L^2 / nu")
     ap.add_argument("--threads", type=int, default=2)
@@ -165,7 +180,8 @@ def main():
         for phi in a.phi:
             for count in a.particles:
                 r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
-                            a.cells_per_radius, a.reynolds, a.run_length, a.threads, a.seed)
+                            resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
+                            a.run_length, a.threads, a.seed)
                 runs.append(r)
                 print(f"phi {r['phi']:.4f}, N {count}: v_m = {r['v_m']:.4e} +- "
                       f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f}, "
