@@ -450,8 +450,10 @@ fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64,
 /// cell of few particles only adds hindrance (Hasimoto's `1.76 (φ/N)^{1/3}` lattice term,
 /// 0.32 of the Stokes velocity at φ = 0.05 with N = 8), and so does a coarse grid with gaps
 /// of a few cells. Measured: n = 7.8, V_0 = 0.77 V_Stokes (v_m/V_Stokes 0.502, 0.209,
-/// 0.034): these small cells behave nearly as lattices; the sweep with 27 particles per
-/// cell is in the README.
+/// 0.034): these small cells behave nearly as lattices. The band asserted, 4 ≤ n ≤ 9, is a
+/// regression band about that coarse figure, not the converged 4.6–5.1, which the sweeps in
+/// the README do not reach yet (n = 6.9 ± 0.6 with the finite-size extrapolation and
+/// gap-resolved grids).
 #[test]
 fn sedimentation_follows_richardson_zaki_coarsely() {
     let (h, d, rho_p, rho_f) = (1e-4, 6e-4, 2000.0, 1000.0);
@@ -501,7 +503,7 @@ fn sedimentation_follows_richardson_zaki_coarsely() {
         "Richardson-Zaki (coarse): n = {n:.2}, V_0/V_Stokes = {:.3}",
         v0 / stokes
     );
-    assert!(n.is_finite() && n >= 4.0, "n = {n}");
+    assert!((4.0..=9.0).contains(&n), "n = {n}");
 }
 
 /// The three moving-sphere tutorials validate (`-dry-run`): their grid and particle count,
