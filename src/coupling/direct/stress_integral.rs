@@ -110,8 +110,7 @@ pub fn stress_integral_force(
         let n = Vector3::from(n);
         let arm = radius * n;
         let x = centre + arm;
-        let (u, g) = fields.velocity_and_gradient(x.into(), integral.interpolation);
-        let p = fields.pressure_at(x.into(), integral.interpolation);
+        let (u, g, p) = fields.velocity_gradient_and_pressure(x.into(), integral.interpolation);
         let u = Vector3::from(u);
         // ∇u with rows i and columns j: ∂u_i/∂x_j
         let grad = Matrix3::from_fn(|i, j| g[i][j]);
