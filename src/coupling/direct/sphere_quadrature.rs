@@ -87,9 +87,36 @@ impl SphereQuadrature {
         Self::cubed(m)
     }
 
+    /// The rules of [`Self::with_spacing`] for every radius up to `radius`, by edge count.
+    pub fn family(radius: f64, spacing: f64) -> SphereQuadratureFamily {
+        let largest = Self::with_spacing(radius, spacing).per_edge;
+        SphereQuadratureFamily {
+            spacing,
+            rules: (0..=largest).map(|m| Self::cubed(m.max(2))).collect(),
+        }
+    }
+
     /// Number of quadrangles, `6 m²`.
     pub fn quadrangles(&self) -> usize {
         6 * self.per_edge * self.per_edge
+    }
+}
+
+/// [`SphereQuadrature::with_spacing`] for radii up to a largest one, built once (the shell
+/// integral's radii change with each sphere's surface offset).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereQuadratureFamily {
+    spacing: f64,
+    /// Indexed by quadrangles per cube-face edge.
+    rules: Vec<SphereQuadrature>,
+}
+
+impl SphereQuadratureFamily {
+    /// The rule with edges of about the family's spacing on a sphere of `radius` (the
+    /// largest rule beyond the family's radius).
+    pub fn at(&self, radius: f64) -> &SphereQuadrature {
+        let m = (std::f64::consts::FRAC_PI_2 * radius / self.spacing).ceil() as usize;
+        &self.rules[m.clamp(2, self.rules.len() - 1)]
     }
 }
 
@@ -184,5 +211,12 @@ mod tests {
         }
         assert_eq!(SphereQuadrature::with_quadrangles(600).per_edge, 10);
         assert_eq!(SphereQuadrature::with_spacing(1.0, 0.1).per_edge, 16);
+        let family = SphereQuadrature::family(1.0, 0.1);
+        for radius in [0.05, 0.3, 0.77, 1.0] {
+            assert_eq!(
+                family.at(radius),
+                &SphereQuadrature::with_spacing(radius, 0.1)
+            );
+        }
     }
 }
