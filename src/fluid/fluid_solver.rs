@@ -622,7 +622,8 @@ impl FluidSolver {
                                 + f[5] * f[5]);
                         for c in 0..3 {
                             part[2 + c] += 0.5 * (f[2 * c] + f[2 * c + 1]);
-                            part[5 + c] = larger(larger(part[5 + c], f[2 * c].abs()), f[2 * c + 1].abs());
+                            part[5 + c] =
+                                larger(larger(part[5 + c], f[2 * c].abs()), f[2 * c + 1].abs());
                         }
                         let co = 0.5
                             * ((f[0].abs() + f[1].abs()) / h[0]

@@ -304,11 +304,9 @@ impl<'a> FieldView<'a> {
                 } else {
                     let mut wa = [0.0; 4];
                     let mut dwa = [0.0; 4];
-                    placement.interpolation.weights(
-                        axis.t - clamped as f64,
-                        &mut wa,
-                        &mut dwa,
-                    );
+                    placement
+                        .interpolation
+                        .weights(axis.t - clamped as f64, &mut wa, &mut dwa);
                     w[d].copy_from_slice(&wa[..N]);
                     dw[d].copy_from_slice(&dwa[..N]);
                     start = clamped;

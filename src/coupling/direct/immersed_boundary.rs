@@ -40,9 +40,9 @@
 //! `docs/direct_model.md`): use `RK3` for steady flows.
 
 use super::rigid_sphere::RigidSphere;
-use rayon::prelude::*;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
 use crate::grid::Grid;
+use rayon::prelude::*;
 
 /// A face inside a sphere: it moves with the sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,6 +112,8 @@ pub struct ImmersedBoundary {
     /// cells next to forced faces.
     cell_marks: Vec<u8>,
     near_cells: Vec<usize>,
+    near_classes: Vec<u8>,
+    queue: Vec<usize>,
     /// Scratch per component: candidate forcing faces `(unwrapped lattice index, slot)`,
     /// and the unwrapped lattice indices of the interior faces.
     candidates: [Vec<([isize; 3], usize)>; 3],
@@ -140,6 +142,8 @@ impl ImmersedBoundary {
             previous_closed: Vec::new(),
             cell_marks: vec![0; grid.cell_count()],
             near_cells: Vec::new(),
+            near_classes: Vec::new(),
+            queue: Vec::new(),
             candidates: Default::default(),
             sites: Default::default(),
             quadratic: true,
@@ -185,15 +189,18 @@ impl ImmersedBoundary {
     /// depend on the thread count).
     pub fn update(&mut self, spheres: &[RigidSphere]) {
         let quadratic = self.quadratic;
-        let (grid, layout, periodic, ranges) = (&self.grid, &self.layout, self.periodic, &self.ranges);
+        let (grid, layout, periodic, ranges) =
+            (&self.grid, &self.layout, self.periodic, &self.ranges);
         let [l0, l1, l2] = &mut self.labels;
         let [t0, t1, t2] = &mut self.touched;
         let [i0, i1, i2] = &mut self.interior;
         let [f0, f1, f2] = &mut self.forcing;
         let [c0, c1, c2] = &mut self.candidates;
         let [s0, s1, s2] = &mut self.sites;
+        let length = grid.length();
         let lattice = |c: usize| Lattice {
             grid,
+            length,
             layout,
             periodic,
             range: ranges[c],
@@ -271,35 +278,61 @@ impl ImmersedBoundary {
         // Open near cells are reached from the open fluid through free faces (a search from
         // every near cell with a free face onto a cell that is not near); the open near
         // cells left unreached form pockets enclosed by forced faces: closed too.
-        let mut queue: Vec<usize> = Vec::new();
-        for &cell in &near {
-            let Some(faces) = self.cell_faces(cell) else {
-                self.cell_marks[cell] = REACHED;
-                queue.push(cell);
-                continue;
-            };
-            let mut all_forced = true;
-            let mut seed = false;
-            for c in 0..3 {
-                for side in 0..2 {
-                    if self.forced(c, faces[c][side]) {
-                        continue;
-                    }
-                    all_forced = false;
-                    match self.neighbour_cell(cell, c, side) {
-                        Some(next) if self.cell_marks[next] != 0 => {}
-                        _ => seed = true,
+        // Each near cell's class depends only on the forced faces and on which cells are
+        // near, so the classes are found in parallel and applied in order.
+        const OPEN: u8 = 0;
+        const SEED: u8 = 1;
+        const ALL_FORCED: u8 = 2;
+        let mut classes = std::mem::take(&mut self.near_classes);
+        classes.clear();
+        classes.resize(near.len(), OPEN);
+        let this = &*self;
+        near.par_iter()
+            .zip(classes.par_iter_mut())
+            .for_each(|(&cell, class)| {
+                let Some(faces) = this.cell_faces(cell) else {
+                    *class = SEED;
+                    return;
+                };
+                let mut all_forced = true;
+                let mut seed = false;
+                for c in 0..3 {
+                    for side in 0..2 {
+                        if this.forced(c, faces[c][side]) {
+                            continue;
+                        }
+                        all_forced = false;
+                        match this.neighbour_cell(cell, c, side) {
+                            Some(next) if this.cell_marks[next] != 0 => {}
+                            _ => seed = true,
+                        }
                     }
                 }
-            }
-            if all_forced {
-                self.cell_marks[cell] = CLOSED;
-                self.closed.push(ClosedCell { cell, faces });
-            } else if seed {
-                self.cell_marks[cell] = REACHED;
-                queue.push(cell);
+                *class = if all_forced {
+                    ALL_FORCED
+                } else if seed {
+                    SEED
+                } else {
+                    OPEN
+                };
+            });
+        let mut queue = std::mem::take(&mut self.queue);
+        queue.clear();
+        for (&cell, &class) in near.iter().zip(&classes) {
+            match class {
+                ALL_FORCED => {
+                    self.cell_marks[cell] = CLOSED;
+                    let faces = self.cell_faces(cell).expect("a cell with six faces");
+                    self.closed.push(ClosedCell { cell, faces });
+                }
+                SEED => {
+                    self.cell_marks[cell] = REACHED;
+                    queue.push(cell);
+                }
+                _ => {}
             }
         }
+        self.near_classes = classes;
         while let Some(cell) = queue.pop() {
             let Some(faces) = self.cell_faces(cell) else {
                 continue;
@@ -318,6 +351,7 @@ impl ImmersedBoundary {
                 }
             }
         }
+        self.queue = queue;
         for &cell in &near {
             if self.cell_marks[cell] == NEAR {
                 if let Some(faces) = self.cell_faces(cell) {
@@ -442,10 +476,11 @@ impl ImmersedBoundary {
     }
 }
 
-
 /// One velocity component's lattice, as the forced-face search reads it.
 struct Lattice<'a> {
     grid: &'a Grid,
+    /// Box lengths.
+    length: [f64; 3],
     layout: &'a PaddedLayout,
     periodic: [bool; 3],
     /// Advanced padded slots per direction (inclusive).
@@ -529,7 +564,7 @@ impl Lattice<'_> {
     /// `x − x_p` for the nearest periodic image of sphere `s`.
     #[inline]
     fn relative(&self, x: [f64; 3], s: &RigidSphere) -> [f64; 3] {
-        let len = self.grid.length();
+        let len = self.length;
         std::array::from_fn(|d| {
             let mut r = x[d] - s.centre[d];
             if self.periodic[d] {
