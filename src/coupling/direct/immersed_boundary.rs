@@ -114,10 +114,10 @@ pub struct ImmersedBoundary {
     near_cells: Vec<usize>,
     near_classes: Vec<u8>,
     queue: Vec<usize>,
-    /// Scratch per component: candidate forcing faces `(unwrapped lattice index, slot)`,
-    /// and the unwrapped lattice indices of the interior faces.
-    candidates: [Vec<([isize; 3], usize)>; 3],
-    sites: [Vec<[isize; 3]>; 3],
+    /// Scratch per component: the unwrapped lattice indices of the interior faces, and the
+    /// candidate forcing faces next to them.
+    candidates: [Vec<Candidate>; 3],
+    sites: [Vec<[i32; 3]>; 3],
     /// Quadratic (two fluid faces) rather than linear forcing stencil.
     quadratic: bool,
 }
@@ -610,6 +610,14 @@ fn wrap(i: isize, n: isize) -> isize {
     }
 }
 
+/// A candidate forcing face, 8 bytes: the interior face it neighbours (index into the
+/// sites) and the direction `2 d + (step > 0)` from it.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    site: u32,
+    direction: u8,
+}
+
 /// The forced faces of one component, rebuilt (see [`ImmersedBoundary::update`]).
 struct ComponentUpdate<'a> {
     lattice: Lattice<'a>,
@@ -617,8 +625,8 @@ struct ComponentUpdate<'a> {
     touched: &'a mut Vec<usize>,
     interior: &'a mut Vec<InteriorFace>,
     forcing: &'a mut Vec<ForcingFace>,
-    candidates: &'a mut Vec<([isize; 3], usize)>,
-    sites: &'a mut Vec<[isize; 3]>,
+    candidates: &'a mut Vec<Candidate>,
+    sites: &'a mut Vec<[i32; 3]>,
 }
 
 impl ComponentUpdate<'_> {
@@ -672,7 +680,7 @@ impl ComponentUpdate<'_> {
                         }
                         self.labels[slot] = k as u32 + 1;
                         self.touched.push(slot);
-                        self.sites.push([m0, m1, m2]);
+                        self.sites.push([m0 as i32, m1 as i32, m2 as i32]);
                         self.interior.push(InteriorFace {
                             slot,
                             cells: lat.cells(slot),
@@ -686,10 +694,10 @@ impl ComponentUpdate<'_> {
 
     /// Fluid faces next to an interior face (along any axis) become forcing faces.
     fn mark_candidates(&mut self) {
-        for &m in self.sites.iter() {
+        for (site, m) in self.sites.iter().enumerate() {
             for d in 0..3 {
                 for step in [-1isize, 1] {
-                    let mut q = m;
+                    let mut q = m.map(|v| v as isize);
                     q[d] += step;
                     let Some(slot) = self.lattice.slot(q) else {
                         continue;
@@ -697,7 +705,10 @@ impl ComponentUpdate<'_> {
                     if self.labels[slot] == FLUID {
                         self.labels[slot] = FORCING;
                         self.touched.push(slot);
-                        self.candidates.push((q, slot));
+                        self.candidates.push(Candidate {
+                            site: site as u32,
+                            direction: (2 * d) as u8 + u8::from(step > 0),
+                        });
                     }
                 }
             }
@@ -716,7 +727,11 @@ impl ComponentUpdate<'_> {
     fn build_forcing(&mut self, spheres: &[RigidSphere], quadratic: bool) {
         let lat = &self.lattice;
         let c = lat.c;
-        for &(m, slot) in self.candidates.iter() {
+        for candidate in self.candidates.iter() {
+            let mut m = self.sites[candidate.site as usize].map(|v| v as isize);
+            let d = usize::from(candidate.direction / 2);
+            m[d] += if candidate.direction % 2 == 1 { 1 } else { -1 };
+            let slot = lat.slot(m).expect("a candidate is an advanced face");
             let x = lat.position(m);
             // The line most nearly normal to the surface among those crossing it.
             let mut best: Option<(f64, usize, isize, usize)> = None;
