@@ -290,7 +290,8 @@ impl ImmersedBoundary {
         near.par_iter()
             .zip(classes.par_iter_mut())
             .for_each(|(&cell, class)| {
-                let Some(faces) = this.cell_faces(cell) else {
+                let idx = this.cell_coords(cell);
+                let Some(faces) = this.cell_faces_at(idx) else {
                     *class = SEED;
                     return;
                 };
@@ -302,7 +303,7 @@ impl ImmersedBoundary {
                             continue;
                         }
                         all_forced = false;
-                        match this.neighbour_cell(cell, c, side) {
+                        match this.neighbour_cell_at(cell, idx, c, side) {
                             Some(next) if this.cell_marks[next] != 0 => {}
                             _ => seed = true,
                         }
@@ -334,7 +335,8 @@ impl ImmersedBoundary {
         }
         self.near_classes = classes;
         while let Some(cell) = queue.pop() {
-            let Some(faces) = self.cell_faces(cell) else {
+            let idx = self.cell_coords(cell);
+            let Some(faces) = self.cell_faces_at(idx) else {
                 continue;
             };
             for c in 0..3 {
@@ -342,7 +344,7 @@ impl ImmersedBoundary {
                     if self.forced(c, faces[c][side]) {
                         continue;
                     }
-                    if let Some(next) = self.neighbour_cell(cell, c, side) {
+                    if let Some(next) = self.neighbour_cell_at(cell, idx, c, side) {
                         if self.cell_marks[next] == NEAR {
                             self.cell_marks[next] = REACHED;
                             queue.push(next);
@@ -367,12 +369,24 @@ impl ImmersedBoundary {
         self.labels[c][slot] != FLUID
     }
 
+    /// Grid indices `(i, j, k)` of an unpadded cell index (the one division per cell of the
+    /// closed-cell search; the faces and neighbours follow by strides).
+    #[inline]
+    fn cell_coords(&self, cell: usize) -> [usize; 3] {
+        let n = self.grid.n;
+        let column = cell / n[0];
+        [cell - column * n[0], column % n[1], column / n[1]]
+    }
+
     /// The six face slots of a cell, if the fluid advances them all (periodic wraps
     /// resolved); `None` next to a bounded face.
     fn cell_faces(&self, cell: usize) -> Option<[[usize; 2]; 3]> {
+        self.cell_faces_at(self.cell_coords(cell))
+    }
+
+    fn cell_faces_at(&self, idx: [usize; 3]) -> Option<[[usize; 2]; 3]> {
         let n = self.grid.n;
         let l = &self.layout;
-        let idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
         let low = l.index(idx[0] + 1, idx[1] + 1, idx[2] + 1);
         let mut faces = [[0usize; 2]; 3];
         for c in 0..3 {
@@ -390,28 +404,29 @@ impl ImmersedBoundary {
         Some(faces)
     }
 
-    /// The cell across face `side` (0 low, 1 high) along `c`, if inside the box or wrapped.
-    fn neighbour_cell(&self, cell: usize, c: usize, side: usize) -> Option<usize> {
+    /// The cell across face `side` (0 low, 1 high) along `c` of cell `cell` at grid indices
+    /// `idx`, if inside the box or wrapped.
+    #[inline]
+    fn neighbour_cell_at(
+        &self,
+        cell: usize,
+        idx: [usize; 3],
+        c: usize,
+        side: usize,
+    ) -> Option<usize> {
         let n = self.grid.n;
-        let mut idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
+        let stride = [1, n[0], n[0] * n[1]][c];
         if side == 0 {
             if idx[c] == 0 {
-                if !self.periodic[c] {
-                    return None;
-                }
-                idx[c] = n[c] - 1;
+                self.periodic[c].then(|| cell + (n[c] - 1) * stride)
             } else {
-                idx[c] -= 1;
+                Some(cell - stride)
             }
         } else if idx[c] + 1 == n[c] {
-            if !self.periodic[c] {
-                return None;
-            }
-            idx[c] = 0;
+            self.periodic[c].then(|| cell - (n[c] - 1) * stride)
         } else {
-            idx[c] += 1;
+            Some(cell + stride)
         }
-        Some(self.grid.cell_index(idx[0], idx[1], idx[2]))
     }
 
     /// Imposes the rigid motion on a stage's predicted velocity (padded), so that after the
@@ -519,20 +534,22 @@ impl Lattice<'_> {
     /// Padded slot of lattice index `m`, if the fluid advances that face.
     #[inline]
     fn slot(&self, m: [isize; 3]) -> Option<usize> {
-        let s0 = self.axis_slot(0, m[0])?;
-        let s1 = self.axis_slot(1, m[1])?;
-        let s2 = self.axis_slot(2, m[2])?;
-        Some(self.layout.index(s0, s1, s2))
+        let s = self.site(m)?;
+        Some(self.layout.index(s[0], s[1], s[2]))
     }
 
-    /// Cells below and above face slot `slot` (unpadded indices).
-    fn cells(&self, slot: usize) -> [usize; 2] {
-        let l = self.layout;
-        let mut s = [
-            slot % l.dims[0],
-            (slot / l.dims[0]) % l.dims[1],
-            slot / l.plane_len(),
-        ];
+    /// Padded indices of lattice index `m`, if the fluid advances that face.
+    #[inline]
+    fn site(&self, m: [isize; 3]) -> Option<[usize; 3]> {
+        Some([
+            self.axis_slot(0, m[0])?,
+            self.axis_slot(1, m[1])?,
+            self.axis_slot(2, m[2])?,
+        ])
+    }
+
+    /// Cells below and above the face at padded indices `s` (unpadded indices).
+    fn cells(&self, mut s: [usize; 3]) -> [usize; 2] {
         let n = self.grid.n;
         let hi = self.grid.cell_index(
             (s[0] - 1).min(n[0] - 1),
@@ -683,7 +700,7 @@ impl ComponentUpdate<'_> {
                         self.sites.push([m0 as i32, m1 as i32, m2 as i32]);
                         self.interior.push(InteriorFace {
                             slot,
-                            cells: lat.cells(slot),
+                            cells: lat.cells([s0, s1, s2]),
                             target: s.velocity_at([rel0, rel1, rel2])[c],
                         });
                     }
@@ -731,7 +748,8 @@ impl ComponentUpdate<'_> {
             let mut m = self.sites[candidate.site as usize].map(|v| v as isize);
             let d = usize::from(candidate.direction / 2);
             m[d] += if candidate.direction % 2 == 1 { 1 } else { -1 };
-            let slot = lat.slot(m).expect("a candidate is an advanced face");
+            let site = lat.site(m).expect("a candidate is an advanced face");
+            let slot = lat.layout.index(site[0], site[1], site[2]);
             let x = lat.position(m);
             // The line most nearly normal to the surface among those crossing it.
             let mut best: Option<(f64, usize, isize, usize)> = None;
@@ -768,22 +786,27 @@ impl ComponentUpdate<'_> {
             let mut outer2 = outer;
             outer2[d] -= step;
             let labels = &self.labels;
-            let free = |q: [isize; 3]| lat.slot(q).filter(|&n| labels[n] == FLUID);
-            let cells = lat.cells(slot);
+            // (slot, padded indices) of a fluid face
+            let free = |q: [isize; 3]| {
+                let site = lat.site(q)?;
+                let n = lat.layout.index(site[0], site[1], site[2]);
+                (labels[n] == FLUID).then_some((n, site))
+            };
+            let cells = lat.cells(site);
             let face = match (free(outer), free(outer2)) {
-                (Some(n1), Some(n2)) if quadratic => ForcingFace {
+                (Some((n1, s1)), Some((n2, s2))) if quadratic => ForcingFace {
                     slot,
                     cells,
                     neighbours: [n1, n2],
-                    neighbour_cells: [lat.cells(n1), lat.cells(n2)],
+                    neighbour_cells: [lat.cells(s1), lat.cells(s2)],
                     weights: [2.0 * t / (t + h), -t / (t + 2.0 * h)],
                     wall,
                 },
-                (Some(n1), _) => ForcingFace {
+                (Some((n1, s1)), _) => ForcingFace {
                     slot,
                     cells,
                     neighbours: [n1, n1],
-                    neighbour_cells: [lat.cells(n1); 2],
+                    neighbour_cells: [lat.cells(s1); 2],
                     weights: [t / (t + h), 0.0],
                     wall,
                 },
