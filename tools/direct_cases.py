@@ -326,7 +326,7 @@ def settling_sphere(case):
 LINEAR = """
 direct
 {
-    // trilinear sampling for the stress integral: 4 times cheaper than tricubic; on the
+    // trilinear sampling for the stress integral: half the cost of tricubic; on the
     // settling sphere at r/h = 8 the terminal velocity differs by 0.01 % (README)
     interpolation   linear;
 }

@@ -52,7 +52,7 @@ pub use resolution_check::{
 };
 pub use rigid_sphere::RigidSphere;
 pub use settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
-pub use sphere_quadrature::SphereQuadrature;
+pub use sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 pub use stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };

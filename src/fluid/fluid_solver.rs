@@ -612,7 +612,7 @@ impl FluidSolver {
                         let f = [ux[p], ux[p + 1], uy[p], uy[p + s[1]], uz[p], uz[p + s[2]]];
                         let div =
                             (f[1] - f[0]) / h[0] + (f[3] - f[2]) / h[1] + (f[5] - f[4]) / h[2];
-                        part[0] = part[0].max(div.abs());
+                        part[0] = larger(part[0], div.abs());
                         part[1] += 0.25
                             * (f[0] * f[0]
                                 + f[1] * f[1]
@@ -622,13 +622,14 @@ impl FluidSolver {
                                 + f[5] * f[5]);
                         for c in 0..3 {
                             part[2 + c] += 0.5 * (f[2 * c] + f[2 * c + 1]);
-                            part[5 + c] = part[5 + c].max(f[2 * c].abs()).max(f[2 * c + 1].abs());
+                            part[5 + c] =
+                                larger(larger(part[5 + c], f[2 * c].abs()), f[2 * c + 1].abs());
                         }
                         let co = 0.5
                             * ((f[0].abs() + f[1].abs()) / h[0]
                                 + (f[2].abs() + f[3].abs()) / h[1]
                                 + (f[4].abs() + f[5].abs()) / h[2]);
-                        part[8] = part[8].max(co);
+                        part[8] = larger(part[8], co);
                     }
                 }
             });
@@ -680,7 +681,7 @@ impl FluidSolver {
         std::array::from_fn(|c| {
             self.u[c]
                 .par_chunks(self.layout.plane_len())
-                .map(|p| p.iter().fold(0.0f64, |m, x| m.max(x.abs())))
+                .map(|p| p.iter().fold(0.0f64, |m, x| larger(m, x.abs())))
                 .reduce(|| 0.0, f64::max)
         })
     }
@@ -774,6 +775,17 @@ impl FluidSolver {
             + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
+    }
+}
+
+/// `max(m, x)` skipping a NaN `x` as `f64::max` does, but a plain compare-and-select: the
+/// reductions over the whole field then vectorise (`f64::max`'s NaN handling does not).
+#[inline(always)]
+fn larger(m: f64, x: f64) -> f64 {
+    if x > m {
+        x
+    } else {
+        m
     }
 }
 

@@ -8,7 +8,7 @@ use super::direct_settings::DirectSettings;
 use super::field_view::{periodic_directions, FieldView};
 use super::immersed_boundary::ImmersedBoundary;
 use super::rigid_sphere::RigidSphere;
-use super::sphere_quadrature::SphereQuadrature;
+use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use super::stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };
@@ -34,8 +34,8 @@ pub struct DirectCoupling {
     periodic: [bool; 3],
     spheres: Vec<RigidSphere>,
     ids: Vec<u64>,
-    /// Quadrature per distinct radius (bit pattern of the radius).
-    quadratures: HashMap<u64, SphereQuadrature>,
+    /// Surface quadrature and shell rules per distinct radius (bit pattern of the radius).
+    quadratures: HashMap<u64, (SphereQuadrature, SphereQuadratureFamily)>,
     /// Shell momentum at the last load evaluation, per particle id, with its time and the
     /// surface offset it was taken with (a changed surface has no rate).
     previous_shell: HashMap<u64, (f64, f64, ShellMomentum)>,
@@ -149,7 +149,12 @@ impl DirectCoupling {
             let integral = self.settings.integral;
             self.quadratures
                 .entry(s.radius.to_bits())
-                .or_insert_with(|| integral.quadrature(s.radius, h));
+                .or_insert_with(|| {
+                    (
+                        integral.quadrature(s.radius, h),
+                        integral.shell_rules(s.radius, h),
+                    )
+                });
         }
         self.boundary.update(&self.spheres);
     }
@@ -194,14 +199,14 @@ impl DirectCoupling {
             .par_iter()
             .zip(offsets.par_iter())
             .map(|(s, &offset)| {
-                let q = &quadratures[&s.radius.to_bits()];
+                let (q, shell_rules) = &quadratures[&s.radius.to_bits()];
                 let integral = StressIntegral {
                     surface_offset: offset,
                     ..integral
                 };
                 let load = stress_integral_force(&view, s, rho, body, &integral, q);
                 let shell = if with_shell {
-                    shell_momentum(&view, s, &integral, q)
+                    shell_momentum(&view, s, &integral, shell_rules)
                 } else {
                     ShellMomentum::default()
                 };

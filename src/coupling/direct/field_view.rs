@@ -115,105 +115,330 @@ impl<'a> FieldView<'a> {
         x: [f64; 3],
         interpolation: Interpolation,
     ) -> ([f64; 3], [[f64; 3]; 3]) {
-        let mut u = [0.0; 3];
-        let mut g = [[0.0; 3]; 3];
-        for c in 0..3 {
-            let (value, grad) = self.sample(Some(c), x, interpolation);
-            u[c] = value;
-            g[c] = grad;
-        }
+        let (u, g, _) = self.sample_point(x, interpolation, true, false);
         (u, g)
+    }
+
+    /// Velocity `u`, its gradient `g[i][j] = ∂u_i/∂x_j` and the kinematic pressure at `x`
+    /// (what the stress needs), from one placement of the stencils.
+    pub fn velocity_gradient_and_pressure(
+        &self,
+        x: [f64; 3],
+        interpolation: Interpolation,
+    ) -> ([f64; 3], [[f64; 3]; 3], f64) {
+        self.sample_point(x, interpolation, true, true)
     }
 
     /// Velocity at `x`.
     pub fn velocity_at(&self, x: [f64; 3], interpolation: Interpolation) -> [f64; 3] {
-        std::array::from_fn(|c| self.sample(Some(c), x, interpolation).0)
+        self.sample_point(x, interpolation, false, false).0
     }
 
     /// Kinematic pressure at `x`.
     pub fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64 {
-        self.sample(None, x, interpolation).0
+        let placement = Placement::new(self, x, interpolation);
+        match interpolation {
+            Interpolation::Linear => self.field_linear(&placement, None, false).0,
+            Interpolation::Cubic => self.field::<4>(&placement, None, false).0,
+        }
     }
 
-    /// Value and gradient of velocity component `c` (or the pressure for `None`).
-    fn sample(
+    /// The velocity (with its gradient when `gradient`) and, when `pressure`, the pressure
+    /// at `x`; the pressure slot is 0 otherwise.
+    #[inline]
+    fn sample_point(
         &self,
-        component: Option<usize>,
         x: [f64; 3],
         interpolation: Interpolation,
+        gradient: bool,
+        pressure: bool,
+    ) -> ([f64; 3], [[f64; 3]; 3], f64) {
+        let placement = Placement::new(self, x, interpolation);
+        match interpolation {
+            Interpolation::Linear => self.fields::<2>(&placement, gradient, pressure),
+            Interpolation::Cubic => self.fields::<4>(&placement, gradient, pressure),
+        }
+    }
+
+    #[inline]
+    fn fields<const N: usize>(
+        &self,
+        placement: &Placement,
+        gradient: bool,
+        pressure: bool,
+    ) -> ([f64; 3], [[f64; 3]; 3], f64) {
+        let mut u = [0.0; 3];
+        let mut g = [[0.0; 3]; 3];
+        for c in 0..3 {
+            (u[c], g[c]) = if N == 2 {
+                self.field_linear(placement, Some(c), gradient)
+            } else {
+                self.field::<N>(placement, Some(c), gradient)
+            };
+        }
+        let p = match (pressure, N) {
+            (false, _) => 0.0,
+            (true, 2) => self.field_linear(placement, None, false).0,
+            (true, _) => self.field::<N>(placement, None, false).0,
+        };
+        (u, g, p)
+    }
+
+    /// [`Self::field`] for the 2-node (trilinear) stencil, by successive linear blends:
+    /// along x `a = v₀ + f (v₁ − v₀)` (and `∂a/∂x = v₁ − v₀`), then y, then z.
+    #[inline(always)]
+    fn field_linear(
+        &self,
+        placement: &Placement,
+        component: Option<usize>,
+        gradient: bool,
     ) -> (f64, [f64; 3]) {
-        let nodes = interpolation.nodes();
         let g = self.grid;
-        let mut w = [[0.0; 4]; 3];
-        let mut dw = [[0.0; 4]; 3];
-        let mut first = [0isize; 3];
+        let l = self.layout;
+        let (data, stride, pad): (&[f64], [usize; 3], isize) = match component {
+            Some(c) => (&self.velocity[c], l.stride, 1),
+            None => (self.pressure, [1, g.n[0], g.n[0] * g.n[1]], 0),
+        };
+        let mut lo = [0usize; 3];
+        let mut hi = [0usize; 3];
+        let mut f = [0.0; 3];
         for d in 0..3 {
-            let offset = if component == Some(d) { 0.0 } else { 0.5 };
-            let t = (x[d] - g.origin[d]) / g.h[d] - offset;
+            let lattice = usize::from(component != Some(d));
+            let axis = &placement.axes[d][lattice];
             let n = g.n[d] as isize;
-            // The stencil's first node: the point sits between its two middle nodes.
-            let mut start = t.floor() as isize - (nodes as isize / 2 - 1);
-            if !self.periodic[d] {
-                // Stored samples along a bounded direction (0-based lattice indices).
+            let start = axis.start;
+            if self.periodic[d] {
+                let next = if start + 1 == n { 0 } else { start + 1 };
+                lo[d] = (start + pad) as usize * stride[d];
+                hi[d] = (next + pad) as usize * stride[d];
+                f[d] = axis.frac;
+            } else {
+                let (bottom, top) = match component {
+                    None => (0, n - 1),
+                    Some(c) if c == d => (0, n),
+                    Some(_) => (-1, n),
+                };
+                let clamped = start.clamp(bottom, (top - 1).max(bottom));
+                f[d] = if clamped == start {
+                    axis.frac
+                } else {
+                    axis.t - clamped as f64
+                };
+                lo[d] = (clamped + pad) as usize * stride[d];
+                hi[d] = (clamped + 1 + pad) as usize * stride[d];
+            }
+        }
+        let corner = |i: usize, j: usize, k: usize| data[i + j + k];
+        let blend = |a: f64, b: f64, t: f64| a + t * (b - a);
+        // along x, on the four x-lines of the cell
+        let v = [
+            [corner(lo[0], lo[1], lo[2]), corner(hi[0], lo[1], lo[2])],
+            [corner(lo[0], hi[1], lo[2]), corner(hi[0], hi[1], lo[2])],
+            [corner(lo[0], lo[1], hi[2]), corner(hi[0], lo[1], hi[2])],
+            [corner(lo[0], hi[1], hi[2]), corner(hi[0], hi[1], hi[2])],
+        ];
+        let a: [f64; 4] = std::array::from_fn(|q| blend(v[q][0], v[q][1], f[0]));
+        // along y (a[0], a[1] at z low; a[2], a[3] at z high)
+        let b = [blend(a[0], a[1], f[1]), blend(a[2], a[3], f[1])];
+        let value = blend(b[0], b[1], f[2]);
+        if !gradient {
+            return (value, [0.0; 3]);
+        }
+        let ax: [f64; 4] = std::array::from_fn(|q| v[q][1] - v[q][0]);
+        let bx = [blend(ax[0], ax[1], f[1]), blend(ax[2], ax[3], f[1])];
+        let by = [a[1] - a[0], a[3] - a[2]];
+        let grad = [
+            blend(bx[0], bx[1], f[2]) / g.h[0],
+            blend(by[0], by[1], f[2]) / g.h[1],
+            (b[1] - b[0]) / g.h[2],
+        ];
+        (value, grad)
+    }
+
+    /// Value (and gradient when `gradient`, else zero) of velocity component `c` (or the
+    /// pressure for `None`) on an `N`-node stencil per direction.
+    #[inline(always)]
+    fn field<const N: usize>(
+        &self,
+        placement: &Placement,
+        component: Option<usize>,
+        gradient: bool,
+    ) -> (f64, [f64; 3]) {
+        let g = self.grid;
+        let l = self.layout;
+        let (data, stride, pad): (&[f64], [usize; 3], isize) = match component {
+            Some(c) => (&self.velocity[c], l.stride, 1),
+            None => (self.pressure, [1, g.n[0], g.n[0] * g.n[1]], 0),
+        };
+        let mut w = [[0.0; N]; 3];
+        let mut dw = [[0.0; N]; 3];
+        // Offsets of the stencil's nodes along each axis, periodic wraps resolved.
+        let mut offsets = [[0usize; N]; 3];
+        for d in 0..3 {
+            // Face-normal component on its own faces, everything else at cell centres.
+            let lattice = usize::from(component != Some(d));
+            let axis = &placement.axes[d][lattice];
+            let n = g.n[d] as isize;
+            let mut start = axis.start;
+            if self.periodic[d] {
+                for k in 0..N {
+                    let m = start + k as isize;
+                    let m = if m >= n { m - n } else { m };
+                    offsets[d][k] = (m + pad) as usize * stride[d];
+                }
+                w[d].copy_from_slice(&axis.w[..N]);
+                dw[d].copy_from_slice(&axis.dw[..N]);
+            } else {
+                // Stored samples along a bounded direction (0-based lattice indices):
+                // boundary faces, and the ghost layer of the tangential components.
                 let (lo, hi) = match component {
                     None => (0, n - 1),
                     Some(c) if c == d => (0, n),
                     Some(_) => (-1, n),
                 };
-                let top = (hi - nodes as isize + 1).max(lo);
-                start = start.clamp(lo, top);
-            }
-            first[d] = start;
-            interpolation.weights(t - start as f64, &mut w[d], &mut dw[d]);
-        }
-        let data: &[f64] = match component {
-            Some(c) => &self.velocity[c],
-            None => self.pressure,
-        };
-        let l = self.layout;
-        let (stride1, stride2) = match component {
-            Some(_) => (l.stride[1], l.stride[2]),
-            None => (g.n[0], g.n[0] * g.n[1]),
-        };
-        let stride = [1, stride1, stride2];
-        // Offsets of the stencil's nodes along each axis, periodic wraps resolved once.
-        let mut offsets = [[0usize; 4]; 3];
-        for d in 0..3 {
-            let n = g.n[d] as isize;
-            for k in 0..nodes {
-                let m = first[d] + k as isize;
-                let m = if self.periodic[d] { m.rem_euclid(n) } else { m };
-                let slot = match component {
-                    Some(_) => (m + 1) as usize,
-                    None => m as usize,
-                };
-                offsets[d][k] = slot * stride[d];
+                let top = (hi - N as isize + 1).max(lo);
+                let clamped = start.clamp(lo, top);
+                if clamped == start {
+                    w[d].copy_from_slice(&axis.w[..N]);
+                    dw[d].copy_from_slice(&axis.dw[..N]);
+                } else {
+                    let mut wa = [0.0; 4];
+                    let mut dwa = [0.0; 4];
+                    placement
+                        .interpolation
+                        .weights(axis.t - clamped as f64, &mut wa, &mut dwa);
+                    w[d].copy_from_slice(&wa[..N]);
+                    dw[d].copy_from_slice(&dwa[..N]);
+                    start = clamped;
+                }
+                for k in 0..N {
+                    offsets[d][k] = (start + k as isize + pad) as usize * stride[d];
+                }
             }
         }
         let mut value = 0.0;
         let mut grad = [0.0; 3];
-        for b in 0..nodes {
-            let kz = offsets[2][b];
-            for a in 0..nodes {
-                let jy = offsets[1][a] + kz;
-                let (wyz, dy, dz) = (w[1][a] * w[2][b], dw[1][a] * w[2][b], w[1][a] * dw[2][b]);
-                let (mut v, mut gx) = (0.0, 0.0);
-                for i in 0..nodes {
-                    let f = data[offsets[0][i] + jy];
-                    v += w[0][i] * f;
-                    gx += dw[0][i] * f;
+        if gradient {
+            for b in 0..N {
+                let kz = offsets[2][b];
+                for a in 0..N {
+                    let jy = offsets[1][a] + kz;
+                    let (wyz, dy, dz) = (w[1][a] * w[2][b], dw[1][a] * w[2][b], w[1][a] * dw[2][b]);
+                    let (mut v, mut gx) = (0.0, 0.0);
+                    for i in 0..N {
+                        let f = data[offsets[0][i] + jy];
+                        v += w[0][i] * f;
+                        gx += dw[0][i] * f;
+                    }
+                    value += wyz * v;
+                    grad[0] += wyz * gx;
+                    grad[1] += dy * v;
+                    grad[2] += dz * v;
                 }
-                value += wyz * v;
-                grad[0] += wyz * gx;
-                grad[1] += dy * v;
-                grad[2] += dz * v;
             }
-        }
-        for d in 0..3 {
-            grad[d] /= g.h[d];
+            for d in 0..3 {
+                grad[d] /= g.h[d];
+            }
+        } else {
+            for b in 0..N {
+                let kz = offsets[2][b];
+                for a in 0..N {
+                    let jy = offsets[1][a] + kz;
+                    let wyz = w[1][a] * w[2][b];
+                    let mut v = 0.0;
+                    for i in 0..N {
+                        v += w[0][i] * data[offsets[0][i] + jy];
+                    }
+                    value += wyz * v;
+                }
+            }
         }
         (value, grad)
     }
+}
+
+/// Where a point sits on one axis of one lattice (faces or cell centres): the stencil's
+/// first node (wrapped into the box along a periodic direction), the lattice coordinate
+/// `t` (in spacings from node 0, unwrapped) and the weights at `t`.
+#[derive(Clone, Copy)]
+struct AxisPlacement {
+    start: isize,
+    t: f64,
+    /// `t` less the unwrapped first node (the linear stencil's fraction).
+    frac: f64,
+    /// Weights at `t` (the cubic stencil only).
+    w: [f64; 4],
+    dw: [f64; 4],
+}
+
+/// A point's stencils on both lattices of every axis, computed once and shared by the four
+/// fields (each field sits on faces along one axis at most and on centres along the others).
+struct Placement {
+    interpolation: Interpolation,
+    /// `[axis][0: faces, 1: centres]`.
+    axes: [[AxisPlacement; 2]; 3],
+}
+
+impl Placement {
+    #[inline]
+    fn new(view: &FieldView, x: [f64; 3], interpolation: Interpolation) -> Self {
+        let g = view.grid;
+        let half = interpolation.nodes() as isize / 2 - 1;
+        let mut placement = Placement {
+            interpolation,
+            axes: [[AxisPlacement {
+                start: 0,
+                t: 0.0,
+                frac: 0.0,
+                w: [0.0; 4],
+                dw: [0.0; 4],
+            }; 2]; 3],
+        };
+        for d in 0..3 {
+            let faces = (x[d] - g.origin[d]) / g.h[d];
+            for lattice in 0..2 {
+                let axis = &mut placement.axes[d][lattice];
+                axis.t = faces - 0.5 * lattice as f64;
+                // The stencil's first node: the point sits between its two middle nodes.
+                let first = floor(axis.t) - half;
+                axis.frac = axis.t - first as f64;
+                if interpolation == Interpolation::Cubic {
+                    interpolation.weights(axis.frac, &mut axis.w, &mut axis.dw);
+                }
+                axis.start = if view.periodic[d] {
+                    wrap(first, g.n[d] as isize)
+                } else {
+                    first
+                };
+            }
+        }
+        placement
+    }
+}
+
+/// `i mod n` in `[0, n)`, without a division for the usual `−n ≤ i < 2n`.
+#[inline]
+fn wrap(i: isize, n: isize) -> isize {
+    if i < 0 {
+        if i >= -n {
+            i + n
+        } else {
+            i.rem_euclid(n)
+        }
+    } else if i < n {
+        i
+    } else if i < 2 * n {
+        i - n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
+/// `⌊t⌋` without a call into libm (the default target has no rounding instruction).
+#[inline]
+fn floor(t: f64) -> isize {
+    let i = t as isize;
+    i - isize::from(t < i as f64)
 }
 
 #[cfg(test)]

@@ -42,6 +42,7 @@
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
 use crate::grid::Grid;
+use rayon::prelude::*;
 
 /// A face inside a sphere: it moves with the sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,8 +112,12 @@ pub struct ImmersedBoundary {
     /// cells next to forced faces.
     cell_marks: Vec<u8>,
     near_cells: Vec<usize>,
-    /// Scratch: candidate forcing faces `(unwrapped lattice index, slot)`.
-    candidates: Vec<([isize; 3], usize)>,
+    near_classes: Vec<u8>,
+    queue: Vec<usize>,
+    /// Scratch per component: the unwrapped lattice indices of the interior faces, and the
+    /// candidate forcing faces next to them.
+    candidates: [Vec<Candidate>; 3],
+    sites: [Vec<[i32; 3]>; 3],
     /// Quadratic (two fluid faces) rather than linear forcing stencil.
     quadratic: bool,
 }
@@ -137,7 +142,10 @@ impl ImmersedBoundary {
             previous_closed: Vec::new(),
             cell_marks: vec![0; grid.cell_count()],
             near_cells: Vec::new(),
-            candidates: Vec::new(),
+            near_classes: Vec::new(),
+            queue: Vec::new(),
+            candidates: Default::default(),
+            sites: Default::default(),
             quadratic: true,
         }
     }
@@ -176,96 +184,59 @@ impl ImmersedBoundary {
         l != FLUID && l != FORCING
     }
 
-    /// Position of the sample of component `c` (`None`: cell centre) at lattice index `m`.
-    fn position(&self, c: usize, m: [isize; 3]) -> [f64; 3] {
-        let g = &self.grid;
-        std::array::from_fn(|d| {
-            let offset = if c == d { 0.0 } else { 0.5 };
-            g.origin[d] + (m[d] as f64 + offset) * g.h[d]
-        })
-    }
-
-    /// Padded slot of lattice index `m` of component `c`, if the fluid advances that face.
-    fn slot(&self, c: usize, m: [isize; 3]) -> Option<usize> {
-        let mut s = [0usize; 3];
-        for d in 0..3 {
-            let n = self.grid.n[d] as isize;
-            let md = if self.periodic[d] {
-                m[d].rem_euclid(n)
-            } else {
-                m[d]
-            };
-            let slot = md + 1;
-            let (lo, hi) = self.ranges[c][d];
-            if slot < lo as isize || slot > hi as isize {
-                return None;
-            }
-            s[d] = slot as usize;
-        }
-        Some(self.layout.index(s[0], s[1], s[2]))
-    }
-
-    /// Cells below and above face slot `slot` of component `c` (unpadded indices).
-    fn cells(&self, c: usize, slot: usize) -> [usize; 2] {
-        let l = &self.layout;
-        let mut s = [
-            slot % l.dims[0],
-            (slot / l.dims[0]) % l.dims[1],
-            slot / l.plane_len(),
-        ];
-        let n = self.grid.n;
-        let hi = self.grid.cell_index(
-            (s[0] - 1).min(n[0] - 1),
-            (s[1] - 1).min(n[1] - 1),
-            (s[2] - 1).min(n[2] - 1),
-        );
-        // The cell below along c (periodic wrap at slot 1).
-        s[c] = if s[c] >= 2 { s[c] - 1 } else { n[c] };
-        let lo = self.grid.cell_index(
-            (s[0] - 1).min(n[0] - 1),
-            (s[1] - 1).min(n[1] - 1),
-            (s[2] - 1).min(n[2] - 1),
-        );
-        [lo, hi]
-    }
-
-    /// Lattice box of component `c` samples within `margin` cells of the sphere.
-    fn bounds(&self, c: usize, s: &RigidSphere, margin: isize) -> [(isize, isize); 3] {
-        let g = &self.grid;
-        std::array::from_fn(|d| {
-            let offset = if c == d { 0.0 } else { 0.5 };
-            let lo = ((s.centre[d] - s.radius - g.origin[d]) / g.h[d] - offset).floor() as isize;
-            let hi = ((s.centre[d] + s.radius - g.origin[d]) / g.h[d] - offset).ceil() as isize;
-            (lo - margin, hi + margin)
-        })
-    }
-
-    /// `x − x_p` for the nearest periodic image of sphere `s`.
-    fn relative(&self, x: [f64; 3], s: &RigidSphere) -> [f64; 3] {
-        let len = self.grid.length();
-        std::array::from_fn(|d| {
-            let mut r = x[d] - s.centre[d];
-            if self.periodic[d] {
-                r -= len[d] * (r / len[d]).round();
-            }
-            r
-        })
-    }
-
-    /// Rebuilds the forced faces for `spheres` (positions, sizes and velocities).
+    /// Rebuilds the forced faces for `spheres` (positions, sizes and velocities); the
+    /// three components in parallel (each writes only its own lists, so the result does not
+    /// depend on the thread count).
     pub fn update(&mut self, spheres: &[RigidSphere]) {
-        for c in 0..3 {
-            for &slot in &self.touched[c] {
-                self.labels[c][slot] = FLUID;
-            }
-            self.touched[c].clear();
-            self.interior[c].clear();
-            self.forcing[c].clear();
-        }
-        for c in 0..3 {
-            self.mark_interior(c, spheres);
-            self.mark_forcing(c, spheres);
-        }
+        let quadratic = self.quadratic;
+        let (grid, layout, periodic, ranges) =
+            (&self.grid, &self.layout, self.periodic, &self.ranges);
+        let [l0, l1, l2] = &mut self.labels;
+        let [t0, t1, t2] = &mut self.touched;
+        let [i0, i1, i2] = &mut self.interior;
+        let [f0, f1, f2] = &mut self.forcing;
+        let [c0, c1, c2] = &mut self.candidates;
+        let [s0, s1, s2] = &mut self.sites;
+        let length = grid.length();
+        let lattice = |c: usize| Lattice {
+            grid,
+            length,
+            layout,
+            periodic,
+            range: ranges[c],
+            c,
+        };
+        let mut jobs = [
+            ComponentUpdate {
+                lattice: lattice(0),
+                labels: l0,
+                touched: t0,
+                interior: i0,
+                forcing: f0,
+                candidates: c0,
+                sites: s0,
+            },
+            ComponentUpdate {
+                lattice: lattice(1),
+                labels: l1,
+                touched: t1,
+                interior: i1,
+                forcing: f1,
+                candidates: c1,
+                sites: s1,
+            },
+            ComponentUpdate {
+                lattice: lattice(2),
+                labels: l2,
+                touched: t2,
+                interior: i2,
+                forcing: f2,
+                candidates: c2,
+                sites: s2,
+            },
+        ];
+        jobs.par_iter_mut()
+            .for_each(|job| job.run(spheres, quadratic));
         self.find_closed_cells();
     }
 
@@ -279,58 +250,93 @@ impl ImmersedBoundary {
             .extend(self.closed.iter().map(|c| c.cell));
         self.closed.clear();
         // The cells next to forced faces ("near" cells).
-        let mut near = std::mem::take(&mut self.near_cells);
-        near.clear();
-        for c in 0..3 {
-            for f in &self.interior[c] {
-                near.extend_from_slice(&f.cells);
-            }
-            for f in &self.forcing[c] {
-                near.extend_from_slice(&f.cells);
-            }
-        }
-        near.sort_unstable();
-        near.dedup();
         const NEAR: u8 = 1;
         const REACHED: u8 = 2;
         const CLOSED: u8 = 3;
-        for &cell in &near {
-            self.cell_marks[cell] = NEAR;
+        let mut near = std::mem::take(&mut self.near_cells);
+        near.clear();
+        for c in 0..3 {
+            let cells = self.interior[c]
+                .iter()
+                .map(|f| f.cells)
+                .chain(self.forcing[c].iter().map(|f| f.cells));
+            for pair in cells {
+                for cell in pair {
+                    self.cell_marks[cell] = NEAR;
+                }
+            }
         }
+        // In ascending order (the closed cells' order, hence the mass sources' sum, is
+        // fixed): a scan of the marks is cheaper than sorting the lists.
+        near.extend(
+            self.cell_marks
+                .iter()
+                .enumerate()
+                .filter(|(_, &m)| m != 0)
+                .map(|(cell, _)| cell),
+        );
         // Open near cells are reached from the open fluid through free faces (a search from
         // every near cell with a free face onto a cell that is not near); the open near
         // cells left unreached form pockets enclosed by forced faces: closed too.
-        let mut queue: Vec<usize> = Vec::new();
-        for &cell in &near {
-            let Some(faces) = self.cell_faces(cell) else {
-                self.cell_marks[cell] = REACHED;
-                queue.push(cell);
-                continue;
-            };
-            let mut all_forced = true;
-            let mut seed = false;
-            for c in 0..3 {
-                for side in 0..2 {
-                    if self.forced(c, faces[c][side]) {
-                        continue;
-                    }
-                    all_forced = false;
-                    match self.neighbour_cell(cell, c, side) {
-                        Some(next) if self.cell_marks[next] != 0 => {}
-                        _ => seed = true,
+        // Each near cell's class depends only on the forced faces and on which cells are
+        // near, so the classes are found in parallel and applied in order.
+        const OPEN: u8 = 0;
+        const SEED: u8 = 1;
+        const ALL_FORCED: u8 = 2;
+        let mut classes = std::mem::take(&mut self.near_classes);
+        classes.clear();
+        classes.resize(near.len(), OPEN);
+        let this = &*self;
+        near.par_iter()
+            .zip(classes.par_iter_mut())
+            .for_each(|(&cell, class)| {
+                let idx = this.cell_coords(cell);
+                let Some(faces) = this.cell_faces_at(idx) else {
+                    *class = SEED;
+                    return;
+                };
+                let mut all_forced = true;
+                let mut seed = false;
+                for c in 0..3 {
+                    for side in 0..2 {
+                        if this.forced(c, faces[c][side]) {
+                            continue;
+                        }
+                        all_forced = false;
+                        match this.neighbour_cell_at(cell, idx, c, side) {
+                            Some(next) if this.cell_marks[next] != 0 => {}
+                            _ => seed = true,
+                        }
                     }
                 }
-            }
-            if all_forced {
-                self.cell_marks[cell] = CLOSED;
-                self.closed.push(ClosedCell { cell, faces });
-            } else if seed {
-                self.cell_marks[cell] = REACHED;
-                queue.push(cell);
+                *class = if all_forced {
+                    ALL_FORCED
+                } else if seed {
+                    SEED
+                } else {
+                    OPEN
+                };
+            });
+        let mut queue = std::mem::take(&mut self.queue);
+        queue.clear();
+        for (&cell, &class) in near.iter().zip(&classes) {
+            match class {
+                ALL_FORCED => {
+                    self.cell_marks[cell] = CLOSED;
+                    let faces = self.cell_faces(cell).expect("a cell with six faces");
+                    self.closed.push(ClosedCell { cell, faces });
+                }
+                SEED => {
+                    self.cell_marks[cell] = REACHED;
+                    queue.push(cell);
+                }
+                _ => {}
             }
         }
+        self.near_classes = classes;
         while let Some(cell) = queue.pop() {
-            let Some(faces) = self.cell_faces(cell) else {
+            let idx = self.cell_coords(cell);
+            let Some(faces) = self.cell_faces_at(idx) else {
                 continue;
             };
             for c in 0..3 {
@@ -338,7 +344,7 @@ impl ImmersedBoundary {
                     if self.forced(c, faces[c][side]) {
                         continue;
                     }
-                    if let Some(next) = self.neighbour_cell(cell, c, side) {
+                    if let Some(next) = self.neighbour_cell_at(cell, idx, c, side) {
                         if self.cell_marks[next] == NEAR {
                             self.cell_marks[next] = REACHED;
                             queue.push(next);
@@ -347,6 +353,7 @@ impl ImmersedBoundary {
                 }
             }
         }
+        self.queue = queue;
         for &cell in &near {
             if self.cell_marks[cell] == NEAR {
                 if let Some(faces) = self.cell_faces(cell) {
@@ -362,12 +369,24 @@ impl ImmersedBoundary {
         self.labels[c][slot] != FLUID
     }
 
+    /// Grid indices `(i, j, k)` of an unpadded cell index (the one division per cell of the
+    /// closed-cell search; the faces and neighbours follow by strides).
+    #[inline]
+    fn cell_coords(&self, cell: usize) -> [usize; 3] {
+        let n = self.grid.n;
+        let column = cell / n[0];
+        [cell - column * n[0], column % n[1], column / n[1]]
+    }
+
     /// The six face slots of a cell, if the fluid advances them all (periodic wraps
     /// resolved); `None` next to a bounded face.
     fn cell_faces(&self, cell: usize) -> Option<[[usize; 2]; 3]> {
+        self.cell_faces_at(self.cell_coords(cell))
+    }
+
+    fn cell_faces_at(&self, idx: [usize; 3]) -> Option<[[usize; 2]; 3]> {
         let n = self.grid.n;
         let l = &self.layout;
-        let idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
         let low = l.index(idx[0] + 1, idx[1] + 1, idx[2] + 1);
         let mut faces = [[0usize; 2]; 3];
         for c in 0..3 {
@@ -385,177 +404,29 @@ impl ImmersedBoundary {
         Some(faces)
     }
 
-    /// The cell across face `side` (0 low, 1 high) along `c`, if inside the box or wrapped.
-    fn neighbour_cell(&self, cell: usize, c: usize, side: usize) -> Option<usize> {
+    /// The cell across face `side` (0 low, 1 high) along `c` of cell `cell` at grid indices
+    /// `idx`, if inside the box or wrapped.
+    #[inline]
+    fn neighbour_cell_at(
+        &self,
+        cell: usize,
+        idx: [usize; 3],
+        c: usize,
+        side: usize,
+    ) -> Option<usize> {
         let n = self.grid.n;
-        let mut idx = [cell % n[0], (cell / n[0]) % n[1], cell / (n[0] * n[1])];
+        let stride = [1, n[0], n[0] * n[1]][c];
         if side == 0 {
             if idx[c] == 0 {
-                if !self.periodic[c] {
-                    return None;
-                }
-                idx[c] = n[c] - 1;
+                self.periodic[c].then(|| cell + (n[c] - 1) * stride)
             } else {
-                idx[c] -= 1;
+                Some(cell - stride)
             }
         } else if idx[c] + 1 == n[c] {
-            if !self.periodic[c] {
-                return None;
-            }
-            idx[c] = 0;
+            self.periodic[c].then(|| cell - (n[c] - 1) * stride)
         } else {
-            idx[c] += 1;
+            Some(cell + stride)
         }
-        Some(self.grid.cell_index(idx[0], idx[1], idx[2]))
-    }
-
-    fn mark_interior(&mut self, c: usize, spheres: &[RigidSphere]) {
-        for (k, s) in spheres.iter().enumerate() {
-            let b = self.bounds(c, s, 1);
-            let r2 = s.radius * s.radius;
-            for m2 in b[2].0..=b[2].1 {
-                for m1 in b[1].0..=b[1].1 {
-                    for m0 in b[0].0..=b[0].1 {
-                        let m = [m0, m1, m2];
-                        let x = self.position(c, m);
-                        let rel = [x[0] - s.centre[0], x[1] - s.centre[1], x[2] - s.centre[2]];
-                        if rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] >= r2 {
-                            continue;
-                        }
-                        let Some(slot) = self.slot(c, m) else {
-                            continue;
-                        };
-                        if self.labels[c][slot] != FLUID {
-                            continue;
-                        }
-                        self.labels[c][slot] = k as u32 + 1;
-                        self.touched[c].push(slot);
-                        let cells = self.cells(c, slot);
-                        self.interior[c].push(InteriorFace {
-                            slot,
-                            cells,
-                            target: s.velocity_at(rel)[c],
-                        });
-                    }
-                }
-            }
-        }
-    }
-
-    /// Sphere index of the face at lattice index `m`, if inside one.
-    fn inside_at(&self, c: usize, m: [isize; 3]) -> Option<usize> {
-        let slot = self.slot(c, m)?;
-        let l = self.labels[c][slot];
-        (l != FLUID && l != FORCING).then(|| (l - 1) as usize)
-    }
-
-    fn mark_forcing(&mut self, c: usize, spheres: &[RigidSphere]) {
-        let mut candidates = std::mem::take(&mut self.candidates);
-        candidates.clear();
-        let h_max = self.grid.h.iter().cloned().fold(0.0, f64::max);
-        for s in spheres {
-            let b = self.bounds(c, s, 2);
-            // A face with a neighbour inside this sphere lies within one cell of its surface
-            // (faces near other spheres are found from those).
-            let reach = (s.radius + h_max) * (s.radius + h_max);
-            for m2 in b[2].0..=b[2].1 {
-                for m1 in b[1].0..=b[1].1 {
-                    for m0 in b[0].0..=b[0].1 {
-                        let m = [m0, m1, m2];
-                        let x = self.position(c, m);
-                        let rel = [x[0] - s.centre[0], x[1] - s.centre[1], x[2] - s.centre[2]];
-                        if rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] >= reach {
-                            continue;
-                        }
-                        let Some(slot) = self.slot(c, m) else {
-                            continue;
-                        };
-                        if self.labels[c][slot] != FLUID {
-                            continue;
-                        }
-                        let near = (0..3).any(|d| {
-                            [-1, 1].iter().any(|&step| {
-                                let mut q = m;
-                                q[d] += step;
-                                self.inside_at(c, q).is_some()
-                            })
-                        });
-                        if near {
-                            self.labels[c][slot] = FORCING;
-                            self.touched[c].push(slot);
-                            candidates.push((m, slot));
-                        }
-                    }
-                }
-            }
-        }
-        for &(m, slot) in &candidates {
-            let x = self.position(c, m);
-            // The line most nearly normal to the surface among those crossing it.
-            let mut best: Option<(f64, usize, isize, usize)> = None;
-            for d in 0..3 {
-                for step in [-1isize, 1] {
-                    let mut q = m;
-                    q[d] += step;
-                    if let Some(k) = self.inside_at(c, q) {
-                        let rel = self.relative(x, &spheres[k]);
-                        let norm = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
-                        // Outward direction along the line is −step.
-                        let score = -(step as f64) * rel[d] / norm.max(f64::MIN_POSITIVE);
-                        if best.is_none_or(|b| score > b.0) {
-                            best = Some((score, d, step, k));
-                        }
-                    }
-                }
-            }
-            let (_, d, step, k) = best.expect("a candidate has an inside neighbour");
-            let s = &spheres[k];
-            let h = self.grid.h[d];
-            let rel = self.relative(x, s);
-            // Distance t from x towards the inside neighbour (direction step·e_d) to the
-            // surface: |rel + t step e_d| = r, the smaller root.
-            let b = step as f64 * rel[d];
-            let q = rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] - s.radius * s.radius;
-            let disc = (b * b - q).max(0.0);
-            let t = (-b - disc.sqrt()).clamp(0.0, h);
-            let mut crossing = rel;
-            crossing[d] += step as f64 * t;
-            let wall = s.velocity_at(crossing)[c];
-            let mut outer = m;
-            outer[d] -= step;
-            let mut outer2 = outer;
-            outer2[d] -= step;
-            let free = |q: [isize; 3]| self.slot(c, q).filter(|&n| self.labels[c][n] == FLUID);
-            let cells = self.cells(c, slot);
-            let face = match (free(outer), free(outer2)) {
-                (Some(n1), Some(n2)) if self.quadratic => ForcingFace {
-                    slot,
-                    cells,
-                    neighbours: [n1, n2],
-                    neighbour_cells: [self.cells(c, n1), self.cells(c, n2)],
-                    weights: [2.0 * t / (t + h), -t / (t + 2.0 * h)],
-                    wall,
-                },
-                (Some(n1), _) => ForcingFace {
-                    slot,
-                    cells,
-                    neighbours: [n1, n1],
-                    neighbour_cells: [self.cells(c, n1); 2],
-                    weights: [t / (t + h), 0.0],
-                    wall,
-                },
-                (None, _) => ForcingFace {
-                    slot,
-                    cells,
-                    neighbours: [slot, slot],
-                    neighbour_cells: [cells, cells],
-                    weights: [0.0, 0.0],
-                    wall,
-                },
-            };
-            self.forcing[c].push(face);
-        }
-        self.candidates = candidates;
     }
 
     /// Imposes the rigid motion on a stage's predicted velocity (padded), so that after the
@@ -617,6 +488,339 @@ impl ImmersedBoundary {
                 (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / self.grid.h[c]
             })
             .sum()
+    }
+}
+
+/// One velocity component's lattice, as the forced-face search reads it.
+struct Lattice<'a> {
+    grid: &'a Grid,
+    /// Box lengths.
+    length: [f64; 3],
+    layout: &'a PaddedLayout,
+    periodic: [bool; 3],
+    /// Advanced padded slots per direction (inclusive).
+    range: [(usize, usize); 3],
+    c: usize,
+}
+
+impl Lattice<'_> {
+    /// Position of the sample at lattice index `m` along direction `d`.
+    #[inline]
+    fn coordinate(&self, d: usize, m: isize) -> f64 {
+        let g = self.grid;
+        let offset = if self.c == d { 0.0 } else { 0.5 };
+        g.origin[d] + (m as f64 + offset) * g.h[d]
+    }
+
+    /// Position of the sample at lattice index `m`.
+    #[inline]
+    fn position(&self, m: [isize; 3]) -> [f64; 3] {
+        std::array::from_fn(|d| self.coordinate(d, m[d]))
+    }
+
+    /// Padded index along `d` of lattice index `m`, if the fluid advances it.
+    #[inline]
+    fn axis_slot(&self, d: usize, m: isize) -> Option<usize> {
+        let md = if self.periodic[d] {
+            wrap(m, self.grid.n[d] as isize)
+        } else {
+            m
+        };
+        let slot = md + 1;
+        let (lo, hi) = self.range[d];
+        (slot >= lo as isize && slot <= hi as isize).then_some(slot as usize)
+    }
+
+    /// Padded slot of lattice index `m`, if the fluid advances that face.
+    #[inline]
+    fn slot(&self, m: [isize; 3]) -> Option<usize> {
+        let s = self.site(m)?;
+        Some(self.layout.index(s[0], s[1], s[2]))
+    }
+
+    /// Padded indices of lattice index `m`, if the fluid advances that face.
+    #[inline]
+    fn site(&self, m: [isize; 3]) -> Option<[usize; 3]> {
+        Some([
+            self.axis_slot(0, m[0])?,
+            self.axis_slot(1, m[1])?,
+            self.axis_slot(2, m[2])?,
+        ])
+    }
+
+    /// Cells below and above the face at padded indices `s` (unpadded indices).
+    fn cells(&self, mut s: [usize; 3]) -> [usize; 2] {
+        let n = self.grid.n;
+        let hi = self.grid.cell_index(
+            (s[0] - 1).min(n[0] - 1),
+            (s[1] - 1).min(n[1] - 1),
+            (s[2] - 1).min(n[2] - 1),
+        );
+        // The cell below along c (periodic wrap at slot 1).
+        let c = self.c;
+        s[c] = if s[c] >= 2 { s[c] - 1 } else { n[c] };
+        let lo = self.grid.cell_index(
+            (s[0] - 1).min(n[0] - 1),
+            (s[1] - 1).min(n[1] - 1),
+            (s[2] - 1).min(n[2] - 1),
+        );
+        [lo, hi]
+    }
+
+    /// Lattice box of the samples within `margin` cells of the sphere.
+    fn bounds(&self, s: &RigidSphere, margin: isize) -> [(isize, isize); 3] {
+        let g = self.grid;
+        std::array::from_fn(|d| {
+            let offset = if self.c == d { 0.0 } else { 0.5 };
+            let lo = ((s.centre[d] - s.radius - g.origin[d]) / g.h[d] - offset).floor() as isize;
+            let hi = ((s.centre[d] + s.radius - g.origin[d]) / g.h[d] - offset).ceil() as isize;
+            (lo - margin, hi + margin)
+        })
+    }
+
+    /// `x − x_p` for the nearest periodic image of sphere `s`.
+    #[inline]
+    fn relative(&self, x: [f64; 3], s: &RigidSphere) -> [f64; 3] {
+        let len = self.length;
+        std::array::from_fn(|d| {
+            let mut r = x[d] - s.centre[d];
+            if self.periodic[d] {
+                // round(q) without a call into libm for the usual |q| < 1.5
+                let q = r / len[d];
+                let k = if q >= 0.5 {
+                    if q < 1.5 {
+                        1.0
+                    } else {
+                        q.round()
+                    }
+                } else if q <= -0.5 {
+                    if q > -1.5 {
+                        -1.0
+                    } else {
+                        q.round()
+                    }
+                } else {
+                    0.0
+                };
+                r -= len[d] * k;
+            }
+            r
+        })
+    }
+}
+
+/// `i mod n` in `[0, n)`, without a division for the usual `−n ≤ i < 2n`.
+#[inline]
+fn wrap(i: isize, n: isize) -> isize {
+    if i < 0 {
+        if i >= -n {
+            i + n
+        } else {
+            i.rem_euclid(n)
+        }
+    } else if i < n {
+        i
+    } else if i < 2 * n {
+        i - n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
+/// A candidate forcing face, 8 bytes: the interior face it neighbours (index into the
+/// sites) and the direction `2 d + (step > 0)` from it.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    site: u32,
+    direction: u8,
+}
+
+/// The forced faces of one component, rebuilt (see [`ImmersedBoundary::update`]).
+struct ComponentUpdate<'a> {
+    lattice: Lattice<'a>,
+    labels: &'a mut Vec<u32>,
+    touched: &'a mut Vec<usize>,
+    interior: &'a mut Vec<InteriorFace>,
+    forcing: &'a mut Vec<ForcingFace>,
+    candidates: &'a mut Vec<Candidate>,
+    sites: &'a mut Vec<[i32; 3]>,
+}
+
+impl ComponentUpdate<'_> {
+    fn run(&mut self, spheres: &[RigidSphere], quadratic: bool) {
+        for &slot in self.touched.iter() {
+            self.labels[slot] = FLUID;
+        }
+        self.touched.clear();
+        self.interior.clear();
+        self.forcing.clear();
+        self.sites.clear();
+        self.candidates.clear();
+        self.mark_interior(spheres);
+        self.mark_candidates();
+        self.build_forcing(spheres, quadratic);
+    }
+
+    /// Faces inside a sphere (the first sphere in order that holds them).
+    fn mark_interior(&mut self, spheres: &[RigidSphere]) {
+        let lat = &self.lattice;
+        let c = lat.c;
+        for (k, s) in spheres.iter().enumerate() {
+            let b = lat.bounds(s, 0);
+            let r2 = s.radius * s.radius;
+            for m2 in b[2].0..=b[2].1 {
+                let rel2 = lat.coordinate(2, m2) - s.centre[2];
+                let Some(s2) = lat.axis_slot(2, m2) else {
+                    continue;
+                };
+                for m1 in b[1].0..=b[1].1 {
+                    let rel1 = lat.coordinate(1, m1) - s.centre[1];
+                    // (rel₀² + rel₁²) + rel₂² ≥ rel₁² + rel₂² in floating point too
+                    // (rounding is monotone): a line outside stays outside.
+                    if rel1 * rel1 + rel2 * rel2 >= r2 {
+                        continue;
+                    }
+                    let Some(s1) = lat.axis_slot(1, m1) else {
+                        continue;
+                    };
+                    for m0 in b[0].0..=b[0].1 {
+                        let rel0 = lat.coordinate(0, m0) - s.centre[0];
+                        if rel0 * rel0 + rel1 * rel1 + rel2 * rel2 >= r2 {
+                            continue;
+                        }
+                        let Some(s0) = lat.axis_slot(0, m0) else {
+                            continue;
+                        };
+                        let slot = lat.layout.index(s0, s1, s2);
+                        if self.labels[slot] != FLUID {
+                            continue;
+                        }
+                        self.labels[slot] = k as u32 + 1;
+                        self.touched.push(slot);
+                        self.sites.push([m0 as i32, m1 as i32, m2 as i32]);
+                        self.interior.push(InteriorFace {
+                            slot,
+                            cells: lat.cells([s0, s1, s2]),
+                            target: s.velocity_at([rel0, rel1, rel2])[c],
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    /// Fluid faces next to an interior face (along any axis) become forcing faces.
+    fn mark_candidates(&mut self) {
+        for (site, m) in self.sites.iter().enumerate() {
+            for d in 0..3 {
+                for step in [-1isize, 1] {
+                    let mut q = m.map(|v| v as isize);
+                    q[d] += step;
+                    let Some(slot) = self.lattice.slot(q) else {
+                        continue;
+                    };
+                    if self.labels[slot] == FLUID {
+                        self.labels[slot] = FORCING;
+                        self.touched.push(slot);
+                        self.candidates.push(Candidate {
+                            site: site as u32,
+                            direction: (2 * d) as u8 + u8::from(step > 0),
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sphere index of the face at lattice index `m`, if inside one.
+    #[inline]
+    fn inside_at(&self, m: [isize; 3]) -> Option<usize> {
+        let slot = self.lattice.slot(m)?;
+        let l = self.labels[slot];
+        (l != FLUID && l != FORCING).then(|| (l - 1) as usize)
+    }
+
+    /// The interpolation stencil of every candidate forcing face.
+    fn build_forcing(&mut self, spheres: &[RigidSphere], quadratic: bool) {
+        let lat = &self.lattice;
+        let c = lat.c;
+        for candidate in self.candidates.iter() {
+            let mut m = self.sites[candidate.site as usize].map(|v| v as isize);
+            let d = usize::from(candidate.direction / 2);
+            m[d] += if candidate.direction % 2 == 1 { 1 } else { -1 };
+            let site = lat.site(m).expect("a candidate is an advanced face");
+            let slot = lat.layout.index(site[0], site[1], site[2]);
+            let x = lat.position(m);
+            // The line most nearly normal to the surface among those crossing it.
+            let mut best: Option<(f64, usize, isize, usize)> = None;
+            for d in 0..3 {
+                for step in [-1isize, 1] {
+                    let mut q = m;
+                    q[d] += step;
+                    if let Some(k) = self.inside_at(q) {
+                        let rel = lat.relative(x, &spheres[k]);
+                        let norm = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
+                        // Outward direction along the line is −step.
+                        let score = -(step as f64) * rel[d] / norm.max(f64::MIN_POSITIVE);
+                        if best.is_none_or(|b| score > b.0) {
+                            best = Some((score, d, step, k));
+                        }
+                    }
+                }
+            }
+            let (_, d, step, k) = best.expect("a candidate has an inside neighbour");
+            let s = &spheres[k];
+            let h = lat.grid.h[d];
+            let rel = lat.relative(x, s);
+            // Distance t from x towards the inside neighbour (direction step·e_d) to the
+            // surface: |rel + t step e_d| = r, the smaller root.
+            let b = step as f64 * rel[d];
+            let q = rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] - s.radius * s.radius;
+            let disc = (b * b - q).max(0.0);
+            let t = (-b - disc.sqrt()).clamp(0.0, h);
+            let mut crossing = rel;
+            crossing[d] += step as f64 * t;
+            let wall = s.velocity_at(crossing)[c];
+            let mut outer = m;
+            outer[d] -= step;
+            let mut outer2 = outer;
+            outer2[d] -= step;
+            let labels = &self.labels;
+            // (slot, padded indices) of a fluid face
+            let free = |q: [isize; 3]| {
+                let site = lat.site(q)?;
+                let n = lat.layout.index(site[0], site[1], site[2]);
+                (labels[n] == FLUID).then_some((n, site))
+            };
+            let cells = lat.cells(site);
+            let face = match (free(outer), free(outer2)) {
+                (Some((n1, s1)), Some((n2, s2))) if quadratic => ForcingFace {
+                    slot,
+                    cells,
+                    neighbours: [n1, n2],
+                    neighbour_cells: [lat.cells(s1), lat.cells(s2)],
+                    weights: [2.0 * t / (t + h), -t / (t + 2.0 * h)],
+                    wall,
+                },
+                (Some((n1, s1)), _) => ForcingFace {
+                    slot,
+                    cells,
+                    neighbours: [n1, n1],
+                    neighbour_cells: [lat.cells(s1); 2],
+                    weights: [t / (t + h), 0.0],
+                    wall,
+                },
+                (None, _) => ForcingFace {
+                    slot,
+                    cells,
+                    neighbours: [slot, slot],
+                    neighbour_cells: [cells, cells],
+                    weights: [0.0, 0.0],
+                    wall,
+                },
+            };
+            self.forcing.push(face);
+        }
     }
 }
 

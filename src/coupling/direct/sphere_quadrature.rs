@@ -59,9 +59,17 @@ impl SphereQuadrature {
                 }
             }
         }
+        merge_shared_nodes(&mut points, &mut weights, m);
+        // Lexicographic in (z, y, x): consecutive nodes on a sphere read neighbouring grid
+        // samples, which the caches then still hold.
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        order.sort_by(|&i, &j| {
+            let (a, b) = (points[i], points[j]);
+            (a[2], a[1], a[0]).partial_cmp(&(b[2], b[1], b[0])).unwrap()
+        });
         SphereQuadrature {
-            points,
-            weights,
+            points: order.iter().map(|&i| points[i]).collect(),
+            weights: order.iter().map(|&i| weights[i]).collect(),
             per_edge: m,
         }
     }
@@ -79,10 +87,71 @@ impl SphereQuadrature {
         Self::cubed(m)
     }
 
+    /// The rules of [`Self::with_spacing`] for every radius up to `radius`, by edge count.
+    pub fn family(radius: f64, spacing: f64) -> SphereQuadratureFamily {
+        let largest = Self::with_spacing(radius, spacing).per_edge;
+        SphereQuadratureFamily {
+            spacing,
+            rules: (0..=largest).map(|m| Self::cubed(m.max(2))).collect(),
+        }
+    }
+
     /// Number of quadrangles, `6 m²`.
     pub fn quadrangles(&self) -> usize {
         6 * self.per_edge * self.per_edge
     }
+}
+
+/// [`SphereQuadrature::with_spacing`] for radii up to a largest one, built once (the shell
+/// integral's radii change with each sphere's surface offset).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereQuadratureFamily {
+    spacing: f64,
+    /// Indexed by quadrangles per cube-face edge.
+    rules: Vec<SphereQuadrature>,
+}
+
+impl SphereQuadratureFamily {
+    /// The rule with edges of about the family's spacing on a sphere of `radius` (the
+    /// largest rule beyond the family's radius).
+    pub fn at(&self, radius: f64) -> &SphereQuadrature {
+        let m = (std::f64::consts::FRAC_PI_2 * radius / self.spacing).ceil() as usize;
+        &self.rules[m.clamp(2, self.rules.len() - 1)]
+    }
+}
+
+/// Merges the nodes on the cube's edges, which two (three at the corners) faces hold,
+/// into one with the summed weight: the sampling cost of a rule is its node count.
+/// `points` hold the faces' `(m + 1)²` nodes each, in face order.
+fn merge_shared_nodes(points: &mut Vec<[f64; 3]>, weights: &mut Vec<f64>, m: usize) {
+    let side = m + 1;
+    let on_edge = |i: usize| {
+        let (a, b) = (i % side, (i / side) % side);
+        a == 0 || a == m || b == 0 || b == m
+    };
+    let close = |p: [f64; 3], q: [f64; 3]| (0..3).all(|d| (p[d] - q[d]).abs() < 1e-12);
+    let mut keep = vec![true; points.len()];
+    for i in (0..points.len()).filter(|&i| on_edge(i)) {
+        if !keep[i] {
+            continue;
+        }
+        for j in (i + 1..points.len()).filter(|&j| on_edge(j)) {
+            if keep[j] && close(points[i], points[j]) {
+                weights[i] += weights[j];
+                keep[j] = false;
+            }
+        }
+    }
+    let mut k = 0;
+    for i in 0..points.len() {
+        if keep[i] {
+            points[k] = points[i];
+            weights[k] = weights[i];
+            k += 1;
+        }
+    }
+    points.truncate(k);
+    weights.truncate(k);
 }
 
 /// Area of the spherical triangle of unit vectors `a, b, c` (Van Oosterom & Strackee 1983:
@@ -117,6 +186,8 @@ mod tests {
         for m in [4, 8, 16] {
             let q = SphereQuadrature::cubed(m);
             assert_eq!(q.quadrangles(), 6 * m * m);
+            // Euler: V − E + F = 2 with F = 6m², E = 12m² (each node shared once).
+            assert_eq!(q.points.len(), 6 * m * m + 2);
             assert!((integrate(&q, |_| 1.0) - 4.0 * PI).abs() < 1e-12);
             // Odd moments vanish by symmetry; second moments are exact (cube symmetry).
             assert!(integrate(&q, |p| p[0]).abs() < 1e-12);
@@ -140,5 +211,12 @@ mod tests {
         }
         assert_eq!(SphereQuadrature::with_quadrangles(600).per_edge, 10);
         assert_eq!(SphereQuadrature::with_spacing(1.0, 0.1).per_edge, 16);
+        let family = SphereQuadrature::family(1.0, 0.1);
+        for radius in [0.05, 0.3, 0.77, 1.0] {
+            assert_eq!(
+                family.at(radius),
+                &SphereQuadrature::with_spacing(radius, 0.1)
+            );
+        }
     }
 }

@@ -2,7 +2,7 @@
 
 use super::field_view::{FieldView, Interpolation};
 use super::rigid_sphere::RigidSphere;
-use super::sphere_quadrature::SphereQuadrature;
+use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use nalgebra::{Matrix3, Vector3};
 
 /// Force and torque on one particle, SI (N, N·m).
@@ -69,6 +69,12 @@ impl StressIntegral {
         radius + self.surface_offset * h
     }
 
+    /// The shell integral's rules ([`shell_momentum`]) for a sphere of `radius` on cells of
+    /// size `h`: edges of about `h` at every radius inside the surface.
+    pub fn shell_rules(&self, radius: f64, h: f64) -> SphereQuadratureFamily {
+        SphereQuadrature::family(self.surface_radius(radius, h), h)
+    }
+
     /// The quadrature rule for a sphere of `radius` on cells of size `h`.
     pub fn quadrature(&self, radius: f64, h: f64) -> SphereQuadrature {
         match self.quadrangles {
@@ -110,8 +116,7 @@ pub fn stress_integral_force(
         let n = Vector3::from(n);
         let arm = radius * n;
         let x = centre + arm;
-        let (u, g) = fields.velocity_and_gradient(x.into(), integral.interpolation);
-        let p = fields.pressure_at(x.into(), integral.interpolation);
+        let (u, g, p) = fields.velocity_gradient_and_pressure(x.into(), integral.interpolation);
         let u = Vector3::from(u);
         // ∇u with rows i and columns j: ∂u_i/∂x_j
         let grad = Matrix3::from_fn(|i, j| g[i][j]);
@@ -131,14 +136,15 @@ pub fn stress_integral_force(
 }
 
 /// Momentum per unit density of the fluid between `sphere` and its integration surface,
-/// by 2-point Gauss–Legendre in radius times `quadrature` in angle (zero when the surface
-/// is the sphere itself). Trilinear whatever the surface's interpolation: the shell term is
-/// a small correction (its rate of change), and this keeps it at an eighth of the cost.
+/// by 2-point Gauss–Legendre in radius times, at each radius, the rule of `rules` with
+/// quadrangle edges of about `h` there (as the surface's; zero when the surface is the
+/// sphere itself). Trilinear whatever the surface's interpolation: the shell term is a small
+/// correction (its rate of change), and this keeps it at an eighth of the cost.
 pub fn shell_momentum(
     fields: &FieldView,
     sphere: &RigidSphere,
     integral: &StressIntegral,
-    quadrature: &SphereQuadrature,
+    rules: &SphereQuadratureFamily,
 ) -> ShellMomentum {
     let h = fields.grid.h.iter().cloned().fold(0.0, f64::max);
     let (r0, r1) = (sphere.radius, integral.surface_radius(sphere.radius, h));
@@ -153,6 +159,7 @@ pub fn shell_momentum(
     for (xi, wr) in gauss {
         let rad = mid + half * xi;
         let radial_weight = wr * half * rad * rad;
+        let quadrature = rules.at(rad);
         for (&n, &w) in quadrature.points.iter().zip(&quadrature.weights) {
             let arm = [rad * n[0], rad * n[1], rad * n[2]];
             let x = std::array::from_fn(|d| sphere.centre[d] + arm[d]);
