@@ -106,7 +106,7 @@ impl Settler {
         if std::env::var("TIMING").is_ok() {
             eprintln!("set_particles {:?}", clock.elapsed());
         }
-        let coupling = &self.coupling;
+        let coupling = &mut self.coupling;
         self.fluid
             .step_with(dt, &mut |stage| coupling.impose(stage));
         let clock = std::time::Instant::now();
@@ -215,7 +215,7 @@ fn explore_fixed_sphere_momentum_balance() {
     let l3 = (n as f64 * h).powi(3);
     for k in 0..steps {
         s.coupling.set_particles(s.dem.particles());
-        let coupling = &s.coupling;
+        let coupling = &mut s.coupling;
         s.fluid.step_with(dt, &mut |stage| coupling.impose(stage));
         let loads = s.coupling.compute_loads(&s.fluid, s.rho).to_vec();
         if (k + 1) % (steps / 10).max(1) == 0 {

@@ -3,6 +3,7 @@
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::diagnostics::FluidDiagnostics;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::implicit_stage::ImplicitStage;
 use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
 use super::momentum::{
@@ -62,6 +63,10 @@ pub struct PredictedVelocity<'a> {
     /// hook that fixes every face of a cell sets `q` there to the divergence it imposes
     /// (Kim, Kim & Choi, J. Comput. Phys. 171, 132–150, 2001); `Σ q` must be 0.
     pub mass_source: Option<&'a mut [f64]>,
+    /// `RK3CN` only: the stage's viscous Helmholtz operator, whose unconstrained solution
+    /// `velocity` holds; a hook that constrains faces solves its constrained problem with it
+    /// (see [`ImplicitStage`]). `None` for the explicit schemes.
+    pub implicit: Option<ImplicitStage<'a>>,
 }
 
 /// What one step did.
@@ -409,6 +414,7 @@ impl FluidSolver {
                 pressure: &self.p,
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
+                implicit: None,
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
@@ -460,7 +466,7 @@ impl FluidSolver {
             .implicit
             .as_mut()
             .expect("set_scheme prepares the implicit solvers");
-        for &(gamma, zeta, alpha) in SMR_STAGES.iter() {
+        for (index, &(gamma, zeta, alpha)) in SMR_STAGES.iter().enumerate() {
             c_end += gamma + zeta;
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let terms = MomentumTerms {
@@ -480,7 +486,8 @@ impl FluidSolver {
                 dt,
                 &self.p,
             );
-            implicit.solve(alpha * dt * self.settings.nu);
+            let kappa = alpha * dt * self.settings.nu;
+            implicit.solve(kappa);
             store_momentum_box(
                 &mut self.u,
                 &implicit.work,
@@ -496,6 +503,13 @@ impl FluidSolver {
                 pressure: &[],
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
+                implicit: Some(ImplicitStage {
+                    solver: &mut *implicit,
+                    layout: &self.layout,
+                    ranges: &self.momentum_ranges,
+                    kappa,
+                    index,
+                }),
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             // Pressure increment φ: ∇²φ = ∇·u*/τ, u = u* − τ∇φ, p ← p + φ.
