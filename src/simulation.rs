@@ -247,14 +247,6 @@ impl Simulation {
                             FsimError::input(format!("constant/kinematicCloudProperties: {e}"))
                         })?;
                 p.notes.extend(notes);
-                if sim.fluid.settings().scheme == TimeScheme::RK3CN {
-                    p.notes.push(
-                        "model direct with timeScheme RK3CN: the no-slip forcing is exact only \
-                         as Δt → 0 (drag 1.3 % low at the RK3 step, 5 % at four times it; \
-                         docs/direct_model.md); RK3 is exact at steady state"
-                            .to_string(),
-                    );
-                }
             }
             let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
             if let Some(shell) = direct_shell {

@@ -93,3 +93,94 @@ fn porous_k_does_not_depend_on_the_semi_implicit_step() {
         assert!((k / reference - 1.0).abs() < 0.03, "K {k} vs {reference}");
     }
 }
+
+/// Rows of a monitor file (`#` header names the columns), as numbers.
+fn monitor_rows(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let names = text
+        .lines()
+        .next()
+        .unwrap()
+        .trim_start_matches('#')
+        .split_whitespace()
+        .map(str::to_string)
+        .collect();
+    let rows = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (names, rows)
+}
+
+fn column(names: &[String], name: &str) -> usize {
+    names.iter().position(|n| n == name).unwrap()
+}
+
+/// `fsimFoam` on the porousMedia tutorial at r/h = 6 with a faster flow (Ubar 0.05 m/s,
+/// Re_d = 0.8), `adjustTimeStep yes; maxCo 0.5;`: with `RK3` the step is held at RK3's viscous
+/// bound (the Courant number stays far below 0.5); with `RK3CN` the step grows until the
+/// Courant number reaches maxCo, several times the viscous bound, and K (steady, from the
+/// stress integral) equals the RK3 run's within 1 %.
+#[test]
+fn fsimfoam_rk3cn_steps_by_the_courant_number() {
+    let scratch = Scratch::new("semi-implicit-courant");
+    let mut results = Vec::new();
+    for scheme in ["RK3", "RK3CN"] {
+        let case = copy_tutorial("porousMedia", &scratch.0, scheme);
+        set_entry(&case.join("constant/porousParameters"), "n", "21");
+        set_entry(&case.join("system/fvOptions"), "Ubar", "(0.05 0 0)");
+        set_entry(&case.join("system/fvSolution"), "timeScheme", scheme);
+        let control = case.join("system/controlDict");
+        set_entry(&control, "endTime", "0.008");
+        set_entry(&control, "writeInterval", "0.008");
+        let out = fsim(&case, &["-threads", "2"]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let (names, rows) = monitor_rows(&case.join("postProcessing/fluid/0/fluid.dat"));
+        let (dt, co) = (column(&names, "deltaT"), column(&names, "CoMax"));
+        // The last full step (the final two are shortened to land on endTime together).
+        let last = &rows[rows.len() - 3];
+        let (names_d, rows_d) = monitor_rows(&case.join("postProcessing/direct/0/direct.dat"));
+        let k = rows_d.last().unwrap()[column(&names_d, "K")];
+        eprintln!(
+            "{scheme}: {} steps, last deltaT {:.4e} s at Courant {:.3}, K {k:.5}",
+            rows.len(),
+            last[dt],
+            last[co]
+        );
+        results.push((rows.len(), last[dt], last[co], k));
+    }
+    let (explicit, semi) = (results[0], results[1]);
+    // RK3: the viscous bound 2.51 h²/(12 ν), h = 2.8 mm / 21, ν = 1e-4 m²/s.
+    let h = 0.0028 / 21.0;
+    let bound = 2.51 * h * h / (12.0 * 1e-4);
+    assert!(
+        (explicit.1 / bound - 1.0).abs() < 1e-6,
+        "RK3 step {}",
+        explicit.1
+    );
+    assert!(explicit.2 < 0.2, "RK3 Courant {}", explicit.2);
+    // RK3CN: at maxCo, several times RK3's step.
+    assert!((semi.2 - 0.5).abs() < 0.05, "RK3CN Courant {}", semi.2);
+    assert!(
+        semi.1 > 4.0 * bound,
+        "RK3CN step {} vs bound {bound}",
+        semi.1
+    );
+    assert!(
+        semi.0 * 4 < explicit.0,
+        "steps {} vs {}",
+        semi.0,
+        explicit.0
+    );
+    assert!(
+        (semi.3 / explicit.3 - 1.0).abs() < 0.01,
+        "K {} vs {}",
+        semi.3,
+        explicit.3
+    );
+}

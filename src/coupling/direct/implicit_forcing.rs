@@ -129,7 +129,7 @@ impl ImplicitForcing {
             report: ImplicitForcingReport::default(),
             previous: Default::default(),
             preconditioned: true,
-            warm_start: true,
+            warm_start: false,
             links: Vec::new(),
             marks: Vec::new(),
             search: Vec::new(),
