@@ -127,7 +127,7 @@ impl Simulation {
             None => TimeScheme::default(),
             Some(name) => TimeScheme::from_name(name).ok_or_else(|| {
                 case.time_scheme_error(format!(
-                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN"
+                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, EulerCN"
                 ))
             })?,
         };

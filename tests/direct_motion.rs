@@ -247,7 +247,7 @@ fn coarse_settling_velocity(scheme: TimeScheme, factor: f64) -> f64 {
     s.report().settling_velocity / stokes_velocity(d, rho_p, rho_f, nu)
 }
 
-/// The settling sphere's terminal velocity with `RK3CN` at 1, 4 and 10 times the explicit
+/// The settling sphere's terminal velocity with `RK3CN` and `EulerCN` at 1, 4 and 10 times the explicit
 /// viscous bound equals the explicit RK3 run's within 1 % (the no-slip forcing is part of
 /// the implicit viscous solve; before, RK3CN diverged here at any density ratio).
 /// Coarse (r/h = 4) for speed: the accuracy against eq. 17 is the tutorial test's above.
@@ -255,10 +255,15 @@ fn coarse_settling_velocity(scheme: TimeScheme, factor: f64) -> f64 {
 fn settling_velocity_does_not_depend_on_the_semi_implicit_step() {
     let explicit = coarse_settling_velocity(TimeScheme::RK3, 1.0);
     eprintln!("RK3 at its bound: v/U_s = {explicit:.5}");
-    for factor in [1.0, 4.0, 10.0] {
-        let v = coarse_settling_velocity(TimeScheme::RK3CN, factor);
+    for (scheme, factor) in [1.0, 4.0, 10.0]
+        .map(|f| (TimeScheme::RK3CN, f))
+        .into_iter()
+        .chain([1.0, 4.0, 10.0].map(|f| (TimeScheme::EulerCN, f)))
+    {
+        let v = coarse_settling_velocity(scheme, factor);
         eprintln!(
-            "RK3CN at {factor} x the RK3 bound: v/U_s = {v:.5} ({:+.3} % vs RK3)",
+            "{} at {factor} x the RK3 bound: v/U_s = {v:.5} ({:+.3} % vs RK3)",
+            scheme.name(),
             100.0 * (v / explicit - 1.0)
         );
         assert!((v / explicit - 1.0).abs() < 0.01, "{v} vs {explicit}");

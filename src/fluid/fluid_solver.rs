@@ -13,7 +13,7 @@ use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
 use super::staggered_transfer::{cells_from_faces, faces_from_cells};
-use super::time_scheme::{TimeScheme, SMR_STAGES};
+use super::time_scheme::TimeScheme;
 use crate::grid::Grid;
 use rayon::prelude::*;
 
@@ -445,7 +445,8 @@ impl FluidSolver {
         self.finish_step(t0, dt)
     }
 
-    /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
+    /// The semi-implicit step (`RK3CN`, `EulerCN`), per stage `(γ, ζ, α = β)` (Spalart–Moser–Rogers
+    /// for `RK3CN`):
     /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
     /// 2. `(I − β Δt ν∇²) u* = r − τ∇p`, solved exactly per component; then the hook;
     /// 3. `∇²φ = ∇·u* / τ`, `u = u* − τ∇φ`, `p ← p + φ`, with `τ = (α + β) Δt`
@@ -466,7 +467,8 @@ impl FluidSolver {
             .implicit
             .as_mut()
             .expect("set_scheme prepares the implicit solvers");
-        for (index, &(gamma, zeta, alpha)) in SMR_STAGES.iter().enumerate() {
+        let stages = self.settings.scheme.semi_implicit_stages();
+        for (index, &(gamma, zeta, alpha)) in stages.iter().enumerate() {
             c_end += gamma + zeta;
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let terms = MomentumTerms {

@@ -59,7 +59,7 @@ use super::immersed_boundary::ImmersedBoundary;
 use crate::fluid::ImplicitStage;
 
 /// Krylov vectors kept before GMRES restarts.
-const RESTART: usize = 40;
+const RESTART: usize = 20;
 
 /// What the last constrained solve did (summed over components).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
