@@ -1,6 +1,5 @@
 //! The semi-implicit schemes (RK3 or Euler advection, Crank–Nicolson diffusion: `RK3CN`,
-//! `EulerCN`): accuracy in
-//! time, and steps far above the explicit viscous limit.
+//! `EulerCN`): accuracy in time, and steps far above the explicit viscous limit.
 
 use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, TimeScheme};
 use fsim::grid::Grid;
