@@ -5,10 +5,6 @@ use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver,
 use fsim::grid::Grid;
 use std::f64::consts::PI;
 
-fn periodic_square(n: usize, nu: f64) -> FluidSolver {
-    periodic_square_with(n, nu, TimeScheme::RK3CN)
-}
-
 fn periodic_square_with(n: usize, nu: f64, scheme: TimeScheme) -> FluidSolver {
     let h = 2.0 * PI / n as f64;
     let grid = Grid::new([n, n, 1], [h; 3], [0.0; 3]);

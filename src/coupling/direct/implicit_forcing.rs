@@ -59,7 +59,7 @@ use super::immersed_boundary::ImmersedBoundary;
 use crate::fluid::ImplicitStage;
 
 /// Krylov vectors kept before GMRES restarts.
-const RESTART: usize = 20;
+const RESTART: usize = 10;
 
 /// What the last constrained solve did (summed over components).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -93,8 +93,6 @@ pub struct ImplicitForcing {
     /// Per forcing face, the index of its six lattice neighbours among the forcing faces
     /// (`NONE` if not one), `±x, ±y, ±z`.
     links: Vec<[u32; 6]>,
-    /// Box-sized marks: forcing index + 1 at a forcing face, else 0.
-    marks: Vec<u32>,
     search: Vec<f64>,
     scratch: Vec<f64>,
     /// The last step's sources per stage and component, by face box index, with the
@@ -134,7 +132,6 @@ impl ImplicitForcing {
             preconditioned: true,
             warm_start: false,
             links: Vec::new(),
-            marks: Vec::new(),
             search: Vec::new(),
             scratch: Vec::new(),
         }
@@ -182,6 +179,7 @@ impl ImplicitForcing {
                 let current = u[f.slot] - a1 * u[f.neighbours[0]] - a2 * u[f.neighbours[1]];
                 self.rhs.push(target - current);
             }
+            self.field.clear();
             self.field.resize(stage.box_len(c), 0.0);
             self.warm_start(stage, c);
             self.link_neighbours(stage, c);
@@ -288,11 +286,11 @@ impl ImplicitForcing {
 }
 
 impl ImplicitForcing {
-    /// Fills `links` for the forcing faces in `rows` (and sizes `scratch`).
+    /// Fills `links` for the forcing faces in `rows` (and sizes `scratch`). Marks the
+    /// forcing faces in `field` (forcing index + 1; `field` is zero on entry and on exit).
     fn link_neighbours(&mut self, stage: &ImplicitStage<'_>, c: usize) {
-        self.marks.resize(self.field.len(), 0);
         for (i, row) in self.rows.iter().enumerate() {
-            self.marks[row[0]] = i as u32 + 1;
+            self.field[row[0]] = (i + 1) as f64;
         }
         self.links.clear();
         for row in &self.rows {
@@ -300,9 +298,9 @@ impl ImplicitForcing {
             for d in 0..3 {
                 for (side, forward) in [false, true].into_iter().enumerate() {
                     if let Some(b) = stage.neighbour(c, row[0], d, forward) {
-                        let mark = self.marks[b];
-                        if mark > 0 {
-                            link[2 * d + side] = mark - 1;
+                        let mark = self.field[b];
+                        if mark > 0.0 {
+                            link[2 * d + side] = mark as u32 - 1;
                         }
                     }
                 }
@@ -310,7 +308,7 @@ impl ImplicitForcing {
             self.links.push(link);
         }
         for row in &self.rows {
-            self.marks[row[0]] = 0;
+            self.field[row[0]] = 0.0;
         }
         self.scratch.resize(self.rows.len(), 0.0);
     }
