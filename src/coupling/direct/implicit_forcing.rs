@@ -52,7 +52,8 @@
 //! constraints exactly and the fluid faces satisfy the steady discrete Navier–Stokes rows:
 //! the steady state is the explicit schemes' (and [`super::PeriodicStokesArray`]'s),
 //! independent of `Δt`. The residual of the constraints is below `tolerance` times that of
-//! the unconstrained solve (K moves by 2e-5 relative between tolerances 1e-3 and 1e-8).
+//! the unconstrained solve (K changes by at most 6e-6 relative between tolerances 1e-3 and
+//! 1e-8).
 
 use super::gmres::{GmresReport, GmresWorkspace};
 use super::immersed_boundary::ImmersedBoundary;
