@@ -337,10 +337,15 @@ impl Simulation {
                         Some(_) => "drag-law model's explicit Euler predictor \
                                     (1/(Σ|u|/h + 2ν Σ1/h²))"
                             .to_string(),
-                        None => format!(
-                            "{} scheme (paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2))",
-                            self.fluid.settings().scheme.name()
-                        ),
+                        None => {
+                            let scheme = self.fluid.settings().scheme;
+                            let bound = match scheme {
+                                TimeScheme::RK3CN => "advective: sqrt(3) / sum |v_d|/h_d",
+                                TimeScheme::EulerCN => "advective: 2 nu/|v|^2",
+                                _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)",
+                            };
+                            format!("{} scheme ({bound})", scheme.name())
+                        }
                     };
                     return Err(FsimError::run(format!(
                         "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the \
