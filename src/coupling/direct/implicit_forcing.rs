@@ -97,7 +97,7 @@ pub struct ImplicitForcing {
     search: Vec<f64>,
     scratch: Vec<f64>,
     /// The last step's sources per stage and component, by face box index, with the
-    /// stage's `κ`: the initial guess of the next step's solve (see [`Self::solve`]).
+    /// stage's `κ`: the initial guess of the next step's solve, kept with `warm_start` only.
     previous: [[WarmStart; 3]; 3],
 }
 
@@ -145,8 +145,9 @@ impl ImplicitForcing {
 
     /// Replaces the stage's unconstrained solution `velocity` (padded; `A u₀ = r`) by the
     /// solution of the constrained system on the forcing faces of `boundary`. Interior
-    /// faces are left to [`ImmersedBoundary::impose`], which the caller runs afterwards
-    /// (it then reproduces the forcing faces' values and sets the closed cells' sources).
+    /// faces are left to [`ImmersedBoundary::impose`], which the caller runs afterwards (it
+    /// then sets the forcing faces to their constraints exactly, a change of the order of
+    /// the GMRES residual, and the closed cells' sources).
     pub fn solve(
         &mut self,
         boundary: &ImmersedBoundary,
@@ -250,12 +251,14 @@ impl ImplicitForcing {
             } else {
                 0.0
             };
-            let warm = &mut self.previous[stage.index()][c];
-            warm.kappa = stage.kappa();
-            warm.faces.clear();
-            warm.faces.extend(self.rows.iter().map(|r| r[0]));
-            warm.sources.clear();
-            warm.sources.extend_from_slice(&self.sources);
+            if self.warm_start {
+                let warm = &mut self.previous[stage.index()][c];
+                warm.kappa = stage.kappa();
+                warm.faces.clear();
+                warm.faces.extend(self.rows.iter().map(|r| r[0]));
+                warm.sources.clear();
+                warm.sources.extend_from_slice(&self.sources);
+            }
             self.report.solves += solves + 1;
             self.report.relative_residual = self.report.relative_residual.max(relative_residual);
         }
