@@ -125,14 +125,14 @@ fn column(names: &[String], name: &str) -> usize {
 
 /// `fsimFoam` on the porousMedia tutorial at r/h = 6 with a faster flow (Ubar 0.05 m/s,
 /// Re_d = 0.8), `adjustTimeStep yes; maxCo 0.5;`: with `RK3` the step is held at RK3's viscous
-/// bound (the Courant number stays far below 0.5); with `RK3CN` the step grows until the
-/// Courant number reaches maxCo, several times the viscous bound, and K (steady, from the
-/// stress integral) equals the RK3 run's within 1 %.
+/// bound (the Courant number stays far below 0.5); with `RK3CN` and `EulerCN` the step grows
+/// until the Courant number reaches maxCo, several times the viscous bound, and K (steady,
+/// from the stress integral) equals the RK3 run's within 1 %.
 #[test]
-fn fsimfoam_rk3cn_steps_by_the_courant_number() {
+fn fsimfoam_semi_implicit_schemes_step_by_the_courant_number() {
     let scratch = Scratch::new("semi-implicit-courant");
     let mut results = Vec::new();
-    for scheme in ["RK3", "RK3CN"] {
+    for scheme in ["RK3", "RK3CN", "EulerCN"] {
         let case = copy_tutorial("porousMedia", &scratch.0, scheme);
         set_entry(&case.join("constant/porousParameters"), "n", "21");
         set_entry(&case.join("system/fvOptions"), "Ubar", "(0.05 0 0)");
@@ -160,7 +160,7 @@ fn fsimfoam_rk3cn_steps_by_the_courant_number() {
         );
         results.push((rows.len(), last[dt], last[co], k));
     }
-    let (explicit, semi) = (results[0], results[1]);
+    let explicit = results[0];
     // RK3: the viscous bound 2.51 h²/(12 ν), h = 2.8 mm / 21, ν = 1e-4 m²/s.
     let h = 0.0028 / 21.0;
     let bound = 2.51 * h * h / (12.0 * 1e-4);
@@ -170,25 +170,23 @@ fn fsimfoam_rk3cn_steps_by_the_courant_number() {
         explicit.1
     );
     assert!(explicit.2 < 0.2, "RK3 Courant {}", explicit.2);
-    // RK3CN: at maxCo, several times RK3's step.
-    assert!((semi.2 - 0.5).abs() < 0.05, "RK3CN Courant {}", semi.2);
-    assert!(
-        semi.1 > 4.0 * bound,
-        "RK3CN step {} vs bound {bound}",
-        semi.1
-    );
-    assert!(
-        semi.0 * 4 < explicit.0,
-        "steps {} vs {}",
-        semi.0,
-        explicit.0
-    );
-    assert!(
-        (semi.3 / explicit.3 - 1.0).abs() < 0.01,
-        "K {} vs {}",
-        semi.3,
-        explicit.3
-    );
+    // RK3CN, EulerCN: at maxCo, several times RK3's step.
+    for semi in &results[1..] {
+        assert!((semi.2 - 0.5).abs() < 0.05, "Courant {}", semi.2);
+        assert!(semi.1 > 4.0 * bound, "step {} vs bound {bound}", semi.1);
+        assert!(
+            semi.0 * 4 < explicit.0,
+            "steps {} vs {}",
+            semi.0,
+            explicit.0
+        );
+        assert!(
+            (semi.3 / explicit.3 - 1.0).abs() < 0.01,
+            "K {} vs {}",
+            semi.3,
+            explicit.3
+        );
+    }
 }
 
 /// The defining property of the constrained solve, checked on one `RK3CN` step with a moving
