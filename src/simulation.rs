@@ -127,7 +127,7 @@ impl Simulation {
             None => TimeScheme::default(),
             Some(name) => TimeScheme::from_name(name).ok_or_else(|| {
                 case.time_scheme_error(format!(
-                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN"
+                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, EulerCN"
                 ))
             })?,
         };
@@ -255,14 +255,6 @@ impl Simulation {
                             FsimError::input(format!("constant/kinematicCloudProperties: {e}"))
                         })?;
                 p.notes.extend(notes);
-                if sim.fluid.settings().scheme == TimeScheme::RK3CN {
-                    p.notes.push(
-                        "model direct with timeScheme RK3CN: the no-slip forcing is exact only \
-                         as Δt → 0 (drag 1.3 % low at the RK3 step, 5 % at four times it; \
-                         docs/direct_model.md); RK3 is exact at steady state"
-                            .to_string(),
-                    );
-                }
             }
             let mut direct = DirectCoupling::new(&mut sim.fluid, settings);
             if let Some(shell) = direct_shell {
@@ -350,10 +342,15 @@ impl Simulation {
                         Some(_) => "drag-law model's explicit Euler predictor \
                                     (1/(Σ|u|/h + 2ν Σ1/h²))"
                             .to_string(),
-                        None => format!(
-                            "{} scheme (paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2))",
-                            self.fluid.settings().scheme.name()
-                        ),
+                        None => {
+                            let scheme = self.fluid.settings().scheme;
+                            let bound = match scheme {
+                                TimeScheme::RK3CN => "advective: sqrt(3) / sum |v_d|/h_d",
+                                TimeScheme::EulerCN => "advective: 2 nu/|v|^2",
+                                _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)",
+                            };
+                            format!("{} scheme ({bound})", scheme.name())
+                        }
                     };
                     return Err(FsimError::run(format!(
                         "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the \

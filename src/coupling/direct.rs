@@ -25,6 +25,7 @@ mod direct_settings;
 mod field_view;
 mod gmres;
 mod immersed_boundary;
+mod implicit_forcing;
 mod lubrication;
 mod particle_motion;
 mod periodic_stokes_array;
@@ -39,8 +40,9 @@ pub use close_pairs::{ClosePairs, PeriodicBox};
 pub use direct_coupling::DirectCoupling;
 pub use direct_settings::DirectSettings;
 pub use field_view::{periodic_directions, FieldView, Interpolation};
-pub use gmres::{gmres, GmresReport};
+pub use gmres::{gmres, GmresReport, GmresWorkspace};
 pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
+pub use implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
     MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,

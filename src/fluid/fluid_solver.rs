@@ -3,6 +3,7 @@
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::diagnostics::FluidDiagnostics;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::implicit_stage::ImplicitStage;
 use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
 use super::momentum::{
@@ -12,7 +13,7 @@ use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
 use super::staggered_transfer::{cells_from_faces, faces_from_cells};
-use super::time_scheme::{TimeScheme, SMR_STAGES};
+use super::time_scheme::TimeScheme;
 use crate::grid::Grid;
 use rayon::prelude::*;
 
@@ -62,6 +63,10 @@ pub struct PredictedVelocity<'a> {
     /// hook that fixes every face of a cell sets `q` there to the divergence it imposes
     /// (Kim, Kim & Choi, J. Comput. Phys. 171, 132–150, 2001); `Σ q` must be 0.
     pub mass_source: Option<&'a mut [f64]>,
+    /// `RK3CN` only: the stage's viscous Helmholtz operator, whose unconstrained solution
+    /// `velocity` holds; a hook that constrains faces solves its constrained problem with it
+    /// (see [`ImplicitStage`]). `None` for the explicit schemes.
+    pub implicit: Option<ImplicitStage<'a>>,
 }
 
 /// What one step did.
@@ -409,6 +414,7 @@ impl FluidSolver {
                 pressure: &self.p,
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
+                implicit: None,
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
@@ -439,7 +445,8 @@ impl FluidSolver {
         self.finish_step(t0, dt)
     }
 
-    /// The semi-implicit step (`RK3CN`), per Spalart–Moser–Rogers stage `(γ, ζ, α = β)`:
+    /// The semi-implicit step (`RK3CN`, `EulerCN`), per stage `(γ, ζ, α = β)` (Spalart–Moser–Rogers
+    /// for `RK3CN`):
     /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
     /// 2. `(I − β Δt ν∇²) u* = r − τ∇p`, solved exactly per component; then the hook;
     /// 3. `∇²φ = ∇·u* / τ`, `u = u* − τ∇φ`, `p ← p + φ`, with `τ = (α + β) Δt`
@@ -460,7 +467,8 @@ impl FluidSolver {
             .implicit
             .as_mut()
             .expect("set_scheme prepares the implicit solvers");
-        for &(gamma, zeta, alpha) in SMR_STAGES.iter() {
+        let stages = self.settings.scheme.semi_implicit_stages();
+        for (index, &(gamma, zeta, alpha)) in stages.iter().enumerate() {
             c_end += gamma + zeta;
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let terms = MomentumTerms {
@@ -480,7 +488,8 @@ impl FluidSolver {
                 dt,
                 &self.p,
             );
-            implicit.solve(alpha * dt * self.settings.nu);
+            let kappa = alpha * dt * self.settings.nu;
+            implicit.solve(kappa);
             store_momentum_box(
                 &mut self.u,
                 &implicit.work,
@@ -496,6 +505,13 @@ impl FluidSolver {
                 pressure: &[],
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
+                implicit: Some(ImplicitStage {
+                    solver: &mut *implicit,
+                    layout: &self.layout,
+                    ranges: &self.momentum_ranges,
+                    kappa,
+                    index,
+                }),
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             // Pressure increment φ: ∇²φ = ∇·u*/τ, u = u* − τ∇φ, p ← p + φ.

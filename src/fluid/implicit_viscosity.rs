@@ -25,6 +25,8 @@ pub(crate) struct ImplicitViscosity {
     /// `c`: `2 u_wall` for a tangential component, `u_wall` for the normal one.
     boundary: [[[f64; 2]; 3]; 3],
     h: [f64; 3],
+    /// Directions in which the boxes wrap around.
+    periodic: [bool; 3],
     /// Pressure increment of the incremental projection, cell-centred.
     pub increment: Vec<f64>,
 }
@@ -97,6 +99,7 @@ impl ImplicitViscosity {
             work,
             boundary,
             h: grid.h,
+            periodic: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Periodic)),
             increment: vec![0.0; grid.cell_count()],
         })
     }
@@ -104,36 +107,59 @@ impl ImplicitViscosity {
     /// Solves `(I − κ ∇²) u = work` in place for every component, `κ = β Δt ν`, the fixed
     /// boundary values included.
     pub fn solve(&mut self, kappa: f64) {
-        let sigma = 1.0 / kappa;
         for c in 0..3 {
-            let Some(solver) = self.solvers[c].as_mut() else {
-                continue;
-            };
-            let w = &mut self.work[c];
-            let m = self.dims[c];
-            // Known boundary values: κ g / h² in the first and last layer along each d.
-            for d in 0..3 {
-                for side in 0..2 {
-                    let g = self.boundary[c][d][side];
-                    if g != 0.0 {
-                        let add = kappa * g / (self.h[d] * self.h[d]);
-                        let slot = if side == 0 { 0 } else { m[d] - 1 };
-                        for k in 0..m[2] {
-                            for j in 0..m[1] {
-                                for i in 0..m[0] {
-                                    if [i, j, k][d] == slot {
-                                        w[i + m[0] * (j + m[1] * k)] += add;
-                                    }
+            let mut w = std::mem::take(&mut self.work[c]);
+            self.solve_component(c, kappa, &mut w, true);
+            self.work[c] = w;
+        }
+    }
+
+    /// Solves `(I − κ ∇²) u = data` in place for component `c` (its box layout, x fastest),
+    /// with the fixed boundary values (`with_boundary`) or with zero ones (the homogeneous
+    /// problem, for corrections). A component that is identically zero is left as it is.
+    pub fn solve_component(&mut self, c: usize, kappa: f64, w: &mut [f64], with_boundary: bool) {
+        let sigma = 1.0 / kappa;
+        let Some(solver) = self.solvers[c].as_mut() else {
+            return;
+        };
+        let m = self.dims[c];
+        // Known boundary values: κ g / h² in the first and last layer along each d.
+        for d in 0..3 {
+            for side in 0..2 {
+                let g = self.boundary[c][d][side];
+                if g != 0.0 && with_boundary {
+                    let add = kappa * g / (self.h[d] * self.h[d]);
+                    let slot = if side == 0 { 0 } else { m[d] - 1 };
+                    for k in 0..m[2] {
+                        for j in 0..m[1] {
+                            for i in 0..m[0] {
+                                if [i, j, k][d] == slot {
+                                    w[i + m[0] * (j + m[1] * k)] += add;
                                 }
                             }
                         }
                     }
                 }
             }
-            // (I − κL) u = r  ⇔  (L − σ) u = −σ r
-            w.par_iter_mut().for_each(|x| *x *= -sigma);
-            solver.solve_shifted(w, sigma);
         }
+        // (I − κL) u = r  ⇔  (L − σ) u = −σ r
+        w.par_iter_mut().for_each(|x| *x *= -sigma);
+        solver.solve_shifted(w, sigma);
+    }
+
+    /// Cell sizes.
+    pub fn h(&self) -> [f64; 3] {
+        self.h
+    }
+
+    /// Whether the boxes wrap around along each direction.
+    pub fn periodic(&self) -> [bool; 3] {
+        self.periodic
+    }
+
+    /// Unknowns per direction of component `c`'s box.
+    pub fn dims(&self, c: usize) -> [usize; 3] {
+        self.dims[c]
     }
 
     pub fn bytes(&self) -> usize {

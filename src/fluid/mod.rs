@@ -54,6 +54,7 @@ mod coefficient_fields;
 mod diagnostics;
 mod fluid_solver;
 mod ghost_fill;
+mod implicit_stage;
 mod implicit_viscosity;
 mod mean_velocity_force;
 mod momentum;
@@ -72,6 +73,7 @@ pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
 #[cfg(test)]
 pub(crate) use ghost_fill::fill_velocity_ghosts;
+pub use implicit_stage::ImplicitStage;
 pub use mean_velocity_force::MeanVelocityForce;
 pub use multigrid::{FaceAveraging, Multigrid};
 pub use padded_layout::PaddedLayout;

@@ -25,6 +25,13 @@ pub enum TimeScheme {
     /// Helmholtz problems solved exactly by FFT/DCT/DST. Second order; no viscous time-step
     /// limit, which pays on grids finer than the particles. Not with outlets. Name `RK3CN`.
     RK3CN,
+    /// Semi-implicit, one stage: advection and forces by explicit Euler, diffusion by
+    /// Crank–Nicolson, `(I − ½Δt ν∇²) u* = u + Δt (N(u) + ½ ν∇²u) − Δt ∇p`; first order (the
+    /// paper's Euler with the viscous part implicit). A third of `RK3CN`'s solves per step.
+    /// Stable while `Δt ≤ 2ν/|v|²` (the advective half of paper eq. 3: explicit Euler with
+    /// central advection is held by the viscosity, implicit or not); no `h²/ν` limit.
+    /// Not with outlets. Name `EulerCN`.
+    EulerCN,
 }
 
 /// Spalart–Moser–Rogers stage coefficients `(γ_s, ζ_s, α_s = β_s)`:
@@ -35,6 +42,9 @@ pub(crate) const SMR_STAGES: [(f64, f64, f64); 3] = [
     (5.0 / 12.0, -17.0 / 60.0, 1.0 / 15.0),
     (3.0 / 4.0, -5.0 / 12.0, 1.0 / 6.0),
 ];
+
+/// `EulerCN` in the same form: one stage `(γ, ζ, α = β) = (1, 0, ½)`.
+pub(crate) const EULER_CN_STAGES: [(f64, f64, f64); 1] = [(1.0, 0.0, 0.5)];
 
 /// Williamson's RK3 coefficients (Williamson, J. Comput. Phys. 35, 48–56, 1980).
 const RK3_STAGES: [(f64, f64, f64); 3] = [
@@ -54,6 +64,7 @@ impl TimeScheme {
             "rk2" | "heun" => Some(TimeScheme::RK2),
             "rk3" => Some(TimeScheme::RK3),
             "rk3cn" | "cranknicolson" => Some(TimeScheme::RK3CN),
+            "eulercn" => Some(TimeScheme::EulerCN),
             _ => None,
         }
     }
@@ -64,6 +75,7 @@ impl TimeScheme {
             TimeScheme::RK2 => "RK2",
             TimeScheme::RK3 => "RK3",
             TimeScheme::RK3CN => "RK3CN",
+            TimeScheme::EulerCN => "EulerCN",
         }
     }
 
@@ -77,7 +89,17 @@ impl TimeScheme {
 
     /// True when diffusion is implicit (no viscous limit on Δt).
     pub fn is_semi_implicit(&self) -> bool {
-        matches!(self, TimeScheme::RK3CN)
+        matches!(self, TimeScheme::RK3CN | TimeScheme::EulerCN)
+    }
+
+    /// Stage coefficients `(γ_s, ζ_s, α_s = β_s)` of a semi-implicit scheme (empty for the
+    /// explicit ones): `(I − β_s Δt ν∇²) u* = u + Δt (γ_s N(u) + ζ_s N_old + α_s ν∇²u)`.
+    pub(crate) fn semi_implicit_stages(&self) -> &'static [(f64, f64, f64)] {
+        match self {
+            TimeScheme::RK3CN => &SMR_STAGES,
+            TimeScheme::EulerCN => &EULER_CN_STAGES,
+            _ => &[],
+        }
     }
 
     /// Stage coefficients `(a_s, b_s, c_s)`: `q ← a_s q + Δt F`, `u ← u + b_s q`, and `c_s`
@@ -85,7 +107,7 @@ impl TimeScheme {
     /// part's stage times are those of RK3 (its coefficients are in `SMR_STAGES`).
     pub fn stages(&self) -> &'static [(f64, f64, f64)] {
         match self {
-            TimeScheme::Euler => &EULER_STAGES,
+            TimeScheme::Euler | TimeScheme::EulerCN => &EULER_STAGES,
             TimeScheme::RK2 => &RK2_STAGES,
             TimeScheme::RK3 | TimeScheme::RK3CN => &RK3_STAGES,
         }
@@ -99,6 +121,7 @@ impl TimeScheme {
     /// RK3: its stability region reaches −2.51 on the real axis and ±√3 on the imaginary
     /// axis, so `min(2.51 / (4ν Σ 1/h_d²), √3 / Σ |v_d|_max / h_d)`.
     /// RK3CN: the advective part only, `√3 / Σ |v_d|_max / h_d`.
+    /// EulerCN: the advective part of Euler's, `2ν / |v|²_max`.
     pub fn stability_bound(
         &self,
         nu: f64,
@@ -123,6 +146,7 @@ impl TimeScheme {
             }
             TimeScheme::RK3 => div(2.51, 4.0 * nu * inv_h2).min(div(3f64.sqrt(), speed_over_h)),
             TimeScheme::RK3CN => div(3f64.sqrt(), speed_over_h),
+            TimeScheme::EulerCN => div(2.0 * nu, speed2),
         }
     }
 }
@@ -138,6 +162,10 @@ mod tests {
         let smr: f64 = SMR_STAGES.iter().map(|s| s.0 + s.1).sum();
         let smr_visc: f64 = SMR_STAGES.iter().map(|s| 2.0 * s.2).sum();
         assert!((smr - 1.0).abs() < 1e-14 && (smr_visc - 1.0).abs() < 1e-14);
+        let [(g, z, a)] = EULER_CN_STAGES;
+        assert!(g + z == 1.0 && 2.0 * a == 1.0);
+        assert_eq!(TimeScheme::from_name("EulerCN"), Some(TimeScheme::EulerCN));
+        assert_eq!(TimeScheme::EulerCN.order(), 1);
         assert_eq!(
             TimeScheme::from_name("CrankNicolson"),
             Some(TimeScheme::RK3CN)

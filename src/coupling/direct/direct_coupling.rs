@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use super::direct_settings::DirectSettings;
 use super::field_view::{periodic_directions, FieldView};
 use super::immersed_boundary::ImmersedBoundary;
+use super::implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use super::stress_integral::{
@@ -42,6 +43,8 @@ pub struct DirectCoupling {
     loads: Vec<HydrodynamicLoad>,
     /// Whether the forced faces have been built once.
     built: bool,
+    /// The constrained viscous solve of `RK3CN` stages.
+    implicit_forcing: ImplicitForcing,
 }
 
 impl DirectCoupling {
@@ -62,6 +65,7 @@ impl DirectCoupling {
             previous_shell: HashMap::new(),
             loads: Vec::new(),
             built: false,
+            implicit_forcing: ImplicitForcing::new(),
         }
     }
 
@@ -173,10 +177,33 @@ impl DirectCoupling {
     }
 
     /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted
-    /// velocity (pre-compensated for the coming projection).
-    pub fn impose(&self, stage: PredictedVelocity<'_>) {
-        self.boundary
-            .impose(stage.velocity, stage.pressure, stage.tau, stage.mass_source);
+    /// velocity (pre-compensated for the coming projection with the explicit schemes; with
+    /// `RK3CN` the forcing faces are constraint rows of the implicit viscous solve,
+    /// [`ImplicitForcing`]).
+    pub fn impose(&mut self, stage: PredictedVelocity<'_>) {
+        let PredictedVelocity {
+            velocity,
+            pressure,
+            tau,
+            mass_source,
+            implicit,
+            ..
+        } = stage;
+        if let Some(mut implicit) = implicit {
+            self.implicit_forcing
+                .solve(&self.boundary, velocity, &mut implicit);
+        }
+        self.boundary.impose(velocity, pressure, tau, mass_source);
+    }
+
+    /// Cost and residual of the last constrained viscous solve (`RK3CN`).
+    pub fn implicit_forcing_report(&self) -> ImplicitForcingReport {
+        self.implicit_forcing.report()
+    }
+
+    /// The constrained viscous solve's settings (tolerance, iteration cap).
+    pub fn implicit_forcing_mut(&mut self) -> &mut ImplicitForcing {
+        &mut self.implicit_forcing
     }
 
     /// Force and torque on every sphere (order of [`Self::set_spheres`]) from the current

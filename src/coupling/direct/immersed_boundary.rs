@@ -35,9 +35,8 @@
 //! (`u_f* = target + τ ∂p`), so that once the flow is steady the forced faces hold their
 //! targets exactly and the steady state does not depend on `Δt` (the explicit schemes).
 //! `RK3CN`'s incremental projection needs no compensation (its increment vanishes at steady
-//! state), but its implicit viscous solve spreads the forcing before the hook resets it, so
-//! its steady state carries an error growing with `ν Δt / h²` (measured in
-//! `docs/direct_model.md`): use `RK3` for steady flows.
+//! state); there the forcing faces are constraint rows of the implicit viscous solve itself
+//! ([`super::ImplicitForcing`]), so that its steady state does not depend on `Δt` either.
 
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
