@@ -1097,6 +1097,7 @@ impl Dem {
         let lists = &self.lists;
         let radius = &self.radius;
         let domain = &self.domain;
+        let periodic = inv_l != [0.0; 3];
         (0..self.particles.len())
             .into_par_iter()
             .with_min_len(CHUNK)
@@ -1104,12 +1105,18 @@ impl Dem {
                 let mut worst: f64 = 0.0;
                 for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
                     let j = lists.partner[k] as usize;
-                    let d = minimum_image(
-                        [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
-                        length,
-                        inv_l,
-                    );
-                    let overlap = radius[i] + radius[j] - dot(d, d).sqrt();
+                    let mut d = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    if periodic {
+                        d = minimum_image(d, length, inv_l);
+                    }
+                    // Most listed pairs are apart (overlap ≤ 0 cannot raise `worst` ≥ 0):
+                    // the square root only for those in contact.
+                    let reach = radius[i] + radius[j];
+                    let dist2 = dot(d, d);
+                    if dist2 >= reach * reach {
+                        continue;
+                    }
+                    let overlap = radius[i] + radius[j] - dist2.sqrt();
                     worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
                 }
                 for f in 0..6 {
