@@ -7,7 +7,8 @@
 //! scheme's stability bound (paper eq. 3) all stop the run with exit code 2.
 
 use crate::case::{
-    Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, StartFrom, VelocityBc,
+    Case, Cloud, CouplingModel, InternalField, PatchType, PressureBc, PressureSolverControls,
+    StartFrom, VelocityBc,
 };
 use crate::coupling::direct::{
     check_resolution, periodic_directions, DirectCoupling, DirectSettings, MotionSettings,
@@ -16,7 +17,7 @@ use crate::coupling::direct::{
 use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{
-    BoundaryConditions, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
+    BoundaryConditions, Convergence, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
     MeanVelocityForce, StepReport, TimeScheme,
 };
 use crate::grid::Grid;
@@ -641,6 +642,18 @@ fn drag_law(
         )
     });
     coupling.fluid.set_superficial_inlets(superficial);
+    // DPMFoam's stopping test for its final pressure corrector (case/pressure_solver.rs).
+    if let Some(fv_solution) = &case.fv_solution {
+        if let Some(c) = PressureSolverControls::from_fv_solution(fv_solution)? {
+            coupling.fluid.convergence = Convergence::OpenFoam {
+                tolerance: c.tolerance,
+                rel_tol: c.rel_tol,
+            };
+            if let Some(max) = c.max_iter {
+                coupling.fluid.max_iterations = max;
+            }
+        }
+    }
     // A box periodic on all faces cannot hold the mixture's weight with its periodic pressure.
     coupling.carry_mixture_weight(dem);
     Ok(Some(coupling))

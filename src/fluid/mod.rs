@@ -79,6 +79,6 @@ pub use multigrid::{FaceAveraging, Multigrid};
 pub use padded_layout::PaddedLayout;
 pub use spectral_poisson::{AxisKind, PressureBoundary, SpectralPoisson};
 pub use time_scheme::TimeScheme;
-pub use variable_poisson::{PcgReport, Preconditioner, VariablePoisson};
+pub use variable_poisson::{Convergence, PcgReport, Preconditioner, VariablePoisson};
 pub(crate) use volume_averaged_fluid::fill_cell_ghosts;
 pub use volume_averaged_fluid::{VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};

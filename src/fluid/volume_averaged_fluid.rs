@@ -43,7 +43,7 @@ use super::fluid_solver::FluidSolver;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
 use super::padded_layout::PaddedLayout;
 use super::projection::subtract_gradient;
-use super::variable_poisson::{PcgReport, Preconditioner, VariablePoisson};
+use super::variable_poisson::{Convergence, PcgReport, Preconditioner, VariablePoisson};
 use crate::grid::Grid;
 use rayon::prelude::*;
 
@@ -106,8 +106,9 @@ pub struct VolumeAveragedFluid {
     /// Inlet faces whose velocity is superficial (DPMFoam's `interstitialInletVelocity`: the
     /// face carries `U_in/ε_f`, so the volume flux is `U_in` whatever the bed next to it).
     superficial_inlets: [bool; 6],
-    /// Relative residual at which the pressure CG stops.
-    pub tolerance: f64,
+    /// When the pressure CG stops (default `‖r‖₂ ≤ 10⁻¹⁰ ‖f‖₂`; a case's `pFinal` solver
+    /// sets OpenFOAM's test).
+    pub convergence: Convergence,
     pub max_iterations: usize,
 }
 
@@ -165,7 +166,7 @@ impl VolumeAveragedFluid {
             p_work: vec![0.0; cells],
             outlet_pressure,
             superficial_inlets: [false; 6],
-            tolerance: 1e-10,
+            convergence: Convergence::Relative(1e-10),
             max_iterations: 500,
             grid,
             layout,
@@ -493,10 +494,10 @@ impl VolumeAveragedFluid {
         for (w, p) in self.p_work.iter_mut().zip(fluid.pressure()) {
             *w = p - shift;
         }
-        let report = self.poisson.solve(
+        let report = self.poisson.solve_to(
             &self.rhs,
             &mut self.p_work,
-            self.tolerance,
+            self.convergence,
             self.max_iterations,
         );
         for (p, w) in fluid.pressure_mut().iter_mut().zip(&self.p_work) {

@@ -783,8 +783,20 @@ impl Dem {
     pub fn advance(&mut self, dt_outer: f64) -> usize {
         let n = self.substep_count(dt_outer);
         let h = dt_outer / n as f64;
-        for _ in 0..n {
-            self.step(h);
+        // `step` n times, with each sub-step's last pass fused with the next one's first.
+        let mut rebuild = self.kick_drift(h);
+        for s in 0..n {
+            if rebuild {
+                self.rebuild();
+            }
+            self.evaluate_contacts(h);
+            if s + 1 < n {
+                rebuild = self.gather_kick_drift(h);
+            } else {
+                self.gather_contacts(Some(h));
+            }
+            self.time += h;
+            self.steps += 1;
         }
         n
     }
@@ -802,86 +814,59 @@ impl Dem {
         self.steps += 1;
     }
 
+    /// The engine split for a motion pass: what it reads ([`Motion`], [`Gather`]) and the
+    /// particle arrays it writes ([`Moving`]).
+    fn motion_parts(&mut self, h: f64) -> (Motion<'_>, Gather<'_>, Moving<'_>) {
+        let dom = &self.domain;
+        let p = &mut self.particles;
+        let motion = Motion {
+            g: self.config.gravity,
+            rho_f: self.config.fluid_density,
+            h,
+            half: 0.5 * h,
+            lo: dom.lo,
+            length: dom.length(),
+            inv_l: dom.inverse_periodic_length(),
+            faces: dom.faces,
+            limit: 0.25 * self.lists.skin * self.lists.skin,
+            reference: &self.lists.reference,
+            inv_m: &self.inv_mass,
+            inv_i: &self.inv_inertia,
+            rho: &p.density,
+            fe: &p.external_force,
+            te: &p.external_torque,
+        };
+        let gather = Gather {
+            own: &self.acc_own,
+            prev: &self.acc_prev,
+            lists: &self.lists,
+            radius: &self.radius,
+        };
+        let moving = Moving {
+            x: &mut p.position,
+            v: &mut p.velocity,
+            w: &mut p.angular_velocity,
+            fc: &mut p.contact_force,
+            tc: &mut p.contact_torque,
+        };
+        (motion, gather, moving)
+    }
+
     /// `v += h/2 a`, `ω += h/2 α`, `x += h v`, periodic wrap and rebound faces; returns whether
     /// some particle has moved more than half the skin since the last list build.
     fn kick_drift(&mut self, h: f64) -> bool {
-        let g = self.config.gravity;
-        let rho_f = self.config.fluid_density;
-        let dom = &self.domain;
-        let (lo, length) = (dom.lo, dom.length());
-        let inv_l = dom.inverse_periodic_length();
-        let faces = dom.faces;
-        let limit = 0.25 * self.lists.skin * self.lists.skin;
-        let reference = &self.lists.reference;
-        let p = &mut self.particles;
-        let (inv_m, inv_i, rho) = (&self.inv_mass, &self.inv_inertia, &p.density);
-        let (fc, fe, tc, te) = (
-            &p.contact_force,
-            &p.external_force,
-            &p.contact_torque,
-            &p.external_torque,
-        );
-        let half = 0.5 * h;
-        p.position
-            .par_chunks_mut(CHUNK)
-            .zip(p.velocity.par_chunks_mut(CHUNK))
-            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
+        let (motion, _, p) = self.motion_parts(h);
+        let (fc, tc) = (&*p.fc, &*p.tc);
+        p.x.par_chunks_mut(CHUNK)
+            .zip(p.v.par_chunks_mut(CHUNK))
+            .zip(p.w.par_chunks_mut(CHUNK))
             .enumerate()
             .map(|(c, ((x, v), w))| {
                 let base = c * CHUNK;
                 let mut moved = false;
                 for k in 0..x.len() {
                     let i = base + k;
-                    if inv_m[i] == 0.0 {
-                        continue;
-                    }
-                    // no division per particle in vacuum (the usual pure-DEM case)
-                    let buoy = if rho_f == 0.0 {
-                        1.0
-                    } else {
-                        1.0 - rho_f / rho[i]
-                    };
-                    for a in 0..3 {
-                        v[k][a] += half * ((fc[i][a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
-                        w[k][a] += half * (tc[i][a] + te[i][a]) * inv_i[i];
-                    }
-                    for a in 0..3 {
-                        x[k][a] += h * v[k][a];
-                    }
-                    for a in 0..3 {
-                        match faces[2 * a] {
-                            FaceCondition::Periodic => {
-                                let s = ((x[k][a] - lo[a]) / length[a]).floor();
-                                if s != 0.0 {
-                                    x[k][a] -= s * length[a];
-                                }
-                            }
-                            _ => {
-                                for side in 0..2 {
-                                    if let FaceCondition::Rebound { e, mu } = faces[2 * a + side] {
-                                        let plane =
-                                            if side == 0 { lo[a] } else { lo[a] + length[a] };
-                                        let outside = if side == 0 {
-                                            x[k][a] < plane
-                                        } else {
-                                            x[k][a] > plane
-                                        };
-                                        if outside {
-                                            x[k][a] = 2.0 * plane - x[k][a];
-                                            rebound(&mut v[k], a, side, e, mu);
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
-                    let r = reference[i];
-                    let d = minimum_image(
-                        [x[k][0] - r[0], x[k][1] - r[1], x[k][2] - r[2]],
-                        length,
-                        inv_l,
-                    );
-                    moved |= dot(d, d) > limit;
+                    moved |= motion.kick_drift(i, fc[i], tc[i], &mut x[k], &mut v[k], &mut w[k]);
                 }
                 moved
             })
@@ -1004,60 +989,55 @@ impl Dem {
     /// Pass 2: each particle gathers its own rows (+), reverse rows (−) and walls into
     /// `contact_force`/`contact_torque`, then, within a step, takes its second half-kick.
     fn gather_contacts(&mut self, kick: Option<f64>) {
-        let (own, prev) = (&self.acc_own, &self.acc_prev);
-        let g = self.config.gravity;
-        let rho_f = self.config.fluid_density;
-        let half = 0.5 * kick.unwrap_or(0.0);
-        let lists = &self.lists;
-        let (radius, inv_m, inv_i) = (&self.radius, &self.inv_mass, &self.inv_inertia);
-        let p = &mut self.particles;
-        let (fe, te, rho) = (&p.external_force, &p.external_torque, &p.density);
-        p.contact_force
-            .par_chunks_mut(CHUNK)
-            .zip(p.contact_torque.par_chunks_mut(CHUNK))
-            .zip(p.velocity.par_chunks_mut(CHUNK))
-            .zip(p.angular_velocity.par_chunks_mut(CHUNK))
+        let (motion, gather, p) = self.motion_parts(kick.unwrap_or(0.0));
+        p.fc.par_chunks_mut(CHUNK)
+            .zip(p.tc.par_chunks_mut(CHUNK))
+            .zip(p.v.par_chunks_mut(CHUNK))
+            .zip(p.w.par_chunks_mut(CHUNK))
             .enumerate()
             .for_each(|(c, (((fo, to), v), w))| {
                 let base = c * CHUNK;
                 for k in 0..fo.len() {
                     let i = base + k;
-                    let (a, b) = (own[i], prev[i]);
-                    let mut f = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-                    let mut t = [a[3] + b[3], a[4] + b[4], a[5] + b[5]];
-                    for &q in &lists.far_rev
-                        [lists.far_rev_start[i] as usize..lists.far_rev_start[i + 1] as usize]
-                    {
-                        let l = lists.far_load[q as usize];
-                        for a in 0..3 {
-                            f[a] -= l[a];
-                            t[a] += l[a + 3];
-                        }
-                    }
-                    let ri = radius[i];
-                    t = scale(t, ri);
-                    for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
-                        for a in 0..3 {
-                            f[a] += lists.wall_force[m][a];
-                            t[a] += lists.wall_torque[m][a];
-                        }
-                    }
+                    let (f, t) = gather.loads(i);
                     fo[k] = f;
                     to[k] = t;
-                    if kick.is_some() && inv_m[i] != 0.0 {
-                        // no division per particle in vacuum (the usual pure-DEM case)
-                        let buoy = if rho_f == 0.0 {
-                            1.0
-                        } else {
-                            1.0 - rho_f / rho[i]
-                        };
-                        for a in 0..3 {
-                            v[k][a] += half * ((f[a] + fe[i][a]) * inv_m[i] + g[a] * buoy);
-                            w[k][a] += half * (t[a] + te[i][a]) * inv_i[i];
-                        }
+                    if kick.is_some() && motion.inv_m[i] != 0.0 {
+                        motion.half_kick(i, f, t, &mut v[k], &mut w[k]);
                     }
                 }
             });
+    }
+
+    /// Between two sub-steps of one outer step: pass 2 of the first (gather and second
+    /// half-kick) and pass 0 of the next (first half-kick, drift, checks) in one sweep, each
+    /// particle's arithmetic exactly that of [`Self::gather_contacts`] then
+    /// [`Self::kick_drift`] (so the result is bit-identical), streaming the particle arrays
+    /// once instead of twice. Returns whether the lists need rebuilding.
+    fn gather_kick_drift(&mut self, h: f64) -> bool {
+        let (motion, gather, p) = self.motion_parts(h);
+        p.fc.par_chunks_mut(CHUNK)
+            .zip(p.tc.par_chunks_mut(CHUNK))
+            .zip(p.x.par_chunks_mut(CHUNK))
+            .zip(p.v.par_chunks_mut(CHUNK))
+            .zip(p.w.par_chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(c, ((((fo, to), x), v), w))| {
+                let base = c * CHUNK;
+                let mut moved = false;
+                for k in 0..fo.len() {
+                    let i = base + k;
+                    let (f, t) = gather.loads(i);
+                    fo[k] = f;
+                    to[k] = t;
+                    if motion.inv_m[i] != 0.0 {
+                        motion.half_kick(i, f, t, &mut v[k], &mut w[k]);
+                    }
+                    moved |= motion.kick_drift(i, f, t, &mut x[k], &mut v[k], &mut w[k]);
+                }
+                moved
+            })
+            .reduce(|| false, |a, b| a | b)
     }
 
     // ----- monitors -----
@@ -1117,6 +1097,7 @@ impl Dem {
         let lists = &self.lists;
         let radius = &self.radius;
         let domain = &self.domain;
+        let periodic = inv_l != [0.0; 3];
         (0..self.particles.len())
             .into_par_iter()
             .with_min_len(CHUNK)
@@ -1124,12 +1105,18 @@ impl Dem {
                 let mut worst: f64 = 0.0;
                 for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
                     let j = lists.partner[k] as usize;
-                    let d = minimum_image(
-                        [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
-                        length,
-                        inv_l,
-                    );
-                    let overlap = radius[i] + radius[j] - dot(d, d).sqrt();
+                    let mut d = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    if periodic {
+                        d = minimum_image(d, length, inv_l);
+                    }
+                    // Most listed pairs are apart (overlap ≤ 0 cannot raise `worst` ≥ 0):
+                    // the square root only for those in contact.
+                    let reach = radius[i] + radius[j];
+                    let dist2 = dot(d, d);
+                    if dist2 >= reach * reach {
+                        continue;
+                    }
+                    let overlap = radius[i] + radius[j] - dist2.sqrt();
                     worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
                 }
                 for f in 0..6 {
@@ -1142,6 +1129,147 @@ impl Dem {
             })
             .reduce(|| 0.0, f64::max)
     }
+}
+
+/// What the half-kick and the drift of one particle read, shared by the separate passes and
+/// the fused gather + kick + drift pass between two sub-steps (the same arithmetic in both).
+struct Motion<'a> {
+    g: Vec3,
+    rho_f: f64,
+    h: f64,
+    half: f64,
+    lo: Vec3,
+    length: Vec3,
+    inv_l: Vec3,
+    faces: [FaceCondition; 6],
+    limit: f64,
+    reference: &'a [Vec3],
+    inv_m: &'a [f64],
+    inv_i: &'a [f64],
+    rho: &'a [f64],
+    fe: &'a [Vec3],
+    te: &'a [Vec3],
+}
+
+impl<'a> Motion<'a> {
+    /// `1 − ρ_f/ρ_p` (no division per particle in vacuum, the usual pure-DEM case).
+    #[inline(always)]
+    fn buoyancy(&self, i: usize) -> f64 {
+        if self.rho_f == 0.0 {
+            1.0
+        } else {
+            1.0 - self.rho_f / self.rho[i]
+        }
+    }
+
+    /// `v += h/2 ((f + f_ext)/m + g (1 − ρ_f/ρ_p))`, `ω += h/2 (t + t_ext)/I` (free particles).
+    #[inline(always)]
+    fn half_kick(&self, i: usize, f: Vec3, t: Vec3, v: &mut Vec3, w: &mut Vec3) {
+        let buoy = self.buoyancy(i);
+        let (inv_m, inv_i) = (self.inv_m[i], self.inv_i[i]);
+        for a in 0..3 {
+            v[a] += self.half * ((f[a] + self.fe[i][a]) * inv_m + self.g[a] * buoy);
+            w[a] += self.half * (t[a] + self.te[i][a]) * inv_i;
+        }
+    }
+
+    /// The first half-kick with contact loads `f`, `t`, the drift, the periodic wrap and the
+    /// rebound faces of a free particle; whether it moved more than half the skin since the
+    /// last list build.
+    #[inline(always)]
+    fn kick_drift(
+        &self,
+        i: usize,
+        f: Vec3,
+        t: Vec3,
+        x: &mut Vec3,
+        v: &mut Vec3,
+        w: &mut Vec3,
+    ) -> bool {
+        if self.inv_m[i] == 0.0 {
+            return false;
+        }
+        self.half_kick(i, f, t, v, w);
+        for a in 0..3 {
+            x[a] += self.h * v[a];
+        }
+        let (lo, length, faces) = (self.lo, self.length, self.faces);
+        for a in 0..3 {
+            match faces[2 * a] {
+                FaceCondition::Periodic => {
+                    let s = ((x[a] - lo[a]) / length[a]).floor();
+                    if s != 0.0 {
+                        x[a] -= s * length[a];
+                    }
+                }
+                _ => {
+                    for side in 0..2 {
+                        if let FaceCondition::Rebound { e, mu } = faces[2 * a + side] {
+                            let plane = if side == 0 { lo[a] } else { lo[a] + length[a] };
+                            let outside = if side == 0 {
+                                x[a] < plane
+                            } else {
+                                x[a] > plane
+                            };
+                            if outside {
+                                x[a] = 2.0 * plane - x[a];
+                                rebound(v, a, side, e, mu);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let r = self.reference[i];
+        let d = minimum_image([x[0] - r[0], x[1] - r[1], x[2] - r[2]], length, self.inv_l);
+        dot(d, d) > self.limit
+    }
+}
+
+/// What a particle's contact loads are gathered from: its block's sums, the far pairs' load
+/// records and its wall contacts.
+struct Gather<'a> {
+    own: &'a [[f64; 6]],
+    prev: &'a [[f64; 6]],
+    lists: &'a NeighbourList,
+    radius: &'a [f64],
+}
+
+impl<'a> Gather<'a> {
+    /// Force and torque on particle `i`: own rows (+), reverse rows (−) and walls.
+    #[inline(always)]
+    fn loads(&self, i: usize) -> (Vec3, Vec3) {
+        let lists = self.lists;
+        let (a, b) = (self.own[i], self.prev[i]);
+        let mut f = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+        let mut t = [a[3] + b[3], a[4] + b[4], a[5] + b[5]];
+        for &q in
+            &lists.far_rev[lists.far_rev_start[i] as usize..lists.far_rev_start[i + 1] as usize]
+        {
+            let l = lists.far_load[q as usize];
+            for a in 0..3 {
+                f[a] -= l[a];
+                t[a] += l[a + 3];
+            }
+        }
+        t = scale(t, self.radius[i]);
+        for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
+            for a in 0..3 {
+                f[a] += lists.wall_force[m][a];
+                t[a] += lists.wall_torque[m][a];
+            }
+        }
+        (f, t)
+    }
+}
+
+/// The particle arrays a motion pass writes.
+struct Moving<'a> {
+    x: &'a mut [Vec3],
+    v: &'a mut [Vec3],
+    w: &'a mut [Vec3],
+    fc: &'a mut [Vec3],
+    tc: &'a mut [Vec3],
 }
 
 /// Read-only inputs of the pair pass.

@@ -50,6 +50,21 @@ impl ChunkPartial {
         self.lo
     }
 
+    /// Fields `f` and `g` (`f ≠ g`) over `lo..hi`, both writable.
+    #[inline]
+    pub fn field_pair_mut(&mut self, f: usize, g: usize) -> (&mut [f64], &mut [f64]) {
+        assert_ne!(f, g);
+        let span = self.hi - self.lo;
+        let (lo, hi) = (f.min(g), f.max(g));
+        let (head, tail) = self.values.split_at_mut(hi * span);
+        let (a, b) = (&mut head[lo * span..(lo + 1) * span], &mut tail[..span]);
+        if f < g {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    }
+
     /// Field `f` over `lo..hi` (index it with `i − base()`).
     #[inline]
     pub fn field_mut(&mut self, f: usize) -> &mut [f64] {

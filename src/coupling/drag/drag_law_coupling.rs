@@ -427,18 +427,17 @@ impl DragLawCoupling {
                     let base = partial.base();
                     for j in 0..hydro.len() {
                         let (f, st) = (drag[j], &write[j]);
+                        let b = if semi_implicit { beta[j] * scale } else { 0.0 };
                         for c in 0..3 {
                             let value = -f[c] * scale;
-                            if value != 0.0 {
+                            if value != 0.0 && b != 0.0 {
+                                // source and coefficient share the stencil's weights
+                                let (source, coefficient) = partial.field_pair_mut(c, 3 + c);
+                                st[c].scatter_pair(source, coefficient, base, value, b);
+                            } else if value != 0.0 {
                                 st[c].scatter(partial.field_mut(c), base, value);
-                            }
-                        }
-                        if semi_implicit {
-                            let b = beta[j] * scale;
-                            if b != 0.0 {
-                                for c in 0..3 {
-                                    st[c].scatter(partial.field_mut(3 + c), base, b);
-                                }
+                            } else if b != 0.0 {
+                                st[c].scatter(partial.field_mut(3 + c), base, b);
                             }
                         }
                     }

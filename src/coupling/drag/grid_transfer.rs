@@ -352,6 +352,37 @@ impl SampleStencil {
         }
     }
 
+    /// `first[i − base] += w · a` and `second[i − base] += w · b` over the samples: two
+    /// [`Self::scatter`]s with one pass over the weights (each target receives exactly what
+    /// its own scatter would add).
+    #[inline]
+    pub fn scatter_pair(
+        &self,
+        first: &mut [f64],
+        second: &mut [f64],
+        base: usize,
+        a_value: f64,
+        b_value: f64,
+    ) {
+        for c in 0..2 {
+            for b in 0..2 {
+                let wbc = self.weight[1][b] * self.weight[2][c];
+                if wbc == 0.0 {
+                    continue;
+                }
+                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
+                for a in 0..2 {
+                    let w = self.weight[0][a] * wbc;
+                    if w != 0.0 {
+                        let i = self.offset[0][a] as usize + obc - base;
+                        first[i] += w * a_value;
+                        second[i] += w * b_value;
+                    }
+                }
+            }
+        }
+    }
+
     /// The padded indices `lo..hi` the samples can touch.
     #[inline]
     pub fn index_range(&self) -> (usize, usize) {
