@@ -42,8 +42,10 @@ pub struct CellPointInterpolation {
     /// Cell-centred velocity per component on the padded layout (ghost cells included where
     /// their faces exist).
     cell: [Vec<f64>; 3],
-    /// Velocity per component at the `(n₀+1)(n₁+1)(n₂+1)` points, x fastest.
-    point: [Vec<f64>; 3],
+    /// The interior cells' velocity, `[u, v, w]` per cell on the padded layout, and the point
+    /// velocities at the `(n₀+1)(n₁+1)(n₂+1)` points, x fastest: one read per sample vertex.
+    cell_vectors: Vec<[f64; 3]>,
+    point: Vec<[f64; 3]>,
 }
 
 impl CellPointInterpolation {
@@ -55,7 +57,8 @@ impl CellPointInterpolation {
             periodic: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Periodic)),
             empty: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Empty)),
             cell: [(); 3].map(|_| vec![0.0; layout.len]),
-            point: [(); 3].map(|_| vec![0.0; points]),
+            cell_vectors: vec![[0.0; 3]; layout.len],
+            point: vec![[0.0; 3]; points],
             layout,
         }
     }
@@ -90,22 +93,25 @@ impl CellPointInterpolation {
                 }
             }
         }
+        let (cell, vectors) = (&self.cell, &mut self.cell_vectors);
+        for (f, v) in vectors.iter_mut().enumerate() {
+            *v = [cell[0][f], cell[1][f], cell[2][f]];
+        }
         let n = self.grid.n;
         let plane = (n[0] + 1) * (n[1] + 1);
         let mut point = std::mem::take(&mut self.point);
-        for (c, values) in point.iter_mut().enumerate() {
-            let this = &*self;
-            values
-                .par_chunks_mut(plane)
-                .enumerate()
-                .for_each(|(k, row)| {
-                    for j in 0..=n[1] {
-                        for i in 0..=n[0] {
-                            row[i + (n[0] + 1) * j] = this.point_value(c, [i, j, k], velocity);
-                        }
+        let this = &*self;
+        point
+            .par_chunks_mut(plane)
+            .enumerate()
+            .for_each(|(k, row)| {
+                for j in 0..=n[1] {
+                    for i in 0..=n[0] {
+                        row[i + (n[0] + 1) * j] =
+                            std::array::from_fn(|c| this.point_value(c, [i, j, k], velocity));
                     }
-                });
-        }
+                }
+            });
         self.point = point;
     }
 
@@ -204,7 +210,7 @@ impl CellPointInterpolation {
         }
         let t = xi[d].abs();
         let mut corner_weight = [0.0; 3];
-        let mut corners = [[0usize; 3]; 3];
+        let mut corners = [0usize; 3];
         let centre_weight = 1.0 - t;
         if t > 0.0 {
             let (a, b) = if d == 0 {
@@ -241,22 +247,15 @@ impl CellPointInterpolation {
                 p[d] += side;
                 p[a] += local[q][0];
                 p[b] += local[q][1];
-                corners[q] = p;
+                corners[q] = self.point_index(p[0], p[1], p[2]);
                 corner_weight[q] = t * weight[q];
             }
         }
-        let l = &self.layout;
-        let centre = l.index(cell[0] + 1, cell[1] + 1, cell[2] + 1);
-        std::array::from_fn(|c| {
-            let mut u = centre_weight * self.cell[c][centre];
-            for q in 0..3 {
-                if corner_weight[q] != 0.0 {
-                    let p = corners[q];
-                    u += corner_weight[q] * self.point[c][self.point_index(p[0], p[1], p[2])];
-                }
-            }
-            u
-        })
+        let centre = self.layout.index(cell[0] + 1, cell[1] + 1, cell[2] + 1);
+        let (uc, p) = (self.cell_vectors[centre], &self.point);
+        let (p0, p1, p2) = (p[corners[0]], p[corners[1]], p[corners[2]]);
+        let [w0, w1, w2] = corner_weight;
+        std::array::from_fn(|c| centre_weight * uc[c] + w0 * p0[c] + w1 * p1[c] + w2 * p2[c])
     }
 }
 
@@ -435,7 +434,7 @@ mod tests {
         fill_velocity_ghosts(&l, &bc, &mut faces);
         let mut interp = CellPointInterpolation::new(&g, &bc);
         interp.update(&faces);
-        let w_at = |i: usize, j: usize, k: usize| interp.point[2][interp.point_index(i, j, k)];
+        let w_at = |i: usize, j: usize, k: usize| interp.point[interp.point_index(i, j, k)][2];
         // interior (x = 0.75, y = 0.5): every cell around holds 2
         assert!((w_at(1, 1, 2) - 2.0).abs() < 1e-14);
         // on a symmetry plane only: its faces hold the cells' tangential value 2
@@ -459,8 +458,8 @@ mod tests {
         fill_velocity_ghosts(&l, &bc, &mut faces);
         interp.update(&faces);
         for j in 0..=3 {
-            assert_eq!(interp.point[0][interp.point_index(0, j, 1)], 0.0);
-            assert_eq!(interp.point[0][interp.point_index(2, j, 1)], 0.0);
+            assert_eq!(interp.point[interp.point_index(0, j, 1)][0], 0.0);
+            assert_eq!(interp.point[interp.point_index(2, j, 1)][0], 0.0);
         }
     }
 }

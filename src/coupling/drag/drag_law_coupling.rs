@@ -304,6 +304,7 @@ impl DragLawCoupling {
             cp.update(fluid.velocity());
         }
         let cell_point = self.cell_point.as_ref();
+        let needs_read = cell_point.is_none() || s.form == VolumeAveragedForm::Paper;
         let cell_gradient = &self.cell_gradient;
         let transfer = &self.transfer;
         let velocity = fluid.velocity();
@@ -354,7 +355,10 @@ impl DragLawCoupling {
                             (&mut hydro[j], &mut drag[j], &mut beta[j], &mut write[j]);
                         let x = position[i];
                         let mut read = [SampleStencil::default(); 3];
-                        transfer.read_face_stencils(x, interpolation, &mut read);
+                        // The face stencils read u, and ∇p in the paper's form.
+                        if needs_read {
+                            transfer.read_face_stencils(x, interpolation, &mut read);
+                        }
                         let u = match cell_point {
                             Some(cp) => cp.sample(x),
                             None => [
