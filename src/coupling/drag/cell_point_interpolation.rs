@@ -282,6 +282,19 @@ mod tests {
         (*state >> 11) as f64 / (1u64 << 53) as f64
     }
 
+    /// Seeded random face velocities in a periodic box, and their interpolation.
+    fn random_periodic_field(g: &Grid, seed: u64) -> ([Vec<f64>; 3], CellPointInterpolation) {
+        let bc = BoundaryConditions::periodic();
+        let l = PaddedLayout::new(g.n);
+        let mut state = seed;
+        let mut faces: [Vec<f64>; 3] =
+            std::array::from_fn(|_| (0..l.len).map(|_| lcg(&mut state) - 0.5).collect());
+        fill_velocity_ghosts(&l, &bc, &mut faces);
+        let mut interp = CellPointInterpolation::new(g, &bc);
+        interp.update(&faces);
+        (faces, interp)
+    }
+
     fn grid() -> Grid {
         Grid {
             n: [5, 6, 7],
@@ -347,14 +360,8 @@ mod tests {
     #[test]
     fn sample_is_the_cell_value_at_the_centre_and_the_point_value_at_a_corner() {
         let g = grid();
-        let bc = BoundaryConditions::periodic();
+        let (faces, interp) = random_periodic_field(&g, 3);
         let l = PaddedLayout::new(g.n);
-        let mut state = 3;
-        let mut faces: [Vec<f64>; 3] =
-            std::array::from_fn(|_| (0..l.len).map(|_| lcg(&mut state) - 0.5).collect());
-        fill_velocity_ghosts(&l, &bc, &mut faces);
-        let mut interp = CellPointInterpolation::new(&g, &bc);
-        interp.update(&faces);
         let (i, j, k) = (2, 3, 4);
         let centre: [f64; 3] =
             std::array::from_fn(|d| g.origin[d] + ([i, j, k][d] as f64 + 0.5) * g.h[d]);
@@ -385,14 +392,8 @@ mod tests {
     #[test]
     fn interpolation_is_continuous_across_cell_faces_and_tetrahedra() {
         let g = grid();
-        let bc = BoundaryConditions::periodic();
-        let l = PaddedLayout::new(g.n);
+        let (_, interp) = random_periodic_field(&g, 11);
         let mut state = 11;
-        let mut faces: [Vec<f64>; 3] =
-            std::array::from_fn(|_| (0..l.len).map(|_| lcg(&mut state) - 0.5).collect());
-        fill_velocity_ghosts(&l, &bc, &mut faces);
-        let mut interp = CellPointInterpolation::new(&g, &bc);
-        interp.update(&faces);
         let eps = 1e-9;
         for _ in 0..2000 {
             let x: [f64; 3] = std::array::from_fn(|d| {
