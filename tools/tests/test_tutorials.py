@@ -16,6 +16,7 @@ Tolerances come from the discretisation, not from a previous run:
 """
 
 import math
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -33,7 +34,8 @@ TUTORIALS = ["cavity", "channel", "taylorGreen", "particleSettling"]
 def fsim():
     subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "fsimFoam"], cwd=ROOT,
                    check=True)
-    return ROOT / "target" / "release" / "fsimFoam"
+    target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+    return target / "release" / "fsimFoam"
 
 
 def copy_case(name: str, dest: Path) -> Path:
