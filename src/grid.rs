@@ -60,6 +60,33 @@ impl Grid {
     }
 }
 
+/// `⌊s⌋` without a libm call (exact for |s| < 2⁵³; the library `floor` is a call without
+/// SSE4.1, and the particle ↔ grid hot loops run it for every particle and step).
+#[inline(always)]
+pub(crate) fn fast_floor(s: f64) -> isize {
+    let i = s as isize;
+    i - isize::from((i as f64) > s)
+}
+
+/// `i mod n` in `[0, n)`, without a division for the usual `−n ≤ i < 2n` (periodic index
+/// wrapping in hot loops).
+#[inline]
+pub(crate) fn wrap_index(i: isize, n: isize) -> isize {
+    if i < 0 {
+        if i >= -n {
+            i + n
+        } else {
+            i.rem_euclid(n)
+        }
+    } else if i < n {
+        i
+    } else if i < 2 * n {
+        i - n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,5 +101,15 @@ mod tests {
         assert_eq!(g.cell_centre(0, 0, 0), [1.25, 0.5, 0.0]);
         assert_eq!(g.length(), [2.0, 3.0, 4.0]);
         assert_eq!(g.cell_volume(), 1.0);
+    }
+
+    #[test]
+    fn fast_floor_and_wrap_index_match_the_library() {
+        for s in [-2.5, -2.0, -0.3, 0.0, 0.7, 1.0, 3.999] {
+            assert_eq!(fast_floor(s), s.floor() as isize, "{s}");
+        }
+        for i in -25..25 {
+            assert_eq!(wrap_index(i, 7), i.rem_euclid(7), "{i}");
+        }
     }
 }

@@ -2,7 +2,7 @@
 //! Lagrange interpolation (trilinear or tricubic), periodic images wrapped.
 
 use crate::fluid::{BoundaryConditions, FaceCondition, FluidSolver, PaddedLayout};
-use crate::grid::Grid;
+use crate::grid::{fast_floor, wrap_index, Grid};
 
 /// Interpolation of grid samples to a point (paper eq. 6 evaluates the stress at the
 /// quadrangles' corners, between grid nodes).
@@ -400,13 +400,13 @@ impl Placement {
                 let axis = &mut placement.axes[d][lattice];
                 axis.t = faces - 0.5 * lattice as f64;
                 // The stencil's first node: the point sits between its two middle nodes.
-                let first = floor(axis.t) - half;
+                let first = fast_floor(axis.t) - half;
                 axis.frac = axis.t - first as f64;
                 if interpolation == Interpolation::Cubic {
                     interpolation.weights(axis.frac, &mut axis.w, &mut axis.dw);
                 }
                 axis.start = if view.periodic[d] {
-                    wrap(first, g.n[d] as isize)
+                    wrap_index(first, g.n[d] as isize)
                 } else {
                     first
                 };
@@ -414,31 +414,6 @@ impl Placement {
         }
         placement
     }
-}
-
-/// `i mod n` in `[0, n)`, without a division for the usual `−n ≤ i < 2n`.
-#[inline]
-fn wrap(i: isize, n: isize) -> isize {
-    if i < 0 {
-        if i >= -n {
-            i + n
-        } else {
-            i.rem_euclid(n)
-        }
-    } else if i < n {
-        i
-    } else if i < 2 * n {
-        i - n
-    } else {
-        i.rem_euclid(n)
-    }
-}
-
-/// `⌊t⌋` without a call into libm (the default target has no rounding instruction).
-#[inline]
-fn floor(t: f64) -> isize {
-    let i = t as isize;
-    i - isize::from(t < i as f64)
 }
 
 #[cfg(test)]

@@ -40,7 +40,7 @@
 
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
-use crate::grid::Grid;
+use crate::grid::{wrap_index, Grid};
 use rayon::prelude::*;
 
 /// A face inside a sphere: it moves with the sphere.
@@ -521,7 +521,7 @@ impl Lattice<'_> {
     #[inline]
     fn axis_slot(&self, d: usize, m: isize) -> Option<usize> {
         let md = if self.periodic[d] {
-            wrap(m, self.grid.n[d] as isize)
+            wrap_index(m, self.grid.n[d] as isize)
         } else {
             m
         };
@@ -605,24 +605,6 @@ impl Lattice<'_> {
             }
             r
         })
-    }
-}
-
-/// `i mod n` in `[0, n)`, without a division for the usual `−n ≤ i < 2n`.
-#[inline]
-fn wrap(i: isize, n: isize) -> isize {
-    if i < 0 {
-        if i >= -n {
-            i + n
-        } else {
-            i.rem_euclid(n)
-        }
-    } else if i < n {
-        i
-    } else if i < 2 * n {
-        i - n
-    } else {
-        i.rem_euclid(n)
     }
 }
 

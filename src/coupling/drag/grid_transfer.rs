@@ -17,7 +17,7 @@
 
 use super::drag_law_settings::Stencil;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
-use crate::grid::Grid;
+use crate::grid::{fast_floor, Grid};
 
 /// Reading or writing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -284,18 +284,6 @@ impl GridTransfer {
     }
 }
 
-/// `⌊s⌋` without a libm call (exact for |s| < 2⁵³; the library `floor` is a call without
-/// SSE4.1, and the hot loops run it for every particle and step).
-#[inline(always)]
-fn fast_floor(s: f64) -> isize {
-    let i = s as isize;
-    if (i as f64) > s {
-        i - 1
-    } else {
-        i
-    }
-}
-
 /// One particle's stencil on one sample set: the tensor product of two samples per axis
 /// (weights `w = w₀[a] w₁[b] w₂[c]`, eq. 14–15), the samples' padded index being
 /// `offset₀[a] + offset₁[b] + offset₂[c]`. Computed once per particle and step, it serves every
@@ -309,10 +297,10 @@ pub struct SampleStencil {
 }
 
 impl SampleStencil {
-    /// `Σ w f[i]` over the samples.
-    #[inline]
-    pub fn gather(&self, field: &[f64]) -> f64 {
-        let mut v = 0.0;
+    /// Calls `visit(i, w)` for each sample with a non-zero weight, `i` its padded index, in a
+    /// fixed order (x fastest).
+    #[inline(always)]
+    fn for_each_sample(&self, mut visit: impl FnMut(usize, f64)) {
         for c in 0..2 {
             for b in 0..2 {
                 let wbc = self.weight[1][b] * self.weight[2][c];
@@ -323,11 +311,18 @@ impl SampleStencil {
                 for a in 0..2 {
                     let w = self.weight[0][a] * wbc;
                     if w != 0.0 {
-                        v += w * field[self.offset[0][a] as usize + obc];
+                        visit(self.offset[0][a] as usize + obc, w);
                     }
                 }
             }
         }
+    }
+
+    /// `Σ w f[i]` over the samples.
+    #[inline]
+    pub fn gather(&self, field: &[f64]) -> f64 {
+        let mut v = 0.0;
+        self.for_each_sample(|i, w| v += w * field[i]);
         v
     }
 
@@ -335,21 +330,7 @@ impl SampleStencil {
     /// `target` holds).
     #[inline]
     pub fn scatter(&self, target: &mut [f64], base: usize, value: f64) {
-        for c in 0..2 {
-            for b in 0..2 {
-                let wbc = self.weight[1][b] * self.weight[2][c];
-                if wbc == 0.0 {
-                    continue;
-                }
-                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
-                for a in 0..2 {
-                    let w = self.weight[0][a] * wbc;
-                    if w != 0.0 {
-                        target[self.offset[0][a] as usize + obc - base] += w * value;
-                    }
-                }
-            }
-        }
+        self.for_each_sample(|i, w| target[i - base] += w * value);
     }
 
     /// `first[i − base] += w · a` and `second[i − base] += w · b` over the samples: two
@@ -364,23 +345,10 @@ impl SampleStencil {
         a_value: f64,
         b_value: f64,
     ) {
-        for c in 0..2 {
-            for b in 0..2 {
-                let wbc = self.weight[1][b] * self.weight[2][c];
-                if wbc == 0.0 {
-                    continue;
-                }
-                let obc = (self.offset[1][b] + self.offset[2][c]) as usize;
-                for a in 0..2 {
-                    let w = self.weight[0][a] * wbc;
-                    if w != 0.0 {
-                        let i = self.offset[0][a] as usize + obc - base;
-                        first[i] += w * a_value;
-                        second[i] += w * b_value;
-                    }
-                }
-            }
-        }
+        self.for_each_sample(|i, w| {
+            first[i - base] += w * a_value;
+            second[i - base] += w * b_value;
+        });
     }
 
     /// The padded indices `lo..hi` the samples can touch.
@@ -634,13 +602,6 @@ mod tests {
                     assert_eq!(samples_of(&cell), r, "cell at {x:?}");
                 }
             }
-        }
-    }
-
-    #[test]
-    fn fast_floor_matches_floor() {
-        for s in [-2.5, -2.0, -0.3, 0.0, 0.7, 1.0, 3.999] {
-            assert_eq!(fast_floor(s), s.floor() as isize, "{s}");
         }
     }
 
