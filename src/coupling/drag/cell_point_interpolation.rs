@@ -39,12 +39,10 @@ pub struct CellPointInterpolation {
     layout: PaddedLayout,
     periodic: [bool; 3],
     empty: [bool; 3],
-    /// Cell-centred velocity per component on the padded layout (ghost cells included where
-    /// their faces exist).
-    cell: [Vec<f64>; 3],
-    /// The interior cells' velocity, `[u, v, w]` per cell on the padded layout, and the point
-    /// velocities at the `(n₀+1)(n₁+1)(n₂+1)` points, x fastest: one read per sample vertex.
-    cell_vectors: Vec<[f64; 3]>,
+    /// The cell-centred velocity `[u, v, w]` per padded cell (ghost cells included where a
+    /// component's faces exist), and the point velocities at the `(n₀+1)(n₁+1)(n₂+1)` points,
+    /// x fastest: one read per sample vertex.
+    cell: Vec<[f64; 3]>,
     point: Vec<[f64; 3]>,
 }
 
@@ -56,8 +54,7 @@ impl CellPointInterpolation {
             grid: grid.clone(),
             periodic: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Periodic)),
             empty: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Empty)),
-            cell: [(); 3].map(|_| vec![0.0; layout.len]),
-            cell_vectors: vec![[0.0; 3]; layout.len],
+            cell: vec![[0.0; 3]; layout.len],
             point: vec![[0.0; 3]; points],
             layout,
         }
@@ -75,7 +72,7 @@ impl CellPointInterpolation {
     pub fn update(&mut self, velocity: &[Vec<f64>; 3]) {
         let l = &self.layout;
         for c in 0..3 {
-            let (u, cell) = (&velocity[c], &mut self.cell[c]);
+            let (u, cell) = (&velocity[c], &mut self.cell);
             let s = l.stride[c];
             // Every padded cell whose high face along c exists: slots 0..=n_c along c.
             let mut hi = l.dims;
@@ -84,7 +81,7 @@ impl CellPointInterpolation {
                 for j in 0..hi[1] {
                     for i in 0..hi[0] {
                         let f = l.index(i, j, k);
-                        cell[f] = if self.empty[c] {
+                        cell[f][c] = if self.empty[c] {
                             0.0
                         } else {
                             0.5 * (u[f] + u[f + s])
@@ -92,10 +89,6 @@ impl CellPointInterpolation {
                     }
                 }
             }
-        }
-        let (cell, vectors) = (&self.cell, &mut self.cell_vectors);
-        for (f, v) in vectors.iter_mut().enumerate() {
-            *v = [cell[0][f], cell[1][f], cell[2][f]];
         }
         let n = self.grid.n;
         let plane = (n[0] + 1) * (n[1] + 1);
@@ -139,13 +132,13 @@ impl CellPointInterpolation {
         let l = &self.layout;
         let around: [(usize, usize, Option<bool>); 3] =
             std::array::from_fn(|d| self.cells_around(d, p[d]));
-        let cell = &self.cell[c];
+        let cell = &self.cell;
         if around.iter().all(|a| a.2.is_none()) {
             let mut sum = 0.0;
             for k in [around[2].0, around[2].1] {
                 for j in [around[1].0, around[1].1] {
                     for i in [around[0].0, around[0].1] {
-                        sum += cell[l.index(i, j, k)];
+                        sum += cell[l.index(i, j, k)][c];
                     }
                 }
             }
@@ -172,9 +165,9 @@ impl CellPointInterpolation {
                         velocity[c][l.index(slot[0], slot[1], slot[2])]
                     } else {
                         slot[d] = if high { l.n[d] } else { 1 };
-                        let inside = cell[l.index(slot[0], slot[1], slot[2])];
+                        let inside = cell[l.index(slot[0], slot[1], slot[2])][c];
                         slot[d] = if high { l.n[d] + 1 } else { 0 };
-                        0.5 * (inside + cell[l.index(slot[0], slot[1], slot[2])])
+                        0.5 * (inside + cell[l.index(slot[0], slot[1], slot[2])][c])
                     };
                     sum += w * value;
                     weights += w;
@@ -252,7 +245,7 @@ impl CellPointInterpolation {
             }
         }
         let centre = self.layout.index(cell[0] + 1, cell[1] + 1, cell[2] + 1);
-        let (uc, p) = (self.cell_vectors[centre], &self.point);
+        let (uc, p) = (self.cell[centre], &self.point);
         let (p0, p1, p2) = (p[corners[0]], p[corners[1]], p[corners[2]]);
         let [w0, w1, w2] = corner_weight;
         std::array::from_fn(|c| centre_weight * uc[c] + w0 * p0[c] + w1 * p1[c] + w2 * p2[c])
