@@ -143,18 +143,11 @@ fn unknown_drag_model_is_named_with_file_and_line() {
         return;
     };
     // fsimFoam: exit 2, the place, nothing written
-    let before = listing(&case);
-    let out = fsim(&case, &[]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains(
-            "fsimFoam: error: constant/kinematicCloudProperties:66:9: unknown drag model \
-             'ErgunWenYuDarg'"
-        ),
-        "{stderr}"
+    refused(
+        &case,
+        "fsimFoam: error: constant/kinematicCloudProperties:66:9: unknown drag model \
+         'ErgunWenYuDarg'",
     );
-    assert_eq!(listing(&case), before);
     let case = Case::load(&case).unwrap_or_else(|e| panic!("{}", e.report()));
     let e = Cloud::from_case(&case).unwrap_err();
     assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
@@ -182,18 +175,11 @@ fn turbulence_model_is_refused_before_anything_is_written() {
     }) else {
         return;
     };
-    let before = listing(&case);
-    let out = fsim(&case, &[]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains(
-            "fsimFoam: error: constant/turbulenceProperties.air:18:17: simulationType RAS: \
-             fsim's fluid is laminar"
-        ),
-        "{stderr}"
+    let out = refused(
+        &case,
+        "fsimFoam: error: constant/turbulenceProperties.air:18:17: simulationType RAS: \
+         fsim's fluid is laminar",
     );
-    assert_eq!(listing(&case), before);
     assert!(out.stdout.is_empty());
 }
 
@@ -209,15 +195,7 @@ fn boundary_conditions_fsim_cannot_honour_are_refused() {
     }) else {
         return;
     };
-    let before = listing(&case);
-    let out = fsim(&case, &[]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("fsim cannot honour U 'interstitialInletVelocity'"),
-        "{stderr}"
-    );
-    assert_eq!(listing(&case), before);
+    refused(&case, "fsim cannot honour U 'interstitialInletVelocity'");
     let loaded = Case::load(&case).unwrap_or_else(|e| panic!("{}", e.report()));
     let e = boundary_conditions(&loaded).unwrap_err().to_string();
     assert!(

@@ -108,3 +108,16 @@ pub fn listing(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// Runs fsimFoam on `case`, which must refuse it as bad input before writing anything: exit
+/// code 2, `expected` in the standard error, the case directory unchanged. Returns the output.
+#[allow(dead_code)] // not every test binary that includes this module refuses a case
+pub fn refused(case: &Path, expected: &str) -> Output {
+    let before = listing(case);
+    let out = fsim(case, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(expected), "{stderr}");
+    assert_eq!(listing(case), before, "the refused run wrote into the case");
+    out
+}
