@@ -167,23 +167,27 @@ fn settling_sphere_ratio(scheme: TimeScheme, dt: f64, steps: usize, rho_p: f64) 
     out
 }
 
+/// An explorer's setting from the environment variable `name`, else `default`.
+fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name).map_or(default, |s| {
+        s.parse()
+            .unwrap_or_else(|_| panic!("{name}={s}: not a value"))
+    })
+}
+
+/// The explorers' scheme: `SCHEME` by its case name, else RK3CN.
+fn explore_scheme() -> TimeScheme {
+    std::env::var("SCHEME")
+        .ok()
+        .and_then(|s| TimeScheme::from_name(&s))
+        .unwrap_or(TimeScheme::RK3CN)
+}
+
 #[test]
 #[ignore]
 fn explore_settling_sphere() {
-    let scheme = match std::env::var("SCHEME").as_deref() {
-        Ok("RK3") => TimeScheme::RK3,
-        Ok("Euler") => TimeScheme::Euler,
-        _ => TimeScheme::RK3CN,
-    };
-    let dt: f64 = std::env::var("DT")
-        .map(|s| s.parse().unwrap())
-        .unwrap_or(1e-4);
-    let steps: usize = std::env::var("STEPS")
-        .map(|s| s.parse().unwrap())
-        .unwrap_or(100);
-    let rho_p: f64 = std::env::var("RHOP")
-        .map(|s| s.parse().unwrap())
-        .unwrap_or(2000.0);
+    let (scheme, dt, steps) = (explore_scheme(), env_or("DT", 1e-4), env_or("STEPS", 100));
+    let rho_p = env_or("RHOP", 2000.0);
     let phi = 4.0 / 3.0 * std::f64::consts::PI * 512.0 / 36f64.powi(3);
     eprintln!("phi {phi}, 1/K = {}", 1.0 / sangani_acrivos_k(phi));
     settling_sphere_ratio(scheme, dt, steps, rho_p);
@@ -194,17 +198,7 @@ fn explore_settling_sphere() {
 #[test]
 #[ignore]
 fn explore_fixed_sphere_momentum_balance() {
-    let scheme = match std::env::var("SCHEME").as_deref() {
-        Ok("RK3") => TimeScheme::RK3,
-        Ok("Euler") => TimeScheme::Euler,
-        _ => TimeScheme::RK3CN,
-    };
-    let dt: f64 = std::env::var("DT")
-        .map(|s| s.parse().unwrap())
-        .unwrap_or(1e-4);
-    let steps: usize = std::env::var("STEPS")
-        .map(|s| s.parse().unwrap())
-        .unwrap_or(100);
+    let (scheme, dt, steps) = (explore_scheme(), env_or("DT", 1e-4), env_or("STEPS", 100));
     let (n, h) = (36, 1.25e-4);
     let d = 16.0 * h;
     let centre = [18.0 * h + 0.3 * h, 18.0 * h, 18.0 * h - 0.2 * h];
