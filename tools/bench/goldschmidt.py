@@ -68,7 +68,7 @@ def nudge_face_particles(constant, dx):
     lateral flow in both solvers whose details differ (README)."""
     gz = os.path.join(constant, "kinematicCloudPositions.gz")
     text = gzip.open(gz, "rt").read()
-    text = re.sub(r"^\(0\.0000 ", f"({dx:.4f} ", text, flags=re.M)
+    text = re.sub(r"^\(0\.0000 ", f"({dx!r} ", text, flags=re.M)
     os.remove(gz)
     with open(os.path.join(constant, "kinematicCloudPositions"), "w") as f:
         f.write(text)
