@@ -24,6 +24,11 @@ run-to-run scatter of each mean (the standard error of the time average, from bl
 n is reported with its standard error, and also with V_0 held at the Stokes velocity.
 Results go to CSV (one row per phi and particle count) and to stdout.
 
+Each run is also compared with the Rotne-Prager-Yamakawa mobility of the same spheres in the
+same periodic box (tools/periodic_rpy.py, far-field hydrodynamics without lubrication):
+`rpy_ratio` is its mean settling velocity over the Stokes velocity, `rpy_fixed_ratio` the
+fixed array's 1/F, and the Richardson-Zaki fit is repeated on the RPY values.
+
 A periodic box of N spheres settles slower than an unbounded suspension: the periodic images
 add Hasimoto's lattice hindrance, of order 1.76 (phi/N)^{1/3} of the Stokes velocity (0.16 at
 phi = 0.02, N = 27). With several counts (`--particles 27 64`) each phi is run at every N and
@@ -46,6 +51,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import direct_cases  # noqa: E402
+import periodic_rpy  # noqa: E402
 
 # A liquid; the viscosity follows from the Reynolds number asked for
 RHO_F = 1000.0
@@ -95,9 +101,11 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
     t = m["Time"]
     late = t >= 0.5 * t[-1]
     vm, err = block_mean(m["settlingVelocity"][late])
+    rpy = periodic_rpy.settling(centres, d / 2, n * h, phi_actual)
     return dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
                 v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
-                reynolds=vm * d / nu, end_time=end)
+                reynolds=vm * d / nu, end_time=end,
+                rpy_ratio=rpy["mobility"], rpy_fixed_ratio=rpy["resistance"])
 
 
 def resolution(phi, cells_per_radius, gap_cells):
@@ -125,6 +133,10 @@ def extrapolate(runs):
     out = dict(runs[-1])
     out.update(phi=float(np.mean([r["phi"] for r in runs])), particles=0, v_m=float(coef[0]),
                v_m_error=float(math.sqrt(cov[0, 0])), ratio=float(coef[0] / runs[-1]["stokes"]))
+    # the RPY reference of the same configurations, extrapolated alike (unweighted)
+    for key in ["rpy_ratio", "rpy_fixed_ratio"]:
+        rpy = np.linalg.lstsq(A, np.array([r[key] for r in runs]), rcond=None)[0]
+        out[key] = float(rpy[0])
     return out
 
 
@@ -184,7 +196,8 @@ def main():
                             a.run_length, a.threads, a.seed)
                 runs.append(r)
                 print(f"phi {r['phi']:.4f}, N {count}: v_m = {r['v_m']:.4e} +- "
-                      f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f}, "
+                      f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
+                      f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
                       f"Re = {r['reynolds']:.3f}, {r['cells']} cells", flush=True)
     finally:
         if not a.keep:
@@ -198,7 +211,7 @@ def main():
                 for i in range(0, len(runs), len(a.particles))]
         for r in rows:
             print(f"phi {r['phi']:.4f}, N -> infinity: v_m/V_Stokes = {r['ratio']:.4f} +- "
-                  f"{r['v_m_error'] / r['stokes']:.4f}")
+                  f"{r['v_m_error'] / r['stokes']:.4f} (RPY: {r['rpy_ratio']:.4f})")
     else:
         rows = runs
     if len(rows) >= 2:
@@ -206,6 +219,10 @@ def main():
         n1, sn1 = fit_fixed_v0(rows)
         print(f"Richardson-Zaki fit: n = {n:.2f} +- {sn:.2f} (V_0 = {v0:.4e} m/s, "
               f"{v0 / rows[0]['stokes']:.3f} of Stokes); with V_0 = Stokes: n = {n1:.2f} +- {sn1:.2f}")
+        rpy_rows = [dict(r, v_m=r["rpy_ratio"] * r["stokes"], v_m_error=0.0) for r in rows]
+        n_rpy, sn_rpy, _ = fit(rpy_rows)
+        print(f"the same fit to the RPY reference of the same spheres: n = {n_rpy:.2f} +- "
+              f"{sn_rpy:.2f}")
     print(f"wrote {a.csv}")
 
 

@@ -16,7 +16,6 @@ Tolerances come from the discretisation, not from a previous run:
 """
 
 import math
-import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -28,14 +27,6 @@ import vtk_checks
 
 ROOT = Path(__file__).resolve().parents[2]
 TUTORIALS = ["cavity", "channel", "taylorGreen", "particleSettling"]
-
-
-@pytest.fixture(scope="session")
-def fsim():
-    subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "fsimFoam"], cwd=ROOT,
-                   check=True)
-    target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
-    return target / "release" / "fsimFoam"
 
 
 def copy_case(name: str, dest: Path) -> Path:

@@ -1,0 +1,28 @@
+"""The periodic Rotne-Prager-Yamakawa reference of tools/periodic_rpy.py."""
+import math
+
+import numpy as np
+
+import direct_cases
+import periodic_rpy
+
+
+def test_single_sphere_follows_hasimoto():
+    # Hasimoto (1959) / Sangani & Acrivos (1982): 1/K = 1 - 1.7601 phi^(1/3) + phi - 1.5593 phi^2
+    # for a simple cubic array; RPY carries the first three terms exactly.
+    for phi in [1e-3, 1e-2]:
+        length = (4 / 3 * math.pi / phi) ** (1 / 3)
+        m = periodic_rpy.mobility_matrix([[0.1, 0.2, 0.3]], 1.0, length)
+        expected = 1 - 1.7601 * phi ** (1 / 3) + phi
+        assert np.allclose(np.diag(m), expected, atol=2e-4 + 2 * phi ** 2)
+        assert np.abs(m - np.diag(np.diag(m))).max() < 1e-12
+
+
+def test_free_suspension_settles_at_least_as_fast_as_the_fixed_array():
+    # <M> <M^-1> >= 1 for a symmetric positive definite M (Cauchy-Schwarz): equal forces move
+    # the spheres faster on average than one velocity with its mean force.
+    phi, count = 0.1, 27
+    length = (count * 4 / 3 * math.pi / phi) ** (1 / 3)
+    centres = direct_cases.periodic_packing([length] * 3, 2.0, count, seed=2, min_gap=0.1)
+    s = periodic_rpy.settling(centres, 1.0, length, phi)
+    assert s["resistance"] < s["mobility"] < 1 - phi
