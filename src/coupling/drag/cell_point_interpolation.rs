@@ -44,20 +44,120 @@ pub struct CellPointInterpolation {
     /// x fastest: one read per sample vertex.
     cell: Vec<[f64; 3]>,
     point: Vec<[f64; 3]>,
+    /// The boundary points' means as fixed weighted terms (they depend on the grid only):
+    /// per point and component `3 p + c`, the range `term_start[3p + c]..term_start[3p + c + 1]`
+    /// of `terms` and the weights' sum; an empty range marks an interior point.
+    term_start: Vec<u32>,
+    terms: Vec<PointTerm>,
+    term_weight: Vec<f64>,
 }
+
+/// One boundary face in a boundary point's inverse-distance mean: the staggered face
+/// `velocity[c][a]` (`b == NORMAL_FACE`), or the mean of the cell-centred values at padded
+/// cells `a` and `b` (a tangential component: the cell and its ghost).
+#[derive(Clone, Copy, Debug)]
+struct PointTerm {
+    a: u32,
+    b: u32,
+    w: f64,
+}
+
+const NORMAL_FACE: u32 = u32::MAX;
 
 impl CellPointInterpolation {
     pub fn new(grid: &Grid, bc: &BoundaryConditions) -> Self {
         let layout = PaddedLayout::new(grid.n);
         let points = (grid.n[0] + 1) * (grid.n[1] + 1) * (grid.n[2] + 1);
-        CellPointInterpolation {
+        let mut this = CellPointInterpolation {
             grid: grid.clone(),
             periodic: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Periodic)),
             empty: std::array::from_fn(|d| matches!(bc.face(d, 0), FaceCondition::Empty)),
             cell: vec![[0.0; 3]; layout.len],
             point: vec![[0.0; 3]; points],
             layout,
+            term_start: Vec::new(),
+            terms: Vec::new(),
+            term_weight: Vec::new(),
+        };
+        this.build_boundary_terms();
+        this
+    }
+
+    /// Fills `terms`: for every boundary point and component, the boundary faces of its
+    /// inverse-distance mean in the order [`Self::point_value`] sums them (so the sums are
+    /// the same bit for bit).
+    fn build_boundary_terms(&mut self) {
+        let n = self.grid.n;
+        let points = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
+        let mut start = Vec::with_capacity(3 * points + 1);
+        let mut terms = Vec::new();
+        let mut weight = Vec::with_capacity(3 * points);
+        start.push(0u32);
+        for k in 0..=n[2] {
+            for j in 0..=n[1] {
+                for i in 0..=n[0] {
+                    for c in 0..3 {
+                        let sum = self.boundary_terms([i, j, k], c, &mut |t| terms.push(t));
+                        weight.push(sum);
+                        start.push(u32::try_from(terms.len()).expect("fewer than 2³² terms"));
+                    }
+                }
+            }
         }
+        terms.shrink_to_fit();
+        self.term_start = start;
+        self.terms = terms;
+        self.term_weight = weight;
+    }
+
+    /// Hands the boundary faces of point `p`'s mean for component `c` to `push` and returns
+    /// the sum of their weights (none and 0 for an interior point).
+    fn boundary_terms(&self, p: [usize; 3], c: usize, push: &mut dyn FnMut(PointTerm)) -> f64 {
+        let l = &self.layout;
+        let around: [(usize, usize, Option<bool>); 3] =
+            std::array::from_fn(|d| self.cells_around(d, p[d]));
+        let index = |slot: [usize; 3]| {
+            u32::try_from(l.index(slot[0], slot[1], slot[2])).expect("grid below 2³² slots")
+        };
+        let h = self.grid.h;
+        let mut weights = 0.0;
+        for d in 0..3 {
+            let Some(high) = around[d].2 else {
+                continue;
+            };
+            let (a, b) = ((d + 1) % 3, (d + 2) % 3);
+            let w = 1.0 / (0.25 * (h[a] * h[a] + h[b] * h[b])).sqrt();
+            let faces_a = distinct(around[a].0, around[a].1);
+            let faces_b = distinct(around[b].0, around[b].1);
+            for &sa in faces_a.iter().flatten() {
+                for &sb in faces_b.iter().flatten() {
+                    let mut slot = [0usize; 3];
+                    slot[a] = sa;
+                    slot[b] = sb;
+                    let term = if c == d {
+                        // the staggered face on the boundary plane
+                        slot[d] = if high { l.n[d] + 1 } else { 1 };
+                        PointTerm {
+                            a: index(slot),
+                            b: NORMAL_FACE,
+                            w,
+                        }
+                    } else {
+                        slot[d] = if high { l.n[d] } else { 1 };
+                        let inside = index(slot);
+                        slot[d] = if high { l.n[d] + 1 } else { 0 };
+                        PointTerm {
+                            a: inside,
+                            b: index(slot),
+                            w,
+                        }
+                    };
+                    push(term);
+                    weights += w;
+                }
+            }
+        }
+        weights
     }
 
     /// Linear index of point `(i, j, k)`, `0 ≤ i ≤ n₀`.
@@ -127,13 +227,18 @@ impl CellPointInterpolation {
         }
     }
 
-    /// The velocity component `c` at point `p` (module docs).
+    /// The velocity component `c` at point `p` (module docs): the mean of the 8 cells around
+    /// an interior point, the precomputed boundary-face mean at a boundary point.
     fn point_value(&self, c: usize, p: [usize; 3], velocity: &[Vec<f64>; 3]) -> f64 {
-        let l = &self.layout;
-        let around: [(usize, usize, Option<bool>); 3] =
-            std::array::from_fn(|d| self.cells_around(d, p[d]));
         let cell = &self.cell;
-        if around.iter().all(|a| a.2.is_none()) {
+        let q = 3 * self.point_index(p[0], p[1], p[2]) + c;
+        let (first, last) = (self.term_start[q] as usize, self.term_start[q + 1] as usize);
+        if first == last {
+            let l = &self.layout;
+            let around: [(usize, usize); 3] = std::array::from_fn(|d| {
+                let (below, above, _) = self.cells_around(d, p[d]);
+                (below, above)
+            });
             let mut sum = 0.0;
             for k in [around[2].0, around[2].1] {
                 for j in [around[1].0, around[1].1] {
@@ -144,37 +249,16 @@ impl CellPointInterpolation {
             }
             return sum / 8.0;
         }
-        let h = self.grid.h;
-        let (mut sum, mut weights) = (0.0, 0.0);
-        for d in 0..3 {
-            let Some(high) = around[d].2 else {
-                continue;
+        let mut sum = 0.0;
+        for t in &self.terms[first..last] {
+            let value = if t.b == NORMAL_FACE {
+                velocity[c][t.a as usize]
+            } else {
+                0.5 * (cell[t.a as usize][c] + cell[t.b as usize][c])
             };
-            let (a, b) = ((d + 1) % 3, (d + 2) % 3);
-            let w = 1.0 / (0.25 * (h[a] * h[a] + h[b] * h[b])).sqrt();
-            let faces_a = distinct(around[a].0, around[a].1);
-            let faces_b = distinct(around[b].0, around[b].1);
-            for &sa in faces_a.iter().flatten() {
-                for &sb in faces_b.iter().flatten() {
-                    let mut slot = [0usize; 3];
-                    slot[a] = sa;
-                    slot[b] = sb;
-                    let value = if c == d {
-                        // the staggered face on the boundary plane
-                        slot[d] = if high { l.n[d] + 1 } else { 1 };
-                        velocity[c][l.index(slot[0], slot[1], slot[2])]
-                    } else {
-                        slot[d] = if high { l.n[d] } else { 1 };
-                        let inside = cell[l.index(slot[0], slot[1], slot[2])][c];
-                        slot[d] = if high { l.n[d] + 1 } else { 0 };
-                        0.5 * (inside + cell[l.index(slot[0], slot[1], slot[2])][c])
-                    };
-                    sum += w * value;
-                    weights += w;
-                }
-            }
+            sum += t.w * value;
         }
-        sum / weights
+        sum / self.term_weight[q]
     }
 
     /// The velocity at `x` (clamped into the box).
