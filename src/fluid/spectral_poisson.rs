@@ -62,6 +62,10 @@ enum AxisTransform {
         inverse: Arc<dyn ComplexToReal<f64>>,
     },
     Cosine2(Arc<dyn TransformType2And3<f64>>),
+    /// DCT-II/III of length 2 (two cells between walls, as in pseudo-2-D cases), done in
+    /// place with rustdct's own butterfly arithmetic (bit-identical) but without a library
+    /// call per line: the x pass of such a grid is thousands of two-point lines.
+    Cosine2Pair,
     Sine2(Arc<dyn TransformType2And3<f64>>),
     Cosine4(Arc<dyn TransformType4<f64>>),
     Sine1(Arc<dyn Dst1<f64>>),
@@ -107,6 +111,7 @@ impl AxisTransform {
             AxisKind::Bounded { low, high } => {
                 let mut planner = DctPlanner::<f64>::new();
                 let t = match (low, high) {
+                    (Neumann, Neumann) if n == 2 => AxisTransform::Cosine2Pair,
                     (Neumann, Neumann) => AxisTransform::Cosine2(planner.plan_dct2(n)),
                     (Dirichlet, Dirichlet) => AxisTransform::Sine2(planner.plan_dst2(n)),
                     (Neumann, Dirichlet) => AxisTransform::Cosine4(planner.plan_dct4(n)),
@@ -119,7 +124,7 @@ impl AxisTransform {
 
     fn scratch_lens(&self) -> (usize, usize) {
         match self {
-            AxisTransform::Identity => (0, 0),
+            AxisTransform::Identity | AxisTransform::Cosine2Pair => (0, 0),
             AxisTransform::Fourier { forward, inverse } => {
                 (forward.get_scratch_len().max(inverse.get_scratch_len()), 0)
             }
@@ -132,6 +137,11 @@ impl AxisTransform {
     fn forward(&self, line: &mut [f64], w: &mut LineWork, axis: usize) {
         match self {
             AxisTransform::Identity => {}
+            AxisTransform::Cosine2Pair => {
+                let sum = line[0] + line[1];
+                line[1] = (line[0] - line[1]) * std::f64::consts::FRAC_1_SQRT_2;
+                line[0] = sum;
+            }
             AxisTransform::Fourier { forward, .. } => {
                 let n = line.len();
                 let real = &mut w.real[..n];
@@ -174,6 +184,12 @@ impl AxisTransform {
     fn inverse(&self, line: &mut [f64], w: &mut LineWork, axis: usize) {
         match self {
             AxisTransform::Identity => {}
+            AxisTransform::Cosine2Pair => {
+                let half_0 = line[0] * 0.5;
+                let frac_1 = line[1] * std::f64::consts::FRAC_1_SQRT_2;
+                line[0] = half_0 + frac_1;
+                line[1] = half_0 - frac_1;
+            }
             AxisTransform::Fourier { inverse, .. } => {
                 let n = line.len();
                 let spec = &mut w.spectrum[..n / 2 + 1];
@@ -558,6 +574,49 @@ mod tests {
         let err: Vec<f64> = lphi.iter().zip(&f).map(|(a, b)| a - b).collect();
         let rel = max_abs(&err) / max_abs(&f);
         assert!(rel < 1e-12, "n={n:?} axes={axes:?}: residual {rel:e}");
+    }
+
+    /// The in-place two-point DCT-II/III gives rustdct's planned transform bit for bit, and a
+    /// two-cell walled axis is solved exactly.
+    #[test]
+    fn two_point_cosine_pair_is_the_library_transform() {
+        let planned = AxisTransform::Cosine2(DctPlanner::<f64>::new().plan_dct2(2));
+        let (pair, scale) = AxisTransform::new(
+            2,
+            AxisKind::Bounded {
+                low: Neumann,
+                high: Neumann,
+            },
+        );
+        assert!(matches!(pair, AxisTransform::Cosine2Pair) && scale == 1.0);
+        let scratch = planned.scratch_lens().1;
+        let mut w = LineWork {
+            lines: Vec::new(),
+            real: Vec::new(),
+            spectrum: Vec::new(),
+            complex_scratch: Vec::new(),
+            real_scratch: [vec![0.0; scratch], Vec::new(), Vec::new()],
+        };
+        for (k, pair_of) in random_field(64, 7).chunks(2).enumerate() {
+            let (mut a, mut b) = ([pair_of[0], pair_of[1]], [pair_of[0], pair_of[1]]);
+            if k % 2 == 0 {
+                planned.forward(&mut a, &mut w, 0);
+                pair.forward(&mut b, &mut w, 0);
+            } else {
+                planned.inverse(&mut a, &mut w, 0);
+                pair.inverse(&mut b, &mut w, 0);
+            }
+            assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+        }
+        let walls = AxisKind::Bounded {
+            low: Neumann,
+            high: Neumann,
+        };
+        let top = AxisKind::Bounded {
+            low: Neumann,
+            high: Dirichlet,
+        };
+        check_exact([2, 6, 9], [walls, walls, top]);
     }
 
     #[test]
