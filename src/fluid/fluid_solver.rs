@@ -96,6 +96,8 @@ pub struct FluidSolver {
     settings: FluidSettings,
     u: [Vec<f64>; 3],
     p: Vec<f64>,
+    /// The explicit schemes' tendency register, and `RK3CN`'s `N` of the last stage. Empty
+    /// with `EulerCN`, which keeps nothing between stages (three fields fewer in memory).
     q: [Vec<f64>; 3],
     source: Option<[Vec<f64>; 3]>,
     /// Optional per-cell mass source of the projection (see [`PredictedVelocity`]).
@@ -134,7 +136,7 @@ impl FluidSolver {
             std::array::from_fn(|c| std::array::from_fn(|d| bc.corrected_range(grid.n, c, d)));
         let mut s = FluidSolver {
             u: [zeros(), zeros(), zeros()],
-            q: [zeros(), zeros(), zeros()],
+            q: Default::default(), // set_scheme allocates it when the scheme needs it
             p: vec![0.0; grid.cell_count()],
             source: None,
             mass_source: None,
@@ -190,6 +192,13 @@ impl FluidSolver {
             }
         } else {
             self.implicit = None;
+        }
+        if scheme.keeps_tendency() {
+            if self.q[0].is_empty() {
+                self.q = std::array::from_fn(|_| vec![0.0; self.layout.len]);
+            }
+        } else {
+            self.q = Default::default();
         }
         self.settings.scheme = scheme;
         Ok(())
@@ -333,6 +342,12 @@ impl FluidSolver {
         if let Some(d) = &self.drive {
             force[d.direction] += d.gradient;
         }
+        // The tendency F goes through `q`; a scheme without it lends the space for the
+        // moment (outside the time loop).
+        let borrowed = self.q[0].is_empty();
+        if borrowed {
+            self.q = std::array::from_fn(|_| vec![0.0; self.layout.len]);
+        }
         for qc in self.q.iter_mut() {
             qc.iter_mut().for_each(|x| *x = 0.0);
         }
@@ -361,6 +376,9 @@ impl FluidSolver {
             1.0,
         );
         self.poisson.solve(&mut self.p);
+        if borrowed {
+            self.q = Default::default();
+        }
     }
 
     /// Advances by `dt` with the configured scheme.

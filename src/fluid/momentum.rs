@@ -271,47 +271,66 @@ pub(crate) fn semi_implicit_rhs(
         let source = t.source.map(|s| &s[c][..]);
         let (k0, k1) = r[2];
         let g = tau / t.h[c];
-        rhs[c]
-            .par_chunks_mut(m0 * m1)
-            .zip(q[c][k0 * plane..(k1 + 1) * plane].par_chunks_mut(plane))
-            .enumerate()
-            .for_each(|(kk, (out, qp))| {
-                let k = kk + k0;
-                for (jj, j) in (r[1].0..=r[1].1).enumerate() {
-                    let row = j * d0 + r[0].0;
-                    let st = RowStencil::new(u, layout, t.h, c, k * plane + row, m0);
-                    let src = source.map(|s| &s[k * plane + row..][..m0]);
-                    let o = &mut out[jj * m0..(jj + 1) * m0];
-                    let qrow = &mut qp[row..row + m0];
-                    // Pressure on both sides of face i: cells i−1 and i along c, wrapping at
-                    // the first face of a periodic direction (outlets are not allowed here).
-                    let hi_row = row_of(j, k);
-                    let lo_row = match c {
-                        1 => row_of(if j >= 2 { j - 1 } else { n[1] }, k),
-                        2 => row_of(j, if k >= 2 { k - 1 } else { n[2] }),
-                        _ => hi_row,
+        // `N` is kept for the next stage only where `q` exists (not with `EulerCN`, whose one
+        // stage has ζ = 0).
+        assert!(
+            zeta == 0.0 || !q[c].is_empty(),
+            "ζ ≠ 0 needs the last stage's N"
+        );
+        let plane_rows = |kk: usize, out: &mut [f64], mut qp: Option<&mut [f64]>| {
+            let k = kk + k0;
+            for (jj, j) in (r[1].0..=r[1].1).enumerate() {
+                let row = j * d0 + r[0].0;
+                let st = RowStencil::new(u, layout, t.h, c, k * plane + row, m0);
+                let src = source.map(|s| &s[k * plane + row..][..m0]);
+                let o = &mut out[jj * m0..(jj + 1) * m0];
+                let mut qrow = qp.as_deref_mut().map(|q| &mut q[row..row + m0]);
+                // Pressure on both sides of face i: cells i−1 and i along c, wrapping at
+                // the first face of a periodic direction (outlets are not allowed here).
+                let hi_row = row_of(j, k);
+                let lo_row = match c {
+                    1 => row_of(if j >= 2 { j - 1 } else { n[1] }, k),
+                    2 => row_of(j, if k >= 2 { k - 1 } else { n[2] }),
+                    _ => hi_row,
+                };
+                let grad = |i: usize| -> f64 {
+                    let pi = r[0].0 + i; // padded x index
+                    let hi = pressure[hi_row + pi - 1];
+                    let lo = if c != 0 {
+                        pressure[lo_row + pi - 1]
+                    } else if pi >= 2 {
+                        pressure[hi_row + pi - 2]
+                    } else {
+                        pressure[hi_row + n[0] - 1]
                     };
-                    let grad = |i: usize| -> f64 {
-                        let pi = r[0].0 + i; // padded x index
-                        let hi = pressure[hi_row + pi - 1];
-                        let lo = if c != 0 {
-                            pressure[lo_row + pi - 1]
-                        } else if pi >= 2 {
-                            pressure[hi_row + pi - 2]
-                        } else {
-                            pressure[hi_row + n[0] - 1]
-                        };
-                        hi - lo
-                    };
-                    for i in 0..m0 {
-                        let (adv, lap) = st.terms(i);
-                        let n = -adv + force + src.map_or(0.0, |s| s[i]);
-                        let old = if zeta == 0.0 { 0.0 } else { zeta * qrow[i] };
-                        qrow[i] = n;
-                        o[i] = st.q0[i] + dt * (gamma * n + old + alpha * nu * lap) - g * grad(i);
+                    hi - lo
+                };
+                for i in 0..m0 {
+                    let (adv, lap) = st.terms(i);
+                    let n = -adv + force + src.map_or(0.0, |s| s[i]);
+                    let mut old = 0.0;
+                    if let Some(qr) = qrow.as_deref_mut() {
+                        if zeta != 0.0 {
+                            old = zeta * qr[i];
+                        }
+                        qr[i] = n;
                     }
+                    o[i] = st.q0[i] + dt * (gamma * n + old + alpha * nu * lap) - g * grad(i);
                 }
-            });
+            }
+        };
+        if q[c].is_empty() {
+            rhs[c]
+                .par_chunks_mut(m0 * m1)
+                .enumerate()
+                .for_each(|(kk, out)| plane_rows(kk, out, None));
+        } else {
+            rhs[c]
+                .par_chunks_mut(m0 * m1)
+                .zip(q[c][k0 * plane..(k1 + 1) * plane].par_chunks_mut(plane))
+                .enumerate()
+                .for_each(|(kk, (out, qp))| plane_rows(kk, out, Some(qp)));
+        }
     }
 }
 

@@ -94,6 +94,12 @@ impl TimeScheme {
 
     /// Stage coefficients `(γ_s, ζ_s, α_s = β_s)` of a semi-implicit scheme (empty for the
     /// explicit ones): `(I − β_s Δt ν∇²) u* = u + Δt (γ_s N(u) + ζ_s N_old + α_s ν∇²u)`.
+    /// Whether a step keeps a tendency field between its stages (`q` of the explicit
+    /// schemes, `N_old` of `RK3CN`); `EulerCN`'s single stage does not.
+    pub(crate) fn keeps_tendency(&self) -> bool {
+        !matches!(self, TimeScheme::EulerCN)
+    }
+
     pub(crate) fn semi_implicit_stages(&self) -> &'static [(f64, f64, f64)] {
         match self {
             TimeScheme::RK3CN => &SMR_STAGES,
