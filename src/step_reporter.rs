@@ -209,6 +209,21 @@ impl StepReporter {
                 "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {:.6}",
                 h.force[0], h.force[1], h.force[2], h.drag_coefficient
             ))?;
+            if let Some(c) = &h.constrained_solve {
+                self.log.line(&format!(
+                    "Constrained viscous solve: {} Helmholtz solves, constraint residual = {:.3e}",
+                    c.solves, c.relative_residual
+                ))?;
+                if c.limit_reached {
+                    self.log.line(&format!(
+                        "warning: the constrained viscous solve stopped at its limit of {} \
+                         GMRES iterations with the constraint residual {:.3e} above its \
+                         tolerance {:.1e}: no-slip on the spheres holds only to that residual \
+                         this step",
+                        c.max_iterations, c.relative_residual, c.tolerance
+                    ))?;
+                }
+            }
             if let Some(m) = self.direct.as_mut() {
                 m.row(&[
                     sim.time.time,

@@ -296,3 +296,46 @@ fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
         assert!(worst_constraint <= 1e-12, "{worst_constraint}");
     }
 }
+
+/// A constrained solve that runs out of GMRES iterations says so (`limit_reached`, which the
+/// log turns into a warning) instead of passing silently; the default settings converge.
+#[test]
+fn constrained_solve_reports_an_exhausted_iteration_limit() {
+    let n = 16;
+    let h = 1.0 / n as f64;
+    let radius = (3.0 * 0.1 / (4.0 * PI)).cbrt();
+    let sphere = RigidSphere::fixed([0.5 + 0.1 * h, 0.5 + 0.2 * h, 0.5 + 0.3 * h], radius);
+    let mut reports = Vec::new();
+    for limit in [1, 200] {
+        let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
+        let mut fluid = FluidSolver::new(
+            grid,
+            BoundaryConditions::periodic(),
+            FluidSettings::new(1.0),
+        )
+        .unwrap();
+        let dt = 4.0 * fluid.stability_bound();
+        fluid.set_scheme(TimeScheme::EulerCN).unwrap();
+        fluid
+            .set_mean_velocity_force(Some(MeanVelocityForce::new(0, 1.0, 1.0)))
+            .unwrap();
+        let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+        coupling.set_spheres(&[sphere], &[0]);
+        coupling.implicit_forcing_mut().max_iterations = limit;
+        coupling.implicit_forcing_mut().tolerance = 1e-8;
+        let mut last = None;
+        for _ in 0..3 {
+            fluid.step_with(dt, &mut |stage| {
+                coupling.impose(stage);
+                last = Some(coupling.implicit_forcing_report());
+            });
+        }
+        reports.push(last.unwrap());
+    }
+    let (starved, enough) = (reports[0], reports[1]);
+    assert!(starved.limit_reached, "{starved:?}");
+    assert!(starved.relative_residual > 1e-8, "{starved:?}");
+    assert!(!enough.limit_reached, "{enough:?}");
+    assert!(enough.relative_residual <= 1e-8, "{enough:?}");
+    assert_eq!((starved.max_iterations, starved.tolerance), (1, 1e-8));
+}

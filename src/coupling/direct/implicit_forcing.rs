@@ -69,6 +69,13 @@ pub struct ImplicitForcingReport {
     pub solves: usize,
     /// Largest relative residual `‖g − C u*‖ / ‖g − C u₀‖` over the components.
     pub relative_residual: f64,
+    /// Whether some component's GMRES stopped at `max_iterations` above `tolerance`: the
+    /// forced faces then hold their constraints only to `relative_residual` (the run goes on
+    /// and the log says so).
+    pub limit_reached: bool,
+    /// The GMRES settings the solve was held to (for the log's message).
+    pub tolerance: f64,
+    pub max_iterations: usize,
 }
 
 /// Solves the stage's Helmholtz problem with the forced faces as constraint rows (see the
@@ -154,7 +161,11 @@ impl ImplicitForcing {
         velocity: &mut [Vec<f64>; 3],
         stage: &mut ImplicitStage<'_>,
     ) {
-        self.report = ImplicitForcingReport::default();
+        self.report = ImplicitForcingReport {
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
+            ..Default::default()
+        };
         for c in 0..3 {
             let faces = boundary.forcing_faces(c);
             if faces.is_empty() {
@@ -261,6 +272,9 @@ impl ImplicitForcing {
             }
             self.report.solves += solves + 1;
             self.report.relative_residual = self.report.relative_residual.max(relative_residual);
+            if iterations >= *max_iterations && relative_residual > *tolerance {
+                self.report.limit_reached = true;
+            }
         }
     }
 }
