@@ -252,10 +252,10 @@ fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
                 for c in 0..3 {
                     let mut forced = vec![false; layout.len];
                     for f in boundary.forcing_faces(c) {
-                        forced[f.slot] = true;
+                        forced[f.slot as usize] = true;
                     }
                     for f in boundary.interior_faces(c) {
-                        forced[f.slot] = true;
+                        forced[f.slot as usize] = true;
                     }
                     let d = |i: usize, j: usize, k: usize| {
                         let s = layout.index(i, j, k);

@@ -176,9 +176,9 @@ impl ImplicitForcing {
             self.weights.clear();
             self.rhs.clear();
             for f in faces {
-                let index = |slot: usize| {
+                let index = |slot: u32| {
                     stage
-                        .box_index(c, slot)
+                        .box_index(c, slot as usize)
                         .expect("forcing faces and their neighbours are momentum faces")
                 };
                 self.rows.push([
@@ -189,7 +189,8 @@ impl ImplicitForcing {
                 self.weights.push(f.weights);
                 let [a1, a2] = f.weights;
                 let target = (1.0 - a1 - a2) * f.wall;
-                let current = u[f.slot] - a1 * u[f.neighbours[0]] - a2 * u[f.neighbours[1]];
+                let [n1, n2] = f.neighbours.map(|n| n as usize);
+                let current = u[f.slot as usize] - a1 * u[n1] - a2 * u[n2];
                 self.rhs.push(target - current);
             }
             self.field.clear();

@@ -70,7 +70,8 @@ impl PeriodicStokesArray {
         boundary.set_quadratic(quadratic);
         boundary.update(spheres);
         let layout = PaddedLayout::new(grid.n);
-        let unpad = |slot: usize| {
+        let unpad = |slot: u32| {
+            let slot = slot as usize;
             let (i, j, k) = (
                 slot % layout.dims[0],
                 (slot / layout.dims[0]) % layout.dims[1],
