@@ -75,6 +75,19 @@ impl ImplicitStage<'_> {
         }
     }
 
+    /// The stage's own box vector of component `c`, as scratch: the stage has already moved
+    /// its solution into the velocity, so the box is free until the next stage fills it
+    /// (saves the hook a grid-sized vector). Contents unspecified; hand it back with
+    /// [`Self::return_box`] before the hook returns.
+    pub fn lend_box(&mut self, c: usize) -> Vec<f64> {
+        std::mem::take(&mut self.solver.work[c])
+    }
+
+    /// Gives back the vector of [`Self::lend_box`].
+    pub fn return_box(&mut self, c: usize, v: Vec<f64>) {
+        self.solver.work[c] = v;
+    }
+
     /// Cell sizes of the grid.
     pub fn h(&self) -> [f64; 3] {
         self.solver.h()

@@ -90,7 +90,9 @@ pub struct ImplicitForcing {
     weights: Vec<[f64; 2]>,
     rhs: Vec<f64>,
     sources: Vec<f64>,
-    /// One component's box of faces (the Helmholtz solve's right-hand side and solution).
+    /// One component's box of faces (the Helmholtz solve's right-hand side and solution):
+    /// the stage's own box, lent while the component is solved
+    /// ([`ImplicitStage::lend_box`]), empty otherwise.
     field: Vec<f64>,
     gmres: GmresWorkspace,
     report: ImplicitForcingReport,
@@ -193,6 +195,7 @@ impl ImplicitForcing {
                 let current = u[f.slot as usize] - a1 * u[n1] - a2 * u[n2];
                 self.rhs.push(target - current);
             }
+            self.field = stage.lend_box(c);
             self.field.clear();
             self.field.resize(stage.box_len(c), 0.0);
             self.warm_start(stage, c);
@@ -263,6 +266,7 @@ impl ImplicitForcing {
             } else {
                 0.0
             };
+            stage.return_box(c, std::mem::take(&mut self.field));
             if self.warm_start {
                 let warm = &mut self.previous[stage.index()][c];
                 warm.kappa = stage.kappa();
