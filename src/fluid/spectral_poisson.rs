@@ -75,7 +75,6 @@ enum AxisTransform {
 /// Scratch of one worker: gathered lines and the transforms' own buffers.
 struct LineWork {
     lines: Vec<f64>,
-    real: Vec<f64>,
     spectrum: Vec<Complex<f64>>,
     complex_scratch: Vec<Complex<f64>>,
     /// One per axis: rustdct's FFT-based DST-I assumes its scratch keeps the zeros it
@@ -144,12 +143,11 @@ impl AxisTransform {
             }
             AxisTransform::Fourier { forward, .. } => {
                 let n = line.len();
-                let real = &mut w.real[..n];
-                real.copy_from_slice(line);
                 let spec = &mut w.spectrum[..n / 2 + 1];
+                // realfft uses its input as scratch: the line itself, overwritten below.
                 forward
                     .process_with_scratch(
-                        real,
+                        line,
                         spec,
                         &mut w.complex_scratch[..forward.get_scratch_len()],
                     )
@@ -303,7 +301,6 @@ impl SpectralPoisson {
         let work = (0..workers)
             .map(|_| LineWork {
                 lines: vec![0.0; LINE_BATCH * nmax],
-                real: vec![0.0; nmax],
                 spectrum: vec![Complex::new(0.0, 0.0); nmax / 2 + 1],
                 complex_scratch: vec![Complex::new(0.0, 0.0); cs],
                 real_scratch: rs.map(|r| vec![0.0; r]),
@@ -338,9 +335,7 @@ impl SpectralPoisson {
         self.work
             .iter()
             .map(|w| {
-                8 * (w.lines.len()
-                    + w.real.len()
-                    + w.real_scratch.iter().map(Vec::len).sum::<usize>())
+                8 * (w.lines.len() + w.real_scratch.iter().map(Vec::len).sum::<usize>())
                     + 16 * (w.spectrum.len() + w.complex_scratch.len())
             })
             .sum()
@@ -592,7 +587,6 @@ mod tests {
         let scratch = planned.scratch_lens().1;
         let mut w = LineWork {
             lines: Vec::new(),
-            real: Vec::new(),
             spectrum: Vec::new(),
             complex_scratch: Vec::new(),
             real_scratch: [vec![0.0; scratch], Vec::new(), Vec::new()],
