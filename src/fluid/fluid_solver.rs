@@ -12,7 +12,9 @@ use super::momentum::{
 use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
 use super::spectral_poisson::SpectralPoisson;
-use super::staggered_transfer::{cells_from_faces, faces_from_cells};
+use super::staggered_transfer::{
+    cell_from_faces, cells_from_faces, faces_from_cells, periodic_axes,
+};
 use super::time_scheme::TimeScheme;
 use crate::grid::Grid;
 use rayon::prelude::*;
@@ -752,6 +754,15 @@ impl FluidSolver {
     /// fourth order where the grid allows (the two-point mean next to walls).
     pub fn cell_velocity(&self, out: &mut [[f64; 3]]) {
         cells_from_faces(&self.grid, &self.bc, &self.layout, &self.u, out);
+    }
+
+    /// The cell-centred velocity of one cell (unpadded x-fastest index), as
+    /// [`Self::cell_velocity`] computes it: for writers that stream the field without a copy.
+    pub fn cell_velocity_at(&self, index: usize) -> [f64; 3] {
+        let n = self.grid.n;
+        let cell = [index % n[0], (index / n[0]) % n[1], index / (n[0] * n[1])];
+        let periodic = periodic_axes(&self.bc);
+        cell_from_faces(&self.grid, periodic, &self.layout, &self.u, cell)
     }
 
     /// Names of the arrays [`Self::restart_arrays`] returns, in order.

@@ -54,6 +54,9 @@ pub enum AxisKind {
 /// Lines gathered per transform batch in the strided passes: 8 doubles fill a cache line.
 const LINE_BATCH: usize = 8;
 
+/// Line-scratch workers per rayon thread (runs of planes or lines share one).
+const WORKERS_PER_THREAD: usize = 4;
+
 enum AxisTransform {
     /// One cell: every 1×1 operator is already diagonal.
     Identity,
@@ -297,7 +300,12 @@ impl SpectralPoisson {
             cs = cs.max(c);
             rs[d] = r;
         }
-        let workers = n[1].max(n[2]);
+        // Line scratch per worker, not per plane or line: a worker takes a run of planes (or
+        // of z-lines), a few runs per thread for balance. Each line's transform is independent
+        // of the scratch it uses, so results do not depend on the split.
+        let workers = n[1]
+            .max(n[2])
+            .min(WORKERS_PER_THREAD * rayon::current_num_threads());
         let work = (0..workers)
             .map(|_| LineWork {
                 lines: vec![0.0; LINE_BATCH * nmax],
@@ -357,15 +365,18 @@ impl SpectralPoisson {
         let work = &mut self.work[..];
 
         // Forward along x then y: both stay inside one k-plane.
-        data.par_chunks_mut(plane)
-            .zip(work[..n2].par_iter_mut())
-            .for_each(|(p, w)| {
-                for row in p.chunks_mut(n0) {
-                    transforms[0].forward(row, w, 0);
+        let planes_per_worker = n2.div_ceil(work.len());
+        data.par_chunks_mut(plane * planes_per_worker)
+            .zip(work.par_iter_mut())
+            .for_each(|(run, w)| {
+                for p in run.chunks_mut(plane) {
+                    for row in p.chunks_mut(n0) {
+                        transforms[0].forward(row, w, 0);
+                    }
+                    transform_plane_columns(&transforms[1], p, n0, n1, w, true);
                 }
-                transform_plane_columns(&transforms[1], p, n0, n1, w, true);
             });
-        transform_z(&transforms[2], data, self.n, &mut work[..n1], true);
+        transform_z(&transforms[2], data, self.n, work, true);
 
         // Divide by the eigenvalue sum (and the transforms' round-trip factor).
         let ev = &self.eigenvalues;
@@ -381,13 +392,15 @@ impl SpectralPoisson {
             }
         });
 
-        transform_z(&transforms[2], data, self.n, &mut work[..n1], false);
-        data.par_chunks_mut(plane)
-            .zip(work[..n2].par_iter_mut())
-            .for_each(|(p, w)| {
-                transform_plane_columns(&transforms[1], p, n0, n1, w, false);
-                for row in p.chunks_mut(n0) {
-                    transforms[0].inverse(row, w, 0);
+        transform_z(&transforms[2], data, self.n, work, false);
+        data.par_chunks_mut(plane * planes_per_worker)
+            .zip(work.par_iter_mut())
+            .for_each(|(run, w)| {
+                for p in run.chunks_mut(plane) {
+                    transform_plane_columns(&transforms[1], p, n0, n1, w, false);
+                    for row in p.chunks_mut(n0) {
+                        transforms[0].inverse(row, w, 0);
+                    }
                 }
             });
     }
@@ -483,7 +496,7 @@ fn transform_plane_columns(
     w.lines = lines;
 }
 
-/// Transforms every line along z, one worker per `j`.
+/// Transforms every line along z, each worker a run of `j`s.
 fn transform_z(
     t: &AxisTransform,
     data: &mut [f64],
@@ -494,39 +507,56 @@ fn transform_z(
     if matches!(t, AxisTransform::Identity) {
         return;
     }
-    let [n0, n1, n2] = n;
+    let n1 = n[1];
     let ptr = DisjointPtr(data.as_mut_ptr());
-    work.par_iter_mut().enumerate().for_each(|(j, w)| {
+    let per_worker = n1.div_ceil(work.len());
+    work.par_iter_mut().enumerate().for_each(|(wi, w)| {
         let mut lines = std::mem::take(&mut w.lines);
-        let mut i0 = 0;
-        while i0 < n0 {
-            let b = LINE_BATCH.min(n0 - i0);
-            for k in 0..n2 {
-                let base = i0 + n0 * (j + n1 * k);
-                for bb in 0..b {
-                    // SAFETY: index < n0 n1 n2 and belongs to worker j only.
-                    lines[bb * n2 + k] = unsafe { *ptr.at(base + bb) };
-                }
-            }
-            for bb in 0..b {
-                let line = &mut lines[bb * n2..(bb + 1) * n2];
-                if forward {
-                    t.forward(line, w, 2);
-                } else {
-                    t.inverse(line, w, 2);
-                }
-            }
-            for k in 0..n2 {
-                let base = i0 + n0 * (j + n1 * k);
-                for bb in 0..b {
-                    // SAFETY: as above.
-                    unsafe { *ptr.at(base + bb) = lines[bb * n2 + k] };
-                }
-            }
-            i0 += b;
+        for j in wi * per_worker..((wi + 1) * per_worker).min(n1) {
+            transform_z_lines(t, &ptr, n, j, &mut lines, w, forward);
         }
         w.lines = lines;
     });
+}
+
+/// The `n₀` lines along z at `j`, `LINE_BATCH` at a time (see [`transform_z`]).
+fn transform_z_lines(
+    t: &AxisTransform,
+    ptr: &DisjointPtr,
+    n: [usize; 3],
+    j: usize,
+    lines: &mut [f64],
+    w: &mut LineWork,
+    forward: bool,
+) {
+    let [n0, n1, n2] = n;
+    let mut i0 = 0;
+    while i0 < n0 {
+        let b = LINE_BATCH.min(n0 - i0);
+        for k in 0..n2 {
+            let base = i0 + n0 * (j + n1 * k);
+            for bb in 0..b {
+                // SAFETY: index < n0 n1 n2, and line j belongs to one worker only.
+                lines[bb * n2 + k] = unsafe { *ptr.at(base + bb) };
+            }
+        }
+        for bb in 0..b {
+            let line = &mut lines[bb * n2..(bb + 1) * n2];
+            if forward {
+                t.forward(line, w, 2);
+            } else {
+                t.inverse(line, w, 2);
+            }
+        }
+        for k in 0..n2 {
+            let base = i0 + n0 * (j + n1 * k);
+            for bb in 0..b {
+                // SAFETY: as above.
+                unsafe { *ptr.at(base + bb) = lines[bb * n2 + k] };
+            }
+        }
+        i0 += b;
+    }
 }
 
 #[cfg(test)]

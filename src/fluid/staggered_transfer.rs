@@ -87,28 +87,44 @@ pub fn cells_from_faces(
 ) {
     let n = grid.n;
     assert_eq!(out.len(), grid.cell_count());
-    let periodic: [bool; 3] =
-        std::array::from_fn(|c| matches!(bc.face(c, 0), FaceCondition::Periodic));
+    let periodic = periodic_axes(bc);
     out.par_chunks_mut(n[0] * n[1])
         .enumerate()
         .for_each(|(k, plane)| {
             for j in 0..n[1] {
                 for i in 0..n[0] {
-                    let cell = [i, j, k];
-                    plane[i + n[0] * j] = std::array::from_fn(|c| {
-                        // Faces along c are numbered 0..=n[c]; face f is the low face of cell
-                        // f. A periodic line has n[c] distinct faces (face n[c] = face 0).
-                        let faces = if periodic[c] { n[c] } else { n[c] + 1 };
-                        let get = |f: usize| {
-                            let mut at = cell;
-                            at[c] = f;
-                            u[c][layout.index(at[0] + 1, at[1] + 1, at[2] + 1)]
-                        };
-                        midpoint(get, cell[c] as isize, faces, periodic[c])
-                    });
+                    plane[i + n[0] * j] = cell_from_faces(grid, periodic, layout, u, [i, j, k]);
                 }
             }
         });
+}
+
+/// Which directions are periodic (the transfer's stencils wrap there).
+pub fn periodic_axes(bc: &BoundaryConditions) -> [bool; 3] {
+    std::array::from_fn(|c| matches!(bc.face(c, 0), FaceCondition::Periodic))
+}
+
+/// The velocity of one cell (see [`cells_from_faces`]).
+#[inline]
+pub fn cell_from_faces(
+    grid: &Grid,
+    periodic: [bool; 3],
+    layout: &PaddedLayout,
+    u: &[Vec<f64>; 3],
+    cell: [usize; 3],
+) -> [f64; 3] {
+    let n = grid.n;
+    std::array::from_fn(|c| {
+        // Faces along c are numbered 0..=n[c]; face f is the low face of cell f. A periodic
+        // line has n[c] distinct faces (face n[c] = face 0).
+        let faces = if periodic[c] { n[c] } else { n[c] + 1 };
+        let get = |f: usize| {
+            let mut at = cell;
+            at[c] = f;
+            u[c][layout.index(at[0] + 1, at[1] + 1, at[2] + 1)]
+        };
+        midpoint(get, cell[c] as isize, faces, periodic[c])
+    })
 }
 
 #[cfg(test)]

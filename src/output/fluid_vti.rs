@@ -29,7 +29,7 @@ pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<
     let first = |vector: bool| {
         fields
             .iter()
-            .find(|f| matches!(f, CellData::Vector(..)) == vector)
+            .find(|f| (f.components() == 3) == vector)
             .map(|f| f.name().to_string())
     };
     let mut active = String::new();
@@ -49,10 +49,7 @@ pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<
     );
     let mut offset = 0usize;
     for field in fields {
-        let components = match field {
-            CellData::Scalar(..) => 1,
-            CellData::Vector(..) => 3,
-        };
+        let components = field.components();
         header.push_str(&format!(
             "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{components}\" \
              format=\"appended\" offset=\"{offset}\"/>\n",
@@ -69,30 +66,17 @@ pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<
     let mut out = BufWriter::with_capacity(1 << 20, file);
     out.write_all(header.as_bytes()).map_err(io_err)?;
     for field in fields {
-        let bytes = match field {
-            CellData::Scalar(_, v) => 8 * v.len(),
-            CellData::Vector(_, v) => 24 * v.len(),
-        };
+        let bytes = 8 * field.components() * grid.cell_count();
         out.write_all(&(bytes as u64).to_le_bytes())
             .map_err(io_err)?;
-        match field {
-            CellData::Scalar(_, v) => write_little_endian(&mut out, v.iter().copied()),
-            CellData::Vector(_, v) => write_little_endian(&mut out, v.iter().flatten().copied()),
-        }
-        .map_err(io_err)?;
+        field
+            .write_values(&mut out, f64::to_le_bytes)
+            .map_err(io_err)?;
     }
     out.write_all(b"\n  </AppendedData>\n</VTKFile>\n")
         .map_err(io_err)?;
     out.flush().map_err(io_err)?;
     Ok(())
-}
-
-/// Streams values as little-endian f64 (XML appended raw data).
-fn write_little_endian(
-    out: &mut impl Write,
-    values: impl Iterator<Item = f64>,
-) -> std::io::Result<()> {
-    super::fluid_vtk::write_f64_bytes(out, values, f64::to_le_bytes)
 }
 
 #[cfg(test)]
