@@ -173,8 +173,11 @@ fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
     let mut extra = vec![
         (
             "Scheme".to_string(),
-            if sim.drag.is_some() {
-                "volume-averaged (explicit Euler predictor, PCG pressure)".to_string()
+            if let Some(d) = &sim.drag {
+                format!(
+                    "volume-averaged ({}, PCG pressure)",
+                    d.fluid.predictor_name()
+                )
             } else {
                 sim.fluid.settings().scheme.name().to_string()
             },
@@ -213,7 +216,8 @@ fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
     println!("Plan    : {}", case.summary());
     match &sim.drag {
         Some(d) => println!(
-            "Scheme  : volume-averaged, explicit Euler predictor, PCG pressure ({})",
+            "Scheme  : volume-averaged, {}, PCG pressure ({})",
+            d.fluid.predictor_name(),
             d.describe()
         ),
         None => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),

@@ -126,13 +126,40 @@ impl Simulation {
         }
         let grid = case.mesh.grid.clone();
         let bc = boundary_conditions(case)?;
-        let scheme = match &case.time_scheme {
-            None => TimeScheme::default(),
-            Some(name) => TimeScheme::from_name(name).ok_or_else(|| {
-                case.time_scheme_error(format!(
-                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, EulerCN"
-                ))
-            })?,
+        let drag_law_case =
+            case.coupling.model == CouplingModel::DragLaw && case.cloud_properties.is_some();
+        // The drag-law model steps the fluid with its own volume-averaged predictor: the
+        // scheme names its viscous term, and the resolved solver needs no stage storage.
+        let (scheme, drag_law_implicit_viscosity) = match (&case.time_scheme, drag_law_case) {
+            (None, true) => (TimeScheme::Euler, false),
+            (Some(name), true) => match name.as_str() {
+                "Euler" => (TimeScheme::Euler, false),
+                DRAG_LAW_IMPLICIT => (TimeScheme::Euler, true),
+                other => {
+                    return Err(case
+                        .time_scheme_error(format!(
+                            "the drag-law model runs timeScheme Euler (explicit viscous term, \
+                             the default) or {DRAG_LAW_IMPLICIT} (implicit viscous term), not \
+                             '{other}'"
+                        ))
+                        .into())
+                }
+            },
+            (None, false) => (TimeScheme::default(), false),
+            (Some(name), false) => (
+                TimeScheme::from_name(name).ok_or_else(|| {
+                    let hint = if name == DRAG_LAW_IMPLICIT {
+                        " (EulerImplicit is the drag-law model's)"
+                    } else {
+                        ""
+                    };
+                    case.time_scheme_error(format!(
+                        "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, \
+                         RK3CN, EulerCN{hint}"
+                    ))
+                })?,
+                false,
+            ),
         };
         let settings = FluidSettings {
             nu: case.transport.nu,
@@ -203,7 +230,13 @@ impl Simulation {
                 if let Some(cloud) = cloud {
                     let cloud_settings = cloud.clone();
                     let particles = restore_particles(cloud, &state, &dir)?;
-                    sim.drag = drag_law(case, &cloud_settings, &sim.fluid, &particles.dem)?;
+                    sim.drag = drag_law(
+                        case,
+                        &cloud_settings,
+                        &sim.fluid,
+                        &particles.dem,
+                        drag_law_implicit_viscosity,
+                    )?;
                     if let Some(drag) = sim.drag.as_mut() {
                         drag.restore(&sim.fluid, &particles.dem)
                             .map_err(FsimError::input)?;
@@ -220,7 +253,8 @@ impl Simulation {
                     }
                     let dem = Dem::new(cloud.config.clone(), cloud.domain.clone(), state)
                         .map_err(|e| cloud.locate(&e))?;
-                    sim.drag = drag_law(case, &cloud, &sim.fluid, &dem)?;
+                    sim.drag =
+                        drag_law(case, &cloud, &sim.fluid, &dem, drag_law_implicit_viscosity)?;
                     sim.particles = Some(Particles {
                         dem,
                         pair_model: cloud.pair_model_name,
@@ -341,7 +375,12 @@ impl Simulation {
             StepSizing::Fixed(dt) => {
                 let bound = self.stability_bound();
                 if dt > bound {
-                    let scheme = match self.drag {
+                    let scheme = match &self.drag {
+                        Some(drag) if drag.fluid.implicit_viscosity() => {
+                            "drag-law model's EulerImplicit predictor (upwind advection: \
+                             1/(Σ|u|/h))"
+                                .to_string()
+                        }
                         Some(_) => "drag-law model's explicit Euler predictor \
                                     (1/(Σ|u|/h + 2ν Σ1/h²))"
                             .to_string(),
@@ -373,11 +412,14 @@ impl Simulation {
                 } else {
                     self.dt
                 };
-                let dt = self.fluid.adaptive_dt(previous, max_co, max_delta_t);
-                // adaptive_dt holds the fluid's own bound already (3 passes over the field)
                 match self.drag {
-                    Some(_) => dt.min(self.stability_bound()),
-                    None => dt,
+                    // the drag law steps the fluid with its own predictor and bound
+                    Some(_) => self
+                        .fluid
+                        .courant_dt(previous, max_co, max_delta_t)
+                        .min(self.stability_bound()),
+                    // adaptive_dt holds the fluid's own bound already (3 passes over the field)
+                    None => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
                 }
             }
         };
@@ -620,12 +662,16 @@ fn restore_particles(
     })
 }
 
+/// `fsim { timeScheme EulerImplicit; }`: the drag-law predictor with its viscous term implicit.
+const DRAG_LAW_IMPLICIT: &str = "EulerImplicit";
+
 /// The drag-law model of a case with `model dragLaw` and a cloud (`None` otherwise).
 fn drag_law(
     case: &Case,
     cloud: &Cloud,
     fluid: &FluidSolver,
     dem: &Dem,
+    implicit_viscosity: bool,
 ) -> Result<Option<DragLawCoupling>, FsimError> {
     let Some(read) = &cloud.drag_law else {
         return Ok(None);
@@ -639,6 +685,7 @@ fn drag_law(
     let settings = read.settings(&case.transport, case.gravity);
     let mut coupling = DragLawCoupling::new(settings, fluid, dem)
         .map_err(|e| FsimError::input(format!("drag-law model: {e}")))?;
+    coupling.fluid.set_implicit_viscosity(implicit_viscosity);
     let superficial = std::array::from_fn(|face| {
         matches!(
             case.fields.u_bc[case.mesh.face_patch[face]],

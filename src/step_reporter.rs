@@ -333,6 +333,16 @@ impl StepReporter {
                  {iterations}, continuity error = {continuity:.3e}",
                 e.min_fluid_fraction, drop
             ))?;
+            if let Some(v) = d
+                .last_fluid
+                .map(|r| r.viscous)
+                .filter(|_| d.fluid.implicit_viscosity())
+            {
+                self.log.line(&format!(
+                    "Viscous term (implicit): U CG iterations = {}, residual = {:.3e}",
+                    v.iterations, v.relative_residual
+                ))?;
+            }
             m.row(&[
                 sim.time.time,
                 e.min_fluid_fraction,

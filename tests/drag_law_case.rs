@@ -137,6 +137,22 @@ fn unknown_drag_model_is_bad_input() {
 }
 
 #[test]
+fn a_resolved_fluid_scheme_is_refused_with_the_drag_law_model() {
+    // The drag-law model steps its own predictor: Euler (explicit viscous term) or
+    // EulerImplicit; RK3 would be silently something else.
+    let scratch = Scratch::new("drag-scheme");
+    let case = copy_tutorial("benchmarkDragLaw", &scratch.0, "case");
+    replace(
+        &case.join("system/fvSolution"),
+        "timeScheme      EulerImplicit;",
+        "timeScheme      RK3;",
+    );
+    let err = stderr(&refused(&case, "the drag-law model runs timeScheme Euler"));
+    assert!(err.contains("system/fvSolution:"), "{err}");
+    assert!(err.contains("not 'RK3'"), "{err}");
+}
+
+#[test]
 fn particle_larger_than_two_cells_is_bad_input() {
     let scratch = Scratch::new("drag-large");
     let case = copy_tutorial("fluidizedBed", &scratch.0, "case");

@@ -37,6 +37,19 @@ impl BoundaryConditions {
         }
     }
 
+    /// The same conditions with every wall and inlet at rest: what the ghosts of a velocity
+    /// *difference* obey (the fill is affine in the velocity, so the difference of two filled
+    /// fields is the difference field filled with these conditions).
+    pub fn at_rest(&self) -> Self {
+        BoundaryConditions {
+            faces: self.faces.clone().map(|f| match f {
+                FaceCondition::Wall { .. } => FaceCondition::Wall { velocity: [0.0; 3] },
+                FaceCondition::Inlet { .. } => FaceCondition::Inlet { velocity: [0.0; 3] },
+                other => other,
+            }),
+        }
+    }
+
     /// Condition on the low (`side = 0`) or high (`side = 1`) face of direction `d`.
     #[inline]
     pub fn face(&self, d: usize, side: usize) -> &FaceCondition {

@@ -744,10 +744,17 @@ impl FluidSolver {
     /// (shrink at once, grow by at most 20 %), and never above the scheme's stability bound.
     /// `dt_old` is the last step (or the case's `deltaT` at start).
     pub fn adaptive_dt(&mut self, dt_old: f64, max_co: f64, max_dt: f64) -> f64 {
+        self.courant_dt(dt_old, max_co, max_dt)
+            .min(self.stability_bound())
+    }
+
+    /// [`Self::adaptive_dt`] without the scheme's bound (for a model that steps the fluid with
+    /// its own scheme and bound: the drag law's).
+    pub fn courant_dt(&mut self, dt_old: f64, max_co: f64, max_dt: f64) -> f64 {
         let co = self.courant_rate() * dt_old;
         let f = if co > 0.0 { max_co / co } else { f64::INFINITY };
         let factor = f.min(1.0 + 0.1 * f).min(1.2);
-        (factor * dt_old).min(max_dt).min(self.stability_bound())
+        (factor * dt_old).min(max_dt)
     }
 
     /// Cell-centred velocity into `out`, unpadded x-fastest, interpolated from the faces to

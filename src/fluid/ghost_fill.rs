@@ -14,11 +14,21 @@ pub(crate) fn fill_velocity_ghosts(
     bc: &BoundaryConditions,
     u: &mut [Vec<f64>; 3],
 ) {
-    u.par_iter_mut().enumerate().for_each(|(c, uc)| {
-        for d in 0..3 {
-            fill_axis(layout, bc, uc, c, d);
-        }
-    });
+    u.par_iter_mut()
+        .enumerate()
+        .for_each(|(c, uc)| fill_component_ghosts(layout, bc, uc, c));
+}
+
+/// Fills ghosts and fixed boundary faces of component `c` alone.
+pub(crate) fn fill_component_ghosts(
+    layout: &PaddedLayout,
+    bc: &BoundaryConditions,
+    a: &mut [f64],
+    c: usize,
+) {
+    for d in 0..3 {
+        fill_axis(layout, bc, a, c, d);
+    }
 }
 
 /// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`.

@@ -66,6 +66,7 @@ mod staggered_transfer;
 mod time_scheme;
 mod variable_poisson;
 mod volume_averaged_fluid;
+mod volume_averaged_viscosity;
 
 pub use boundary_conditions::{BoundaryConditions, FaceCondition};
 pub use coefficient_fields::{comparison_beta, seeded_uniform};
@@ -82,3 +83,4 @@ pub use time_scheme::TimeScheme;
 pub use variable_poisson::{Convergence, PcgReport, Preconditioner, VariablePoisson};
 pub(crate) use volume_averaged_fluid::fill_cell_ghosts;
 pub use volume_averaged_fluid::{VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
+pub use volume_averaged_viscosity::ViscousReport;
