@@ -87,3 +87,10 @@ def test_three_dpmfoam_steps_give_the_doubled_first_gravity_step(tmp_path):
     assert r["w"][0] != pytest.approx(-9.81 * 2e-05 * (1 - 1.2 / 2526), rel=0.1)
     assert all(w < 0 for w in r["w"])
     assert r["peak"] > 0 and r["cpu"] > 0
+
+
+def test_history_difference_is_relative_to_the_largest_reference_mean():
+    # A history offset by 0.001 m/s everywhere: 50 % in a first window near rest, 1 % of the
+    # history's scale of 0.1 m/s.
+    rows = [(0.0, 1.0, -0.002, -0.003, 0.5), (1.0, 2.0, -0.1, -0.101, 0.01)]
+    assert abs(goldschmidt.history_difference(rows) - 0.01) < 1e-12

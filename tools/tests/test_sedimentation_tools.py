@@ -51,3 +51,25 @@ def test_free_suspension_settles_as_the_rpy_mobility_of_the_same_spheres(fsim, t
     r = sedimentation_sweep.run_one(str(fsim), str(tmp_path), 0.1, 27, 3.0, 0.15, 0.15, 2, 1)
     assert abs(r["ratio"] / r["rpy_ratio"] - 1) < 0.05, r
     assert r["rpy_fixed_ratio"] < 0.92 * r["rpy_ratio"], r
+
+
+def test_hard_sphere_reference_has_the_exact_dilute_coefficients():
+    import hindered_settling
+    # Batchelor's -6.55 phi and the exact phi^2 coefficient 21.92 (Cichocki et al. 2002)
+    k = hindered_settling.hard_spheres
+    h = 1e-4
+    slope = (k(h) - k(0.0)) / h
+    curvature = (k(2 * h) - 2 * k(h) + k(0.0)) / h ** 2 / 2
+    assert abs(slope + 6.5464) < 2e-2
+    assert abs(curvature - 6.5464 * 3.348) < 0.1
+    # the published fit (Riest et al. 2015) at phi = 0.1 and 0.3
+    assert abs(k(0.1) - 0.5221) < 1e-4 and abs(k(0.3) - 0.1346) < 1e-4
+
+
+def test_exponent_fit_recovers_richardson_zaki():
+    import hindered_settling
+    phi = [0.02, 0.05, 0.1, 0.2, 0.3]
+    n, v0, n1 = hindered_settling.exponent(phi, [0.9 * (1 - p) ** 4.8 for p in phi])
+    assert abs(n - 4.8) < 1e-9 and abs(v0 - 0.9) < 1e-9
+    n, v0, n1 = hindered_settling.exponent(phi, [(1 - p) ** 5.1 for p in phi])
+    assert abs(n1 - 5.1) < 1e-9
