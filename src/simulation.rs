@@ -126,41 +126,7 @@ impl Simulation {
         }
         let grid = case.mesh.grid.clone();
         let bc = boundary_conditions(case)?;
-        let drag_law_case =
-            case.coupling.model == CouplingModel::DragLaw && case.cloud_properties.is_some();
-        // The drag-law model steps the fluid with its own volume-averaged predictor: the
-        // scheme names its viscous term, and the resolved solver needs no stage storage.
-        let (scheme, drag_law_implicit_viscosity) = match (&case.time_scheme, drag_law_case) {
-            (None, true) => (TimeScheme::Euler, false),
-            (Some(name), true) => match name.as_str() {
-                "Euler" => (TimeScheme::Euler, false),
-                DRAG_LAW_IMPLICIT => (TimeScheme::Euler, true),
-                other => {
-                    return Err(case
-                        .time_scheme_error(format!(
-                            "the drag-law model runs timeScheme Euler (explicit viscous term, \
-                             the default) or {DRAG_LAW_IMPLICIT} (implicit viscous term), not \
-                             '{other}'"
-                        ))
-                        .into())
-                }
-            },
-            (None, false) => (TimeScheme::default(), false),
-            (Some(name), false) => (
-                TimeScheme::from_name(name).ok_or_else(|| {
-                    let hint = if name == DRAG_LAW_IMPLICIT {
-                        " (EulerImplicit is the drag-law model's)"
-                    } else {
-                        ""
-                    };
-                    case.time_scheme_error(format!(
-                        "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, \
-                         RK3CN, EulerCN{hint}"
-                    ))
-                })?,
-                false,
-            ),
-        };
+        let (scheme, drag_law_implicit_viscosity) = fluid_scheme(case)?;
         let settings = FluidSettings {
             nu: case.transport.nu,
             scheme,
@@ -664,6 +630,46 @@ fn restore_particles(
 
 /// `fsim { timeScheme EulerImplicit; }`: the drag-law predictor with its viscous term implicit.
 const DRAG_LAW_IMPLICIT: &str = "EulerImplicit";
+
+/// The fluid's scheme from `fsim { timeScheme …; }`, and whether the drag-law predictor takes
+/// its viscous term implicitly. The drag-law model steps the fluid with its own
+/// volume-averaged predictor: there the scheme names its viscous term (`Euler`, the default,
+/// or `EulerImplicit`), and the resolved solver is built with `Euler`, which needs no stage
+/// storage.
+fn fluid_scheme(case: &Case) -> Result<(TimeScheme, bool), FsimError> {
+    let drag_law_case =
+        case.coupling.model == CouplingModel::DragLaw && case.cloud_properties.is_some();
+    Ok(match (&case.time_scheme, drag_law_case) {
+        (None, true) => (TimeScheme::Euler, false),
+        (Some(name), true) => match name.as_str() {
+            "Euler" => (TimeScheme::Euler, false),
+            DRAG_LAW_IMPLICIT => (TimeScheme::Euler, true),
+            other => {
+                return Err(case
+                    .time_scheme_error(format!(
+                        "the drag-law model runs timeScheme Euler (explicit viscous term, the \
+                         default) or {DRAG_LAW_IMPLICIT} (implicit viscous term), not '{other}'"
+                    ))
+                    .into())
+            }
+        },
+        (None, false) => (TimeScheme::default(), false),
+        (Some(name), false) => {
+            let scheme = TimeScheme::from_name(name).ok_or_else(|| {
+                let hint = if name == DRAG_LAW_IMPLICIT {
+                    " (EulerImplicit is the drag-law model's)"
+                } else {
+                    ""
+                };
+                case.time_scheme_error(format!(
+                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, \
+                     EulerCN{hint}"
+                ))
+            })?;
+            (scheme, false)
+        }
+    })
+}
 
 /// The drag-law model of a case with `model dragLaw` and a cloud (`None` otherwise).
 fn drag_law(

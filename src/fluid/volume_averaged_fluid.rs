@@ -113,9 +113,7 @@ pub struct VolumeAveragedFluid {
     /// sets OpenFOAM's test).
     pub convergence: Convergence,
     pub max_iterations: usize,
-    /// The implicit share θ of the viscous term: 0 (explicit Euler) or 1 (backward Euler,
-    /// `EulerImplicit`, solved by `viscous`).
-    viscous_theta: f64,
+    /// The implicit viscous term's solve (`EulerImplicit`, backward Euler); `None`: explicit.
     viscous: Option<ViscousSolve>,
 }
 
@@ -175,7 +173,6 @@ impl VolumeAveragedFluid {
             superficial_inlets: [false; 6],
             convergence: Convergence::Relative(1e-10),
             max_iterations: 500,
-            viscous_theta: 0.0,
             viscous: None,
             grid,
             layout,
@@ -193,24 +190,20 @@ impl VolumeAveragedFluid {
     /// are not damped (`(1 − a)/(1 + a) → −1`), and with walls or a varying ε the pressure
     /// splitting made them grow at six times the explicit bound; backward Euler damps them.
     pub fn set_implicit_viscosity(&mut self, on: bool) {
-        if on {
-            self.viscous_theta = 1.0;
-            if self.viscous.is_none() {
-                self.viscous = Some(ViscousSolve::new(
-                    &self.layout,
-                    &self.bc,
-                    &self.momentum_ranges,
-                ));
-            }
-        } else {
-            self.viscous_theta = 0.0;
+        if !on {
             self.viscous = None;
+        } else if self.viscous.is_none() {
+            self.viscous = Some(ViscousSolve::new(
+                &self.layout,
+                &self.bc,
+                &self.momentum_ranges,
+            ));
         }
     }
 
     /// Whether the viscous term is implicit.
     pub fn implicit_viscosity(&self) -> bool {
-        self.viscous_theta > 0.0
+        self.viscous.is_some()
     }
 
     /// The predictor in words, for the log.
@@ -445,7 +438,9 @@ impl VolumeAveragedFluid {
         let l = &self.layout;
         let s = l.stride;
         let h = self.grid.h;
-        let theta = self.viscous_theta;
+        // The implicit share θ of the viscous term: 1 (backward Euler) or 0.
+        let implicit = self.implicit_viscosity();
+        let theta = if implicit { 1.0 } else { 0.0 };
         // ν times the explicit share of the viscous term (exactly ν when explicit).
         let nu_explicit = (1.0 - theta) * self.nu;
         let coupling: [f64; 3] = std::array::from_fn(|d| theta * self.nu / (h[d] * h[d]));
@@ -488,7 +483,6 @@ impl VolumeAveragedFluid {
                 Some(v) => &mut v.rhs,
                 None => &mut self.predicted[c],
             };
-            let implicit = theta > 0.0;
             target
                 .par_chunks_mut(plane)
                 .enumerate()
@@ -541,7 +535,7 @@ impl VolumeAveragedFluid {
                     }
                 });
             if let Some(v) = self.viscous.as_mut() {
-                // u* from uⁿ (its ghosts filled), then HbyA = u* + (c/A') ∇pⁿ.
+                // u* from uⁿ (its ghosts filled), then HbyA = u* + (c/A_f) ∇pⁿ.
                 let x = &mut self.predicted[c];
                 x.copy_from_slice(uc);
                 v.solve(c, x, diag, eps_old, coupling);
@@ -677,7 +671,11 @@ impl VolumeAveragedFluid {
     /// Bytes of the model's own arrays per cell.
     pub fn bytes_per_cell(&self) -> f64 {
         let padded = self.layout.len * 8;
-        let viscous = if self.viscous.is_some() { 5 } else { 0 };
+        let viscous = if self.viscous.is_some() {
+            ViscousSolve::PADDED_ARRAYS
+        } else {
+            0
+        };
         let total =
             (2 + 5 * 3 + viscous) * padded + 2 * self.rhs.len() * 8 + 9 * self.rhs.len() * 8;
         total as f64 / self.grid.cell_count() as f64
@@ -735,7 +733,7 @@ mod tests {
             let bc = BoundaryConditions {
                 faces: std::array::from_fn(|_| wall.clone()),
             };
-            let mut fluid = FluidSolver::new(grid, bc, FluidSettings::new(1e-2)).unwrap();
+            let mut fluid = FluidSolver::new(grid, bc, FluidSettings::new(1e-3)).unwrap();
             let mut va =
                 VolumeAveragedFluid::new(&fluid, form, [0.0, 0.0, -9.81], Preconditioner::Spectral)
                     .unwrap();

@@ -132,6 +132,9 @@ pub(super) struct ViscousSolve {
 }
 
 impl ViscousSolve {
+    /// Padded arrays it holds: right-hand side, r, z, p, q, three edge arrays, `A'`.
+    pub(super) const PADDED_ARRAYS: usize = 9;
+
     pub(super) fn new(
         layout: &PaddedLayout,
         bc: &BoundaryConditions,
