@@ -355,6 +355,10 @@ impl Simulation {
                             let bound = match scheme {
                                 TimeScheme::RK3CN => "advective: sqrt(3) / sum |v_d|/h_d",
                                 TimeScheme::EulerCN => "advective: 2 nu/|v|^2",
+                                TimeScheme::EulerRKC => {
+                                    "advective: 2 nu/|v|^2; diffusive: the reach of 40 \
+                                     Chebyshev stages"
+                                }
                                 _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)",
                             };
                             format!("{} scheme ({bound})", scheme.name())
@@ -663,7 +667,7 @@ fn fluid_scheme(case: &Case) -> Result<(TimeScheme, bool), FsimError> {
                 };
                 case.time_scheme_error(format!(
                     "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, \
-                     EulerCN{hint}"
+                     EulerCN, EulerRKC{hint}"
                 ))
             })?;
             (scheme, false)

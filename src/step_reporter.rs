@@ -170,6 +170,12 @@ impl StepReporter {
              energy = {:.6e}",
             health.max_courant, dt, health.divergence, health.kinetic_energy
         ))?;
+        let stages = sim.fluid.chebyshev_stages_taken();
+        if stages > 0 {
+            self.log.line(&format!(
+                "EulerRKC: {stages} Chebyshev stages of the diffusion"
+            ))?;
+        }
         if let Some(g) = fluid.driving_gradient {
             self.log
                 .line(&format!("meanVelocityForce: pressure gradient = {g:.6e}"))?;

@@ -253,6 +253,7 @@ fn settling_velocity_does_not_depend_on_the_semi_implicit_step() {
         .map(|f| (TimeScheme::RK3CN, f))
         .into_iter()
         .chain([1.0, 4.0, 10.0].map(|f| (TimeScheme::EulerCN, f)))
+        .chain([1.0, 4.0, 10.0].map(|f| (TimeScheme::EulerRKC, f)))
     {
         let v = coarse_settling_velocity(scheme, factor);
         eprintln!(

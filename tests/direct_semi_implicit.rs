@@ -72,7 +72,10 @@ fn time_stepped_k(phi: f64, n: usize, scheme: TimeScheme, factor: f64) -> (f64, 
         &integral.quadrature(radius, h),
     );
     let drag = 6.0 * PI * radius;
-    let stages = if scheme == TimeScheme::EulerCN { 1 } else { 3 };
+    let stages = match scheme {
+        TimeScheme::EulerCN | TimeScheme::EulerRKC => 1,
+        _ => 3,
+    };
     (
         g / drag,
         load.force[0] / drag,
@@ -96,6 +99,7 @@ fn porous_k_does_not_depend_on_the_semi_implicit_step() {
         .map(|f| (TimeScheme::RK3CN, f))
         .into_iter()
         .chain([1.0, 4.0, 10.0].map(|f| (TimeScheme::EulerCN, f)))
+        .chain([1.0, 4.0, 10.0].map(|f| (TimeScheme::EulerRKC, f)))
     {
         let (k, k_stress, solves) = time_stepped_k(phi, n, scheme, factor);
         eprintln!(
@@ -146,7 +150,7 @@ fn column(names: &[String], name: &str) -> usize {
 fn fsimfoam_semi_implicit_schemes_step_by_the_courant_number() {
     let scratch = Scratch::new("semi-implicit-courant");
     let mut results = Vec::new();
-    for scheme in ["RK3", "RK3CN", "EulerCN"] {
+    for scheme in ["RK3", "RK3CN", "EulerCN", "EulerRKC"] {
         let case = copy_tutorial("porousMedia", &scratch.0, scheme);
         set_entry(&case.join("constant/porousParameters"), "n", "21");
         set_entry(&case.join("system/fvOptions"), "Ubar", "(0.05 0 0)");
@@ -184,7 +188,7 @@ fn fsimfoam_semi_implicit_schemes_step_by_the_courant_number() {
         explicit.1
     );
     assert!(explicit.2 < 0.2, "RK3 Courant {}", explicit.2);
-    // RK3CN, EulerCN: at maxCo, several times RK3's step.
+    // RK3CN, EulerCN, EulerRKC: at maxCo, several times RK3's step.
     for semi in &results[1..] {
         assert!((semi.2 - 0.5).abs() < 0.05, "Courant {}", semi.2);
         assert!(semi.1 > 4.0 * bound, "step {} vs bound {bound}", semi.1);

@@ -1,13 +1,16 @@
 //! The fluid state and its time step.
 
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
+use super::chebyshev_diffusion::{chebyshev_stage, ChebyshevDiffusion, StageTerms};
+use super::chebyshev_stages::ChebyshevStages;
 use super::diagnostics::FluidDiagnostics;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
 use super::implicit_stage::ImplicitStage;
 use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
 use super::momentum::{
-    accumulate_tendency, add_scaled, semi_implicit_rhs, store_momentum_box, MomentumTerms,
+    accumulate_tendency, add_scaled, frozen_tendency, semi_implicit_rhs, store_momentum_box,
+    MomentumTerms,
 };
 use super::padded_layout::PaddedLayout;
 use super::projection::{divergence_rhs, subtract_gradient};
@@ -107,6 +110,8 @@ pub struct FluidSolver {
     poisson: SpectralPoisson,
     /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
     implicit: Option<ImplicitViscosity>,
+    /// `EulerRKC`'s second velocity register and pressure increment.
+    chebyshev: Option<ChebyshevDiffusion>,
     drive: Option<MeanVelocityForce>,
     time: f64,
     momentum_ranges: [[(usize, usize); 3]; 3],
@@ -115,6 +120,8 @@ pub struct FluidSolver {
     partials: Vec<[f64; 12]>,
     /// `[time, driving gradient]` as stored for restart.
     scalars: [f64; 2],
+    /// Chebyshev stages of the last `EulerRKC` step.
+    stages_taken: usize,
 }
 
 impl FluidSolver {
@@ -144,12 +151,14 @@ impl FluidSolver {
             mass_source: None,
             poisson,
             implicit: None,
+            chebyshev: None,
             drive: None,
             time: 0.0,
             momentum_ranges,
             corrected_ranges,
             partials: vec![[0.0; 12]; layout.dims[2]],
             scalars: [0.0; 2],
+            stages_taken: 0,
             grid,
             layout,
             bc,
@@ -194,6 +203,20 @@ impl FluidSolver {
             }
         } else {
             self.implicit = None;
+        }
+        if scheme.is_chebyshev() {
+            if (0..3).any(|d| (0..2).any(|side| self.bc.outlet_pressure(d, side).is_some())) {
+                return Err("EulerRKC does not support outlets; use RK3 or Euler".into());
+            }
+            if self.chebyshev.is_none() {
+                self.chebyshev = Some(ChebyshevDiffusion::new(
+                    &self.layout,
+                    self.grid.cell_count(),
+                ));
+            }
+        } else {
+            self.chebyshev = None;
+            self.stages_taken = 0;
         }
         if scheme.keeps_tendency() {
             if self.q[0].is_empty() {
@@ -406,6 +429,9 @@ impl FluidSolver {
         if self.settings.scheme.is_semi_implicit() {
             return self.step_semi_implicit(dt, hook);
         }
+        if self.settings.scheme.is_chebyshev() {
+            return self.step_chebyshev(dt, hook);
+        }
         let stages = self.settings.scheme.stages();
         let t0 = self.time;
         let h = self.grid.h;
@@ -554,6 +580,110 @@ impl FluidSolver {
                 .for_each(|(p, f)| *p += f);
         }
         self.finish_step(t0, dt)
+    }
+
+    /// The `EulerRKC` step:
+    /// 1. `N = −∇·(uⁿuⁿ) + f + s − ∇pⁿ`, frozen over the step;
+    /// 2. `s` Runge–Kutta–Chebyshev stages of `u' = ν∇²u + N` from `Y₀ = uⁿ`
+    ///    ([`ChebyshevStages`], `s` from `Δt · 4ν Σ 1/h²`), the hook on each stage's velocity
+    ///    (a constrained face then holds its constraint in every Laplacian that reads it);
+    /// 3. `∇²φ = ∇·u*/Δt`, `u = u* − Δt ∇φ`, `p ← p + φ` (incremental: at a steady state
+    ///    `N + ν∇²u = 0`, every stage is `uⁿ` and `φ = 0`, whatever `Δt`).
+    fn step_chebyshev(
+        &mut self,
+        dt: f64,
+        hook: &mut dyn FnMut(PredictedVelocity<'_>),
+    ) -> StepReport {
+        let t0 = self.time;
+        let h = self.grid.h;
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        let nu = self.settings.nu;
+        let method = ChebyshevStages::for_step(dt * self.diffusion_spectral_radius());
+        let work = self
+            .chebyshev
+            .as_mut()
+            .expect("set_scheme prepares the Chebyshev registers");
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        let terms = MomentumTerms {
+            layout: &self.layout,
+            h,
+            nu,
+            force,
+            source: self.source.as_ref(),
+            ranges: &self.momentum_ranges,
+        };
+        frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
+        for (j, stage) in method.stages().enumerate() {
+            let terms = StageTerms {
+                layout: &self.layout,
+                h,
+                nu,
+                ranges: &self.momentum_ranges,
+                frozen: &self.q,
+            };
+            // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
+            chebyshev_stage(&mut work.register, &self.u, &terms, &stage, dt);
+            std::mem::swap(&mut self.u, &mut work.register);
+            hook(PredictedVelocity {
+                grid: &self.grid,
+                layout: &self.layout,
+                time: t0 + stage.time * dt,
+                tau: dt,
+                pressure: &[],
+                velocity: &mut self.u,
+                // Only the last stage's velocity is projected.
+                mass_source: if j + 1 == method.count {
+                    self.mass_source.as_deref_mut()
+                } else {
+                    None
+                },
+                implicit: None,
+            });
+            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        }
+        let phi = &mut work.increment;
+        divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, dt);
+        subtract_mass_source(phi, self.mass_source.as_deref(), dt);
+        self.poisson.solve(phi);
+        subtract_gradient(
+            &mut self.u,
+            phi,
+            dt,
+            &self.layout,
+            h,
+            &self.bc,
+            &self.corrected_ranges,
+        );
+        self.p
+            .par_iter_mut()
+            .zip(&phi[..])
+            .for_each(|(p, f)| *p += f);
+        self.stages_taken = method.count;
+        self.finish_step(t0, dt)
+    }
+
+    /// `4ν Σ 1/h_d²` over the directions along which the Laplacian acts (not `Empty`, nor
+    /// periodic with one cell): a bound on the magnitude of the most negative eigenvalue of
+    /// the discrete `ν∇²`.
+    fn diffusion_spectral_radius(&self) -> f64 {
+        let active = self.active();
+        let (h, n) = (self.grid.h, self.grid.n);
+        let acts = |d: usize| {
+            active[d] && !(n[d] == 1 && matches!(self.bc.face(d, 0), FaceCondition::Periodic))
+        };
+        4.0 * self.settings.nu
+            * (0..3)
+                .filter(|&d| acts(d))
+                .map(|d| 1.0 / (h[d] * h[d]))
+                .sum::<f64>()
+    }
+
+    /// Chebyshev stages of the last `EulerRKC` step (0 for the other schemes).
+    pub fn chebyshev_stages_taken(&self) -> usize {
+        self.stages_taken
     }
 
     /// `meanVelocityForce`: raise the driving gradient by `δG` and add `Δt δG` to every
@@ -825,6 +955,7 @@ impl FluidSolver {
             + self.p.len() * 8
             + self.poisson.scratch_bytes()
             + self.implicit.as_ref().map_or(0, |i| i.bytes())
+            + self.chebyshev.as_ref().map_or(0, |c| c.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64
     }

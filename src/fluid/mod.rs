@@ -50,6 +50,8 @@
 #![allow(clippy::needless_range_loop)]
 
 mod boundary_conditions;
+mod chebyshev_diffusion;
+mod chebyshev_stages;
 mod coefficient_fields;
 mod diagnostics;
 mod fluid_solver;
@@ -69,6 +71,7 @@ mod volume_averaged_fluid;
 mod volume_averaged_viscosity;
 
 pub use boundary_conditions::{BoundaryConditions, FaceCondition};
+pub use chebyshev_stages::{ChebyshevStage, ChebyshevStages};
 pub use coefficient_fields::{comparison_beta, seeded_uniform};
 pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};

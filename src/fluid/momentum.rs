@@ -91,6 +91,12 @@ impl<'a> RowStencil<'a> {
         }
     }
 
+    /// Advection `Σ_d δ_d(ū_c ū_d)` at face `i` of the row (as in [`Self::terms`]).
+    #[inline(always)]
+    fn advection(&self, i: usize) -> f64 {
+        self.terms(i).0
+    }
+
     /// Advection `Σ_d δ_d(ū_c ū_d)` and Laplacian `Σ_d δ_d² u_c` at face `i` of the row.
     #[inline(always)]
     fn terms(&self, i: usize) -> (f64, f64) {
@@ -257,8 +263,6 @@ pub(crate) fn semi_implicit_rhs(
     let layout = t.layout;
     let n = layout.n;
     let tau = 2.0 * alpha * dt;
-    // Unpadded offset of the cell row (·, j, k), padded j, k.
-    let row_of = |j: usize, k: usize| n[0] * ((j - 1) + n[1] * (k - 1));
     let plane = layout.plane_len();
     let d0 = layout.dims[0];
     for c in 0..3 {
@@ -285,26 +289,8 @@ pub(crate) fn semi_implicit_rhs(
                 let src = source.map(|s| &s[k * plane + row..][..m0]);
                 let o = &mut out[jj * m0..(jj + 1) * m0];
                 let mut qrow = qp.as_deref_mut().map(|q| &mut q[row..row + m0]);
-                // Pressure on both sides of face i: cells i−1 and i along c, wrapping at
-                // the first face of a periodic direction (outlets are not allowed here).
-                let hi_row = row_of(j, k);
-                let lo_row = match c {
-                    1 => row_of(if j >= 2 { j - 1 } else { n[1] }, k),
-                    2 => row_of(j, if k >= 2 { k - 1 } else { n[2] }),
-                    _ => hi_row,
-                };
-                let grad = |i: usize| -> f64 {
-                    let pi = r[0].0 + i; // padded x index
-                    let hi = pressure[hi_row + pi - 1];
-                    let lo = if c != 0 {
-                        pressure[lo_row + pi - 1]
-                    } else if pi >= 2 {
-                        pressure[hi_row + pi - 2]
-                    } else {
-                        pressure[hi_row + n[0] - 1]
-                    };
-                    hi - lo
-                };
+                let pressure_row = PressureRow::new(n, c, j, k);
+                let grad = |i: usize| pressure_row.difference(pressure, r[0].0 + i);
                 for i in 0..m0 {
                     let (adv, lap) = st.terms(i);
                     let n = -adv + force + src.map_or(0.0, |s| s[i]);
@@ -331,6 +317,127 @@ pub(crate) fn semi_implicit_rhs(
                 .enumerate()
                 .for_each(|(kk, (out, qp))| plane_rows(kk, out, Some(qp)));
         }
+    }
+}
+
+/// The cells on both sides of the faces of component `c` in padded row `(·, j, k)`: cells
+/// `i − 1` and `i` along `c`, wrapping at the first face of a periodic direction (the schemes
+/// that read it have no outlets).
+struct PressureRow {
+    hi_row: usize,
+    lo_row: usize,
+    c: usize,
+    n0: usize,
+}
+
+impl PressureRow {
+    #[inline(always)]
+    fn new(n: [usize; 3], c: usize, j: usize, k: usize) -> Self {
+        // Unpadded offset of the cell row (·, j, k), padded j, k.
+        let row_of = |j: usize, k: usize| n[0] * ((j - 1) + n[1] * (k - 1));
+        let hi_row = row_of(j, k);
+        let lo_row = match c {
+            1 => row_of(if j >= 2 { j - 1 } else { n[1] }, k),
+            2 => row_of(j, if k >= 2 { k - 1 } else { n[2] }),
+            _ => hi_row,
+        };
+        PressureRow {
+            hi_row,
+            lo_row,
+            c,
+            n0: n[0],
+        }
+    }
+
+    /// `out[i] −= (p_hi − p_lo)/h` across the faces at padded x indices `first + i`, by
+    /// contiguous slices (the wrap of a periodic x only at the first face).
+    #[inline(always)]
+    fn subtract_gradient(&self, out: &mut [f64], pressure: &[f64], first: usize, inv_h: f64) {
+        let len = out.len();
+        let hi = &pressure[self.hi_row + first - 1..][..len];
+        if self.c != 0 {
+            let lo = &pressure[self.lo_row + first - 1..][..len];
+            for i in 0..len {
+                out[i] -= (hi[i] - lo[i]) * inv_h;
+            }
+            return;
+        }
+        let start = if first >= 2 {
+            0
+        } else {
+            out[0] -= self.difference(pressure, first) * inv_h;
+            1
+        };
+        let lo = &pressure[self.hi_row + first + start - 2..][..len - start];
+        for i in start..len {
+            out[i] -= (hi[i] - lo[i - start]) * inv_h;
+        }
+    }
+
+    /// `p_hi − p_lo` across the face at padded x index `pi`.
+    #[inline(always)]
+    fn difference(&self, pressure: &[f64], pi: usize) -> f64 {
+        let hi = pressure[self.hi_row + pi - 1];
+        let lo = if self.c != 0 {
+            pressure[self.lo_row + pi - 1]
+        } else if pi >= 2 {
+            pressure[self.hi_row + pi - 2]
+        } else {
+            pressure[self.hi_row + self.n0 - 1]
+        };
+        hi - lo
+    }
+}
+
+/// The frozen tendency of an `EulerRKC` step on the momentum faces of every component,
+///
+/// `q = −∇·(uu) + f + s − ∇p`,
+///
+/// everything but the diffusion, which the Chebyshev stages take (the pressure's gradient is
+/// in it so that the projection corrects only an increment, as in [`semi_implicit_rhs`]).
+pub(crate) fn frozen_tendency(
+    q: &mut [Vec<f64>; 3],
+    u: &[Vec<f64>; 3],
+    t: &MomentumTerms,
+    pressure: &[f64],
+) {
+    let layout = t.layout;
+    let n = layout.n;
+    let plane = layout.plane_len();
+    let d0 = layout.dims[0];
+    for (c, qc) in q.iter_mut().enumerate() {
+        let r = t.ranges[c];
+        if (0..3).any(|d| r[d].0 > r[d].1) {
+            continue;
+        }
+        let force = t.force[c];
+        let source = t.source.map(|s| &s[c][..]);
+        let inv_h = 1.0 / t.h[c];
+        let len = r[0].1 - r[0].0 + 1;
+        qc.par_chunks_mut(plane).enumerate().for_each(|(k, qp)| {
+            if k < r[2].0 || k > r[2].1 {
+                return;
+            }
+            for j in r[1].0..=r[1].1 {
+                let row = j * d0 + r[0].0;
+                let st = RowStencil::new(u, layout, t.h, c, k * plane + row, len);
+                let src = source.map(|s| &s[k * plane + row..][..len]);
+                let out = &mut qp[row..row + len];
+                match src {
+                    Some(s) => {
+                        for i in 0..len {
+                            out[i] = force + s[i] - st.advection(i);
+                        }
+                    }
+                    None => {
+                        for i in 0..len {
+                            out[i] = force - st.advection(i);
+                        }
+                    }
+                }
+                PressureRow::new(n, c, j, k).subtract_gradient(out, pressure, r[0].0, inv_h);
+            }
+        });
     }
 }
 

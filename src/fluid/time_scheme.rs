@@ -32,6 +32,15 @@ pub enum TimeScheme {
     /// central advection is held by the viscosity, implicit or not); no `h²/ν` limit.
     /// Not with outlets. Name `EulerCN`.
     EulerCN,
+    /// Explicit throughout, one projection per step: advection and forces by explicit Euler
+    /// (frozen over the step), diffusion by the damped first-order Runge–Kutta–Chebyshev
+    /// method with as many stages `s` as the step needs (`β(s) ≈ 1.9 s²` ≥ `Δt λ_max`;
+    /// [`super::ChebyshevStages`]). Each stage costs one Laplacian instead of a Helmholtz
+    /// solve, and a hook constrains each stage's faces as it does an explicit stage. First
+    /// order; stable while `Δt ≤ 2ν/|v|²` like `EulerCN`, and while `s` stays at most
+    /// [`super::ChebyshevStages::MAX_STAGES`]. The pressure is incremental, so a steady state
+    /// does not depend on `Δt`. Not with outlets. Name `EulerRKC`.
+    EulerRKC,
 }
 
 /// Spalart–Moser–Rogers stage coefficients `(γ_s, ζ_s, α_s = β_s)`:
@@ -65,6 +74,7 @@ impl TimeScheme {
             "rk3" => Some(TimeScheme::RK3),
             "rk3cn" | "cranknicolson" => Some(TimeScheme::RK3CN),
             "eulercn" => Some(TimeScheme::EulerCN),
+            "eulerrkc" => Some(TimeScheme::EulerRKC),
             _ => None,
         }
     }
@@ -76,6 +86,7 @@ impl TimeScheme {
             TimeScheme::RK3 => "RK3",
             TimeScheme::RK3CN => "RK3CN",
             TimeScheme::EulerCN => "EulerCN",
+            TimeScheme::EulerRKC => "EulerRKC",
         }
     }
 
@@ -83,6 +94,7 @@ impl TimeScheme {
     pub fn order(&self) -> usize {
         match self {
             TimeScheme::RK3CN => 2,
+            TimeScheme::EulerRKC => 1,
             _ => self.stages().len(),
         }
     }
@@ -92,14 +104,19 @@ impl TimeScheme {
         matches!(self, TimeScheme::RK3CN | TimeScheme::EulerCN)
     }
 
-    /// Stage coefficients `(γ_s, ζ_s, α_s = β_s)` of a semi-implicit scheme (empty for the
-    /// explicit ones): `(I − β_s Δt ν∇²) u* = u + Δt (γ_s N(u) + ζ_s N_old + α_s ν∇²u)`.
+    /// True for `EulerRKC`: Chebyshev stages of the diffusion, one projection per step.
+    pub fn is_chebyshev(&self) -> bool {
+        matches!(self, TimeScheme::EulerRKC)
+    }
+
     /// Whether a step keeps a tendency field between its stages (`q` of the explicit
     /// schemes, `N_old` of `RK3CN`); `EulerCN`'s single stage does not.
     pub(crate) fn keeps_tendency(&self) -> bool {
         !matches!(self, TimeScheme::EulerCN)
     }
 
+    /// Stage coefficients `(γ_s, ζ_s, α_s = β_s)` of a semi-implicit scheme (empty for the
+    /// explicit ones): `(I − β_s Δt ν∇²) u* = u + Δt (γ_s N(u) + ζ_s N_old + α_s ν∇²u)`.
     pub(crate) fn semi_implicit_stages(&self) -> &'static [(f64, f64, f64)] {
         match self {
             TimeScheme::RK3CN => &SMR_STAGES,
@@ -113,7 +130,7 @@ impl TimeScheme {
     /// part's stage times are those of RK3 (its coefficients are in `SMR_STAGES`).
     pub fn stages(&self) -> &'static [(f64, f64, f64)] {
         match self {
-            TimeScheme::Euler | TimeScheme::EulerCN => &EULER_STAGES,
+            TimeScheme::Euler | TimeScheme::EulerCN | TimeScheme::EulerRKC => &EULER_STAGES,
             TimeScheme::RK2 => &RK2_STAGES,
             TimeScheme::RK3 | TimeScheme::RK3CN => &RK3_STAGES,
         }
@@ -128,6 +145,8 @@ impl TimeScheme {
     /// axis, so `min(2.51 / (4ν Σ 1/h_d²), √3 / Σ |v_d|_max / h_d)`.
     /// RK3CN: the advective part only, `√3 / Σ |v_d|_max / h_d`.
     /// EulerCN: the advective part of Euler's, `2ν / |v|²_max`.
+    /// EulerRKC: that, and the reach of its largest stage count on the diffusion's
+    /// spectrum `[−4ν Σ 1/h_d², 0]`.
     pub fn stability_bound(
         &self,
         nu: f64,
@@ -153,6 +172,10 @@ impl TimeScheme {
             TimeScheme::RK3 => div(2.51, 4.0 * nu * inv_h2).min(div(3f64.sqrt(), speed_over_h)),
             TimeScheme::RK3CN => div(3f64.sqrt(), speed_over_h),
             TimeScheme::EulerCN => div(2.0 * nu, speed2),
+            TimeScheme::EulerRKC => div(2.0 * nu, speed2).min(div(
+                super::ChebyshevStages::reach(super::ChebyshevStages::MAX_STAGES),
+                4.0 * nu * inv_h2,
+            )),
         }
     }
 }
