@@ -448,28 +448,32 @@ impl ImmersedBoundary {
         tau: f64,
         mass_source: Option<&mut [f64]>,
     ) {
-        for c in 0..3 {
-            let u = &mut velocity[c];
-            let scale = tau / self.grid.h[c];
-            let correction = |cells: [u32; 2]| {
-                if tau == 0.0 || pressure.is_empty() {
-                    0.0
-                } else {
-                    scale * (pressure[cells[1] as usize] - pressure[cells[0] as usize])
+        // Each component writes only its own array: the three run in parallel.
+        velocity
+            .par_iter_mut()
+            .zip(self.interior.par_iter().zip(self.forcing.par_iter()))
+            .enumerate()
+            .for_each(|(c, (u, (interior, forcing)))| {
+                let scale = tau / self.grid.h[c];
+                let correction = |cells: [u32; 2]| {
+                    if tau == 0.0 || pressure.is_empty() {
+                        0.0
+                    } else {
+                        scale * (pressure[cells[1] as usize] - pressure[cells[0] as usize])
+                    }
+                };
+                for f in interior {
+                    u[f.slot as usize] = f.target + correction(f.cells);
                 }
-            };
-            for f in &self.interior[c] {
-                u[f.slot as usize] = f.target + correction(f.cells);
-            }
-            for f in &self.forcing[c] {
-                let mut value = f.wall + correction(f.cells);
-                for k in 0..2 {
-                    let outer = u[f.neighbours[k] as usize] - correction(f.neighbour_cells[k]);
-                    value += f.weights[k] * (outer - f.wall);
+                for f in forcing {
+                    let mut value = f.wall + correction(f.cells);
+                    for k in 0..2 {
+                        let outer = u[f.neighbours[k] as usize] - correction(f.neighbour_cells[k]);
+                        value += f.weights[k] * (outer - f.wall);
+                    }
+                    u[f.slot as usize] = value;
                 }
-                u[f.slot as usize] = value;
-            }
-        }
+            });
         if let Some(q) = mass_source {
             for &cell in &self.previous_closed {
                 q[cell] = 0.0;
