@@ -3,11 +3,14 @@
 //! diffusion decays by the stability polynomial; first order in time; steady states do not
 //! depend on the step; steps far above the explicit viscous bound.
 
+mod support;
+
 use fsim::fluid::{
     BoundaryConditions, ChebyshevStages, FaceCondition, FluidSettings, FluidSolver, TimeScheme,
 };
 use fsim::grid::Grid;
 use std::f64::consts::PI;
+use support::wall_channel;
 
 fn periodic_square(n: usize, nu: f64) -> FluidSolver {
     let h = 2.0 * PI / n as f64;
@@ -113,31 +116,6 @@ fn converges_at_first_order_in_time() {
     );
 }
 
-/// Channel periodic in x, walls in y (the top one moving at `lid`), empty z, 16 cells high.
-fn channel(lid: f64, nu: f64, g: f64, scheme: TimeScheme) -> FluidSolver {
-    let ny = 16;
-    let h = 1.0 / ny as f64;
-    let grid = Grid::new([4, ny, 1], [h; 3], [0.0; 3]);
-    let bc = BoundaryConditions {
-        faces: [
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            FaceCondition::Wall { velocity: [0.0; 3] },
-            FaceCondition::Wall {
-                velocity: [lid, 0.0, 0.0],
-            },
-            FaceCondition::Empty,
-            FaceCondition::Empty,
-        ],
-    };
-    let settings = FluidSettings {
-        nu,
-        scheme,
-        body_force: [g, 0.0, 0.0],
-    };
-    FluidSolver::new(grid, bc, settings).unwrap()
-}
-
 fn profile(s: &FluidSolver) -> Vec<f64> {
     (1..=16)
         .map(|j| s.velocity()[0][s.layout().index(2, j, 1)])
@@ -155,7 +133,7 @@ fn walls_reach_couette_and_poiseuille_at_huge_steps() {
     let dt = 0.25;
     const STEPS: usize = 1600;
     let run = |lid: f64, g: f64, scheme: TimeScheme| {
-        let mut s = channel(lid, nu, g, scheme);
+        let mut s = wall_channel(lid, nu, g, scheme);
         for _ in 0..STEPS {
             s.step(dt);
         }

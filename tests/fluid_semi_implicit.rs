@@ -1,9 +1,12 @@
 //! The semi-implicit schemes (RK3 or Euler advection, Crank–Nicolson diffusion: `RK3CN`,
 //! `EulerCN`): accuracy in time, and steps far above the explicit viscous limit.
 
+mod support;
+
 use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, TimeScheme};
 use fsim::grid::Grid;
 use std::f64::consts::PI;
+use support::wall_channel;
 
 fn periodic_square_with(n: usize, nu: f64, scheme: TimeScheme) -> FluidSolver {
     let h = 2.0 * PI / n as f64;
@@ -112,33 +115,9 @@ fn taylor_green_decay_beyond_the_viscous_limit(scheme: TimeScheme) {
     assert!(div < 1e-10);
 }
 
-/// Channel periodic in x, walls in y (the top one moving at `lid`), empty z.
+/// The wall channel on `RK3CN`.
 fn channel(lid: f64, nu: f64, g: f64) -> FluidSolver {
-    let ny = 16;
-    let h = 1.0 / ny as f64;
-    let grid = Grid::new([4, ny, 1], [h; 3], [0.0; 3]);
-    let bc = BoundaryConditions {
-        faces: [
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            FaceCondition::Wall { velocity: [0.0; 3] },
-            FaceCondition::Wall {
-                velocity: [lid, 0.0, 0.0],
-            },
-            FaceCondition::Empty,
-            FaceCondition::Empty,
-        ],
-    };
-    FluidSolver::new(
-        grid,
-        bc,
-        FluidSettings {
-            nu,
-            scheme: TimeScheme::RK3CN,
-            body_force: [g, 0.0, 0.0],
-        },
-    )
-    .unwrap()
+    wall_channel(lid, nu, g, TimeScheme::RK3CN)
 }
 
 #[test]

@@ -509,12 +509,12 @@ impl FluidSolver {
             force[d.direction] += d.gradient;
         }
         let mut c_end = 0.0;
-        let implicit = self
-            .implicit
-            .as_mut()
-            .expect("set_scheme prepares the implicit solvers");
         let stages = self.settings.scheme.semi_implicit_stages();
         for (index, &(gamma, zeta, alpha)) in stages.iter().enumerate() {
+            let implicit = self
+                .implicit
+                .as_mut()
+                .expect("set_scheme prepares the implicit solvers");
             c_end += gamma + zeta;
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let terms = MomentumTerms {
@@ -560,26 +560,36 @@ impl FluidSolver {
                 }),
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            // Pressure increment φ: ∇²φ = ∇·u*/τ, u = u* − τ∇φ, p ← p + φ.
-            let phi = &mut implicit.increment;
-            divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, tau);
-            subtract_mass_source(phi, self.mass_source.as_deref(), tau);
-            self.poisson.solve(phi);
-            subtract_gradient(
-                &mut self.u,
-                phi,
-                tau,
-                &self.layout,
-                h,
-                &self.bc,
-                &self.corrected_ranges,
-            );
-            self.p
-                .par_iter_mut()
-                .zip(&phi[..])
-                .for_each(|(p, f)| *p += f);
+            let mut phi = std::mem::take(&mut implicit.increment);
+            self.project_increment(&mut phi, tau);
+            if let Some(implicit) = self.implicit.as_mut() {
+                implicit.increment = phi;
+            }
         }
         self.finish_step(t0, dt)
+    }
+
+    /// The incremental projection of the semi-implicit and Chebyshev steps, into the
+    /// increment's storage `phi`: `∇²φ = ∇·u*/τ` (less the mass source), `u = u* − τ∇φ`,
+    /// `p ← p + φ`.
+    fn project_increment(&mut self, phi: &mut [f64], tau: f64) {
+        let h = self.grid.h;
+        divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, tau);
+        subtract_mass_source(phi, self.mass_source.as_deref(), tau);
+        self.poisson.solve(phi);
+        subtract_gradient(
+            &mut self.u,
+            phi,
+            tau,
+            &self.layout,
+            h,
+            &self.bc,
+            &self.corrected_ranges,
+        );
+        self.p
+            .par_iter_mut()
+            .zip(&phi[..])
+            .for_each(|(p, f)| *p += f);
     }
 
     /// The `EulerRKC` step:
@@ -644,23 +654,11 @@ impl FluidSolver {
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
         }
-        let phi = &mut work.increment;
-        divergence_rhs(phi, &self.u, &self.layout, h, &self.bc, dt);
-        subtract_mass_source(phi, self.mass_source.as_deref(), dt);
-        self.poisson.solve(phi);
-        subtract_gradient(
-            &mut self.u,
-            phi,
-            dt,
-            &self.layout,
-            h,
-            &self.bc,
-            &self.corrected_ranges,
-        );
-        self.p
-            .par_iter_mut()
-            .zip(&phi[..])
-            .for_each(|(p, f)| *p += f);
+        let mut phi = std::mem::take(&mut work.increment);
+        self.project_increment(&mut phi, dt);
+        if let Some(work) = self.chebyshev.as_mut() {
+            work.increment = phi;
+        }
         self.stages_taken = method.count;
         self.finish_step(t0, dt)
     }

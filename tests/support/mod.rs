@@ -1,4 +1,4 @@
-//! Helpers for tests that run `fsimFoam` on copies of the tutorials.
+//! Helpers for tests that run `fsimFoam` on copies of the tutorials, and shared fluid set-ups.
 #![allow(dead_code)]
 
 use std::fs;
@@ -120,4 +120,36 @@ pub fn refused(case: &Path, expected: &str) -> Output {
     assert!(stderr.contains(expected), "{stderr}");
     assert_eq!(listing(case), before, "the refused run wrote into the case");
     out
+}
+
+/// Channel periodic in x, walls in y (the top one moving at `lid`), empty z, 4 × 16 cells of
+/// 1/16, body force `g` along x.
+pub fn wall_channel(
+    lid: f64,
+    nu: f64,
+    g: f64,
+    scheme: fsim::fluid::TimeScheme,
+) -> fsim::fluid::FluidSolver {
+    use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver};
+    let ny = 16;
+    let h = 1.0 / ny as f64;
+    let grid = fsim::grid::Grid::new([4, ny, 1], [h; 3], [0.0; 3]);
+    let bc = BoundaryConditions {
+        faces: [
+            FaceCondition::Periodic,
+            FaceCondition::Periodic,
+            FaceCondition::Wall { velocity: [0.0; 3] },
+            FaceCondition::Wall {
+                velocity: [lid, 0.0, 0.0],
+            },
+            FaceCondition::Empty,
+            FaceCondition::Empty,
+        ],
+    };
+    let settings = FluidSettings {
+        nu,
+        scheme,
+        body_force: [g, 0.0, 0.0],
+    };
+    FluidSolver::new(grid, bc, settings).unwrap()
 }
