@@ -363,10 +363,7 @@ impl FluidSolver {
     /// gravity) balanced from the first step. Called by [`Self::new`] and [`Self::project`].
     pub fn initialise_pressure(&mut self) {
         fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-        let mut force = self.settings.body_force;
-        if let Some(d) = &self.drive {
-            force[d.direction] += d.gradient;
-        }
+        let force = self.total_body_force();
         // The tendency F goes through `q`; a scheme without it lends the space for the
         // moment (outside the time loop).
         let borrowed = self.q[0].is_empty();
@@ -435,10 +432,7 @@ impl FluidSolver {
         let stages = self.settings.scheme.stages();
         let t0 = self.time;
         let h = self.grid.h;
-        let mut force = self.settings.body_force;
-        if let Some(d) = &self.drive {
-            force[d.direction] += d.gradient;
-        }
+        let force = self.total_body_force();
         for (s, &(a, b, c_end)) in stages.iter().enumerate() {
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let terms = MomentumTerms {
@@ -504,10 +498,7 @@ impl FluidSolver {
     ) -> StepReport {
         let t0 = self.time;
         let h = self.grid.h;
-        let mut force = self.settings.body_force;
-        if let Some(d) = &self.drive {
-            force[d.direction] += d.gradient;
-        }
+        let force = self.total_body_force();
         let mut c_end = 0.0;
         let stages = self.settings.scheme.semi_implicit_stages();
         for (index, &(gamma, zeta, alpha)) in stages.iter().enumerate() {
@@ -606,10 +597,7 @@ impl FluidSolver {
     ) -> StepReport {
         let t0 = self.time;
         let h = self.grid.h;
-        let mut force = self.settings.body_force;
-        if let Some(d) = &self.drive {
-            force[d.direction] += d.gradient;
-        }
+        let force = self.total_body_force();
         let nu = self.settings.nu;
         let method = ChebyshevStages::for_step(dt * self.diffusion_spectral_radius());
         let work = self
@@ -661,6 +649,15 @@ impl FluidSolver {
         }
         self.stages_taken = method.count;
         self.finish_step(t0, dt)
+    }
+
+    /// The body force of the settings plus the `meanVelocityForce` gradient, m/s².
+    fn total_body_force(&self) -> [f64; 3] {
+        let mut force = self.settings.body_force;
+        if let Some(d) = &self.drive {
+            force[d.direction] += d.gradient;
+        }
+        force
     }
 
     /// `4ν Σ 1/h_d²` over the directions along which the Laplacian acts (not `Empty`, nor
