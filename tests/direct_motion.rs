@@ -565,15 +565,25 @@ fn tutorials_validate_at_dry_run() {
 
 /// A continued run (`startFrom latestTime`) of a settling sphere equals the uninterrupted one
 /// bit for bit: the restart state carries the DEM, the fluid, the stress integral's shell
-/// momentum and the moving spheres' state (virtual-mass velocities, drive correction).
+/// momentum and the moving spheres' state (virtual-mass velocities, drive correction); with
+/// the tutorial's scheme and with `EulerRKC`, whose incremental pressure is state too.
 #[test]
 fn continued_settling_run_is_bit_identical() {
-    let s = Scratch::new("direct-restart");
+    for scheme in [None, Some("EulerRKC")] {
+        continued_run_is_bit_identical(scheme);
+    }
+}
+
+fn continued_run_is_bit_identical(scheme: Option<&str>) {
+    let s = Scratch::new(&format!("direct-restart-{}", scheme.unwrap_or("tutorial")));
     let setup = |name: &str| {
         let case = copy_tutorial("settlingSphere", &s.0, name);
         let coupling = case.join("constant/couplingProperties");
         let text = fs::read_to_string(&coupling).unwrap();
         fs::write(&coupling, text + "direct { interpolation linear; }\n").unwrap();
+        if let Some(scheme) = scheme {
+            set_entry(&case.join("system/fvSolution"), "timeScheme", scheme);
+        }
         let control = case.join("system/controlDict");
         set_entry(&control, "adjustTimeStep", "no");
         set_entry(&control, "deltaT", "2e-6");
