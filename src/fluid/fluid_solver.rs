@@ -614,6 +614,11 @@ impl FluidSolver {
             ranges: &self.momentum_ranges,
         };
         frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
+        let bounded = self
+            .bc
+            .faces
+            .iter()
+            .any(|f| !matches!(f, FaceCondition::Periodic | FaceCondition::Empty));
         for (j, stage) in method.stages().enumerate() {
             let terms = StageTerms {
                 layout: &self.layout,
@@ -625,6 +630,11 @@ impl FluidSolver {
             // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
             chebyshev_stage(&mut work.register, &self.u, &terms, &stage, dt);
             std::mem::swap(&mut self.u, &mut work.register);
+            if bounded {
+                // The register's fixed boundary faces are stale (or zero at the first
+                // step); a hook may read them (a closed cell's divergence at a wall).
+                fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+            }
             hook(PredictedVelocity {
                 grid: &self.grid,
                 layout: &self.layout,
