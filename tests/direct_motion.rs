@@ -241,7 +241,7 @@ fn coarse_settling_velocity(scheme: TimeScheme, factor: f64) -> f64 {
     s.report().settling_velocity / stokes_velocity(d, rho_p, rho_f, nu)
 }
 
-/// The settling sphere's terminal velocity with `RK3CN` and `EulerCN` at 1, 4 and 10 times the explicit
+/// The settling sphere's terminal velocity with `RK3CN`, `EulerCN` and `EulerRKC` at 1, 4 and 10 times the explicit
 /// viscous bound equals the explicit RK3 run's within 1 % (the no-slip forcing is part of
 /// the implicit viscous solve; before, RK3CN diverged here at any density ratio).
 /// Coarse (r/h = 4) for speed: the accuracy against eq. 17 is the tutorial test's above.

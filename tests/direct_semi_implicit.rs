@@ -1,6 +1,7 @@
-//! The direct model with the semi-implicit scheme (`RK3CN`): the no-slip forcing is part of
-//! the implicit viscous solve (`src/coupling/direct/implicit_forcing.rs`), so the drag does
-//! not depend on the step. Porous media (fixed simple cubic array) time-stepped at 1, 4 and
+//! The direct model with the semi-implicit schemes (`RK3CN`, `EulerCN`): the no-slip forcing
+//! is part of the implicit viscous solve (`src/coupling/direct/implicit_forcing.rs`), so the
+//! drag does not depend on the step; and with `EulerRKC`, whose Chebyshev stages are
+//! explicit and constrained one by one. Porous media (fixed simple cubic array) time-stepped at 1, 4 and
 //! 10 times the explicit viscous bound against the explicit RK3 run and the reference K, and
 //! a `fsimFoam` run whose step follows the Courant number. (The settling sphere across the
 //! same steps: `tests/direct_motion.rs`.)
@@ -143,7 +144,7 @@ fn column(names: &[String], name: &str) -> usize {
 
 /// `fsimFoam` on the porousMedia tutorial at r/h = 6 with a faster flow (Ubar 0.05 m/s,
 /// Re_d = 0.8), `adjustTimeStep yes; maxCo 0.5;`: with `RK3` the step is held at RK3's viscous
-/// bound (the Courant number stays far below 0.5); with `RK3CN` and `EulerCN` the step grows
+/// bound (the Courant number stays far below 0.5); with `RK3CN`, `EulerCN` and `EulerRKC` the step grows
 /// until the Courant number reaches maxCo, several times the viscous bound, and K (steady,
 /// from the stress integral) equals the RK3 run's within 1 %.
 #[test]
