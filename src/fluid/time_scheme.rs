@@ -34,7 +34,7 @@ pub enum TimeScheme {
     EulerCN,
     /// Explicit throughout, one projection per step: advection and forces by explicit Euler
     /// (frozen over the step), diffusion by the damped first-order Runge–Kutta–Chebyshev
-    /// method with as many stages `s` as the step needs (`β(s) ≈ 1.9 s²` ≥ `Δt λ_max`;
+    /// method with as many stages `s` as the step needs (reach `0.9 β(s)`, `β ≈ 1.53 s²`, ≥ `Δt λ_max`;
     /// [`super::ChebyshevStages`]). Each stage costs one Laplacian instead of a Helmholtz
     /// solve, and a hook constrains each stage's faces as it does an explicit stage. First
     /// order; stable while `Δt ≤ 2ν/|v|²` like `EulerCN`, and while `s` stays at most
@@ -110,7 +110,8 @@ impl TimeScheme {
     }
 
     /// Whether a step keeps a tendency field between its stages (`q` of the explicit
-    /// schemes, `N_old` of `RK3CN`); `EulerCN`'s single stage does not.
+    /// schemes, `N_old` of `RK3CN`, the frozen `N` of `EulerRKC`); `EulerCN`'s single stage
+    /// does not.
     pub(crate) fn keeps_tendency(&self) -> bool {
         !matches!(self, TimeScheme::EulerCN)
     }
@@ -195,6 +196,12 @@ mod tests {
         assert!(g + z == 1.0 && 2.0 * a == 1.0);
         assert_eq!(TimeScheme::from_name("EulerCN"), Some(TimeScheme::EulerCN));
         assert_eq!(TimeScheme::EulerCN.order(), 1);
+        assert_eq!(
+            TimeScheme::from_name("EulerRKC"),
+            Some(TimeScheme::EulerRKC)
+        );
+        assert_eq!(TimeScheme::EulerRKC.order(), 1);
+        assert!(TimeScheme::EulerRKC.is_chebyshev() && !TimeScheme::EulerRKC.is_semi_implicit());
         assert_eq!(
             TimeScheme::from_name("CrankNicolson"),
             Some(TimeScheme::RK3CN)
