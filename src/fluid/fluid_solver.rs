@@ -122,6 +122,10 @@ pub struct FluidSolver {
     scalars: [f64; 2],
     /// Chebyshev stages of the last `EulerRKC` step.
     stages_taken: usize,
+    /// Bumped whenever the velocity may change.
+    generation: u64,
+    /// `(generation, ½ max Σ|u_f|/h)` of the last diagnostics.
+    courant_cache: Option<(u64, f64)>,
 }
 
 impl FluidSolver {
@@ -159,6 +163,8 @@ impl FluidSolver {
             partials: vec![[0.0; 12]; layout.dims[2]],
             scalars: [0.0; 2],
             stages_taken: 0,
+            generation: 0,
+            courant_cache: None,
             grid,
             layout,
             bc,
@@ -241,6 +247,7 @@ impl FluidSolver {
     }
     /// Mutable velocity (padded); call [`Self::project`] after changing it.
     pub fn velocity_mut(&mut self) -> &mut [Vec<f64>; 3] {
+        self.velocity_changes();
         &mut self.u
     }
     /// Kinematic pressure `p/ρ` (m²/s²) at cell centres, unpadded x-fastest layout.
@@ -291,6 +298,7 @@ impl FluidSolver {
     /// faces and ghosts from the conditions. Call [`Self::project`] if `f` is not discretely
     /// divergence-free.
     pub fn set_velocity(&mut self, f: impl Fn(usize, [f64; 3]) -> f64) {
+        self.velocity_changes();
         let g = &self.grid;
         let l = &self.layout;
         for c in 0..3 {
@@ -320,6 +328,7 @@ impl FluidSolver {
     /// (see `staggered_transfer`); then the conditions fix the boundary faces. Call
     /// [`Self::project`] afterwards.
     pub fn set_cell_velocity(&mut self, cells: &[[f64; 3]]) {
+        self.velocity_changes();
         faces_from_cells(&self.grid, &self.bc, &self.layout, cells, &mut self.u);
         for d in 0..3 {
             if matches!(self.bc.face(d, 0), FaceCondition::Empty) {
@@ -332,6 +341,7 @@ impl FluidSolver {
     /// Makes the current velocity discretely divergence-free (one projection with unit
     /// weight), then sets the pressure consistent with it (see [`Self::initialise_pressure`]).
     pub fn project(&mut self) {
+        self.velocity_changes();
         extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
         fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
         divergence_rhs(
@@ -423,6 +433,7 @@ impl FluidSolver {
         dt: f64,
         hook: &mut dyn FnMut(PredictedVelocity<'_>),
     ) -> StepReport {
+        self.velocity_changes();
         if self.settings.scheme.is_semi_implicit() {
             return self.step_semi_implicit(dt, hook);
         }
@@ -819,7 +830,7 @@ impl FluidSolver {
         let speed = total[5].max(total[6]).max(total[7]);
         // f64::max skips NaN: a blown-up field must not report a clean divergence.
         let blown_up = !total[1].is_finite();
-        FluidDiagnostics {
+        let diagnostics = FluidDiagnostics {
             divergence: if blown_up {
                 f64::NAN
             } else if speed > 0.0 {
@@ -832,7 +843,9 @@ impl FluidSolver {
             mean_velocity: [total[2] / cells, total[3] / cells, total[4] / cells],
             max_speed: [total[5], total[6], total[7]],
             max_courant: total[8] * dt,
-        }
+        };
+        self.courant_cache = Some((self.generation, total[8]));
+        diagnostics
     }
 
     fn active(&self) -> [bool; 3] {
@@ -869,9 +882,20 @@ impl FluidSolver {
     }
 
     /// Courant number per unit time step: `Co = Δt × courant_rate()` (OpenFOAM's definition,
-    /// `½ Σ_faces |u_f| / h` per cell, largest over cells).
+    /// `½ Σ_faces |u_f| / h` per cell, largest over cells). Taken from the last
+    /// [`Self::diagnostics`] when the velocity has not changed since (a time loop's health
+    /// check and the next step's Courant rule read the same field), else computed.
     pub fn courant_rate(&mut self) -> f64 {
-        self.diagnostics(1.0).max_courant
+        match self.courant_cache {
+            Some((generation, rate)) if generation == self.generation => rate,
+            _ => self.diagnostics(1.0).max_courant,
+        }
+    }
+
+    /// Marks the velocity as changed (the cached Courant rate no longer holds).
+    fn velocity_changes(&mut self) {
+        self.generation = self.generation.wrapping_add(1);
+        self.courant_cache = None;
     }
 
     /// Next time step under `adjustTimeStep yes`, by OpenFOAM's rule (setDeltaT): with
@@ -926,6 +950,7 @@ impl FluidSolver {
 
     /// Restores one array saved by [`Self::restart_arrays`].
     pub fn restore_array(&mut self, name: &str, data: &[f64]) -> Result<(), String> {
+        self.velocity_changes();
         let target: &mut [f64] = match name {
             "U.x" => &mut self.u[0],
             "U.y" => &mut self.u[1],
@@ -1021,6 +1046,28 @@ mod tests {
         let bound = viscous.stability_bound();
         assert!((bound - 2.51 / (4.0 * 300.0)).abs() < 1e-12); // RK3: 2.51 / (4ν Σ 1/h²)
         assert_eq!(viscous.adaptive_dt(0.01, 0.5, 1.0), bound);
+    }
+
+    /// The Courant rate the health check's diagnostics leave behind is the one a fresh
+    /// evaluation gives, and every way of changing the velocity discards it.
+    #[test]
+    fn the_cached_courant_rate_follows_the_velocity() {
+        let mut s = uniform_flow(1e-6);
+        let fresh = s.diagnostics(1.0).max_courant;
+        s.diagnostics(0.37);
+        assert_eq!(s.courant_rate(), fresh);
+        s.velocity_mut()[0].iter_mut().for_each(|x| *x *= 3.0);
+        assert!((s.courant_rate() - 30.0).abs() < 1e-12);
+        s.diagnostics(0.5);
+        s.set_velocity(|c, _| if c == 1 { 2.0 } else { 0.0 });
+        assert!((s.courant_rate() - 20.0).abs() < 1e-12);
+        s.diagnostics(0.5);
+        s.step(1e-3);
+        assert_eq!(s.courant_rate(), s.diagnostics(1.0).max_courant);
+        let saved: Vec<f64> = s.velocity()[1].iter().map(|x| 0.5 * x).collect();
+        s.diagnostics(0.5);
+        s.restore_array("U.y", &saved).unwrap();
+        assert!((s.courant_rate() - 10.0).abs() < 1e-9);
     }
 
     #[test]
