@@ -130,6 +130,11 @@ impl BoundaryConditions {
         }
     }
 
+    /// Whether some face is an outlet (the schemes with a pressure increment refuse them).
+    pub fn has_outlet(&self) -> bool {
+        (0..3).any(|d| (0..2).any(|side| self.outlet_pressure(d, side).is_some()))
+    }
+
     /// Padded index range (inclusive, empty when `lo > hi`) along direction `d` of the
     /// faces of component `c` where the momentum equation is advanced.
     ///

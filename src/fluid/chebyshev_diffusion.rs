@@ -9,7 +9,9 @@
 //! A stage reads `Y_{j−1}` around each face and `Y_{j−2}` at the face only, so `Y_j`
 //! overwrites `Y_{j−2}` in place: two velocity registers and `N`, whatever `s`.
 
+use super::boundary_conditions::BoundaryConditions;
 use super::chebyshev_stages::ChebyshevStage;
+use super::ghost_fill::fill_velocity_ghosts;
 use super::padded_layout::PaddedLayout;
 use rayon::prelude::*;
 
@@ -21,9 +23,14 @@ pub(crate) struct ChebyshevDiffusion {
 }
 
 impl ChebyshevDiffusion {
-    pub fn new(layout: &PaddedLayout, cells: usize) -> Self {
+    /// The register starts with its fixed boundary faces set by the conditions `bc`; a
+    /// stage writes only momentum faces, so they stay set (a hook handed the register after
+    /// the swap may read them: a closed cell's divergence at a wall).
+    pub fn new(layout: &PaddedLayout, bc: &BoundaryConditions, cells: usize) -> Self {
+        let mut register = std::array::from_fn(|_| vec![0.0; layout.len]);
+        fill_velocity_ghosts(layout, bc, &mut register);
         ChebyshevDiffusion {
-            register: std::array::from_fn(|_| vec![0.0; layout.len]),
+            register,
             increment: vec![0.0; cells],
         }
     }

@@ -211,12 +211,13 @@ impl FluidSolver {
             self.implicit = None;
         }
         if scheme.is_chebyshev() {
-            if (0..3).any(|d| (0..2).any(|side| self.bc.outlet_pressure(d, side).is_some())) {
+            if self.bc.has_outlet() {
                 return Err("EulerRKC does not support outlets; use RK3 or Euler".into());
             }
             if self.chebyshev.is_none() {
                 self.chebyshev = Some(ChebyshevDiffusion::new(
                     &self.layout,
+                    &self.bc,
                     self.grid.cell_count(),
                 ));
             }
@@ -625,11 +626,6 @@ impl FluidSolver {
             ranges: &self.momentum_ranges,
         };
         frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
-        let bounded = self
-            .bc
-            .faces
-            .iter()
-            .any(|f| !matches!(f, FaceCondition::Periodic | FaceCondition::Empty));
         for (j, stage) in method.stages().enumerate() {
             let terms = StageTerms {
                 layout: &self.layout,
@@ -640,12 +636,9 @@ impl FluidSolver {
             };
             // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
             chebyshev_stage(&mut work.register, &self.u, &terms, &stage, dt);
+            // Both registers' fixed boundary faces hold the conditions (the register's from
+            // its allocation, the stage writes momentum faces only): the hook may read them.
             std::mem::swap(&mut self.u, &mut work.register);
-            if bounded {
-                // The register's fixed boundary faces are stale (or zero at the first
-                // step); a hook may read them (a closed cell's divergence at a wall).
-                fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            }
             hook(PredictedVelocity {
                 grid: &self.grid,
                 layout: &self.layout,

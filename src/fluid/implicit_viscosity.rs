@@ -37,12 +37,11 @@ impl ImplicitViscosity {
         bc: &BoundaryConditions,
         ranges: &[[(usize, usize); 3]; 3],
     ) -> Result<Self, String> {
-        for d in 0..3 {
-            for side in 0..2 {
-                if bc.outlet_pressure(d, side).is_some() {
-                    return Err("the semi-implicit viscous scheme does not support outlets; use RK3 or Euler".into());
-                }
-            }
+        if bc.has_outlet() {
+            return Err(
+                "the semi-implicit viscous scheme does not support outlets; use RK3 or Euler"
+                    .into(),
+            );
         }
         let mut dims = [[0usize; 3]; 3];
         let mut boundary = [[[0.0; 2]; 3]; 3];
