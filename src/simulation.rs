@@ -17,8 +17,8 @@ use crate::coupling::direct::{
 use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{
-    BoundaryConditions, Convergence, FaceCondition, FluidDiagnostics, FluidSettings, FluidSolver,
-    MeanVelocityForce, StepReport, TimeScheme,
+    BoundaryConditions, ChebyshevStages, Convergence, FaceCondition, FluidDiagnostics,
+    FluidSettings, FluidSolver, MeanVelocityForce, StepReport, TimeScheme,
 };
 use crate::grid::Grid;
 use crate::output::{ParticleFields, RestartHeader, RestartState, TimeEntry};
@@ -353,13 +353,16 @@ impl Simulation {
                         None => {
                             let scheme = self.fluid.settings().scheme;
                             let bound = match scheme {
-                                TimeScheme::RK3CN => "advective: sqrt(3) / sum |v_d|/h_d",
-                                TimeScheme::EulerCN => "advective: 2 nu/|v|^2",
-                                TimeScheme::EulerRKC => {
-                                    "advective: 2 nu/|v|^2; diffusive: the reach of 40 \
-                                     Chebyshev stages"
+                                TimeScheme::RK3CN => {
+                                    "advective: sqrt(3) / sum |v_d|/h_d".to_string()
                                 }
-                                _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)",
+                                TimeScheme::EulerCN => "advective: 2 nu/|v|^2".to_string(),
+                                TimeScheme::EulerRKC => format!(
+                                    "advective: 2 nu/|v|^2; diffusive: the reach of {} \
+                                     Chebyshev stages",
+                                    ChebyshevStages::MAX_STAGES
+                                ),
+                                _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)".to_string(),
                             };
                             format!("{} scheme ({bound})", scheme.name())
                         }
