@@ -182,6 +182,7 @@ impl Simulation {
             sim.warnings = check_direct_resolution(&sim.fluid, cloud, settings);
         }
         let mut direct_shell: Option<Vec<f64>> = None;
+        let mut direct_build: Option<Vec<f64>> = None;
         let mut motion_state: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
@@ -189,6 +190,9 @@ impl Simulation {
                 let state = sim.restore(&dir, write_control, control)?;
                 direct_shell = state
                     .array(DirectCoupling::RESTART_NAME)
+                    .map(|a| a.to_vec());
+                direct_build = state
+                    .array(DirectCoupling::BUILD_RESTART_NAME)
                     .map(|a| a.to_vec());
                 motion_state = state
                     .array(ParticleMotion::RESTART_NAME)
@@ -263,6 +267,11 @@ impl Simulation {
             if let Some(shell) = direct_shell {
                 direct
                     .restore_shell_state(&shell)
+                    .map_err(FsimError::input)?;
+            }
+            if let Some(build) = direct_build {
+                direct
+                    .restore_build_state(&build)
                     .map_err(FsimError::input)?;
             }
             sim.direct = Some(direct);
@@ -599,11 +608,15 @@ impl Simulation {
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
         let shell = self.direct.as_ref().map(|d| d.shell_state());
+        let build = self.direct.as_ref().map(|d| d.build_state());
         let motion = self.motion.as_ref().map(|m| m.restart_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
         if let Some(shell) = &shell {
             arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
+        if let Some(build) = &build {
+            arrays.push((DirectCoupling::BUILD_RESTART_NAME, build.as_slice()));
         }
         if let Some(motion) = &motion {
             arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));

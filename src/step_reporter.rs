@@ -215,6 +215,17 @@ impl StepReporter {
                 "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {:.6}",
                 h.force[0], h.force[1], h.force[2], h.drag_coefficient
             ))?;
+            if let Some(d) = &sim.direct {
+                self.log.line(&format!(
+                    "Forced faces: {} ({})",
+                    d.boundary().forced_count(),
+                    if d.last_rebuilt() {
+                        "rebuilt"
+                    } else {
+                        "kept, following the spheres"
+                    }
+                ))?;
+            }
             if let Some(c) = &h.constrained_solve {
                 self.log.line(&format!(
                     "Constrained viscous solve: {} Helmholtz solves, constraint residual = {:.3e}",

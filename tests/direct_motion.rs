@@ -566,21 +566,32 @@ fn tutorials_validate_at_dry_run() {
 /// A continued run (`startFrom latestTime`) of a settling sphere equals the uninterrupted one
 /// bit for bit: the restart state carries the DEM, the fluid, the stress integral's shell
 /// momentum and the moving spheres' state (virtual-mass velocities, drive correction); with
-/// the tutorial's scheme and with `EulerRKC`, whose incremental pressure is state too.
+/// the tutorial's scheme and with `EulerRKC`, whose incremental pressure is state too; and
+/// with a `rebuildDistance` (2e-5 cells, so that the faces are both kept and rebuilt after
+/// the restart), where the spheres' positions at the last build are state.
 #[test]
 fn continued_settling_run_is_bit_identical() {
-    for scheme in [None, Some("EulerRKC")] {
-        continued_run_is_bit_identical(scheme);
+    for (scheme, rebuild) in [(None, 0.0), (Some("EulerRKC"), 0.0), (None, 2e-5)] {
+        continued_run_is_bit_identical(scheme, rebuild);
     }
 }
 
-fn continued_run_is_bit_identical(scheme: Option<&str>) {
-    let s = Scratch::new(&format!("direct-restart-{}", scheme.unwrap_or("tutorial")));
+fn continued_run_is_bit_identical(scheme: Option<&str>, rebuild_distance: f64) {
+    let s = Scratch::new(&format!(
+        "direct-restart-{}-{rebuild_distance}",
+        scheme.unwrap_or("tutorial")
+    ));
     let setup = |name: &str| {
         let case = copy_tutorial("settlingSphere", &s.0, name);
         let coupling = case.join("constant/couplingProperties");
         let text = fs::read_to_string(&coupling).unwrap();
-        fs::write(&coupling, text + "direct { interpolation linear; }\n").unwrap();
+        fs::write(
+            &coupling,
+            text + &format!(
+                "direct {{ interpolation linear; rebuildDistance {rebuild_distance}; }}\n"
+            ),
+        )
+        .unwrap();
         if let Some(scheme) = scheme {
             set_entry(&case.join("system/fvSolution"), "timeScheme", scheme);
         }
@@ -615,6 +626,13 @@ fn continued_run_is_bit_identical(scheme: Option<&str>) {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    if rebuild_distance > 0.0 {
+        let log = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            log.contains("(kept, following the spheres)") && log.contains("(rebuilt)"),
+            "the continued run should both keep and rebuild its faces: {log}"
+        );
+    }
     for file in ["particles.vtu", "fluid.vtk"] {
         let a = fs::read(whole.join("8e-05").join(file)).unwrap();
         let b = fs::read(parts.join("8e-05").join(file)).unwrap();

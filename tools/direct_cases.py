@@ -346,6 +346,14 @@ direct
 """
 
 
+BENCHMARK_COUPLING = LINEAR.replace("    interpolation   linear;\n", "    interpolation   linear;\n"
+                                    + """    // the forced faces are rebuilt once a sphere has moved a tenth of a cell (between
+    // builds they keep their geometry and take the spheres' motion): a pulled sphere's
+    // drag changes by +0.2 % (README), the coupling's cost falls by 40 %
+    rebuildDistance 0.1;
+""")
+
+
 def sedimentation(case):
     """The README's default case: 48 spheres (d = 1.5 mm, r/h = 3) settling in a periodic box
     of 32 x 64 x 32 cells (8 x 16 x 8 mm) at phi = 0.083, Re_p = 0.77, for 0.2 s (about
@@ -380,7 +388,7 @@ def benchmark(case, end_time=0.1, cells_per_radius=2.5, particles=500, scheme="E
     return write_case(case, cells=cells, h=h, d=2 * r, rho_f=1.2, nu=1.8e-5 / 1.2,
                       rho_p=1500.0, end_time=end_time, write_interval=end_time / 5,
                       centres=centres, max_co=0.8, max_dt=max_dt, restitution=0.9,
-                      coupling_extra=LINEAR, scheme=scheme,
+                      coupling_extra=BENCHMARK_COUPLING, scheme=scheme,
                       title="The paper's benchmark, section 3.3 (tutorials/benchmark)")
 
 

@@ -43,6 +43,11 @@ pub struct DirectCoupling {
     loads: Vec<HydrodynamicLoad>,
     /// Whether the forced faces have been built once.
     built: bool,
+    /// Whether the last [`Self::set_spheres`] rebuilt them (else they followed the spheres).
+    last_rebuilt: bool,
+    /// Where the forced faces of a restarted run were built ([`Self::build_state`]), until
+    /// the first [`Self::set_spheres`] builds them there.
+    restored_build: Option<Vec<f64>>,
     /// The constrained viscous solve of `RK3CN` stages.
     implicit_forcing: ImplicitForcing,
 }
@@ -65,6 +70,8 @@ impl DirectCoupling {
             previous_shell: HashMap::new(),
             loads: Vec::new(),
             built: false,
+            last_rebuilt: false,
+            restored_build: None,
             implicit_forcing: ImplicitForcing::new(),
         }
     }
@@ -135,15 +142,18 @@ impl DirectCoupling {
     }
 
     /// Sets the spheres (ids name them across calls, for the shell's rate of change) and
-    /// rebuilds the forced faces.
+    /// brings the forced faces up to them: rebuilt when the particles are not those of the
+    /// last call (in the same order) or one has moved more than `rebuildDistance` cells from
+    /// where they were built, else following them ([`ImmersedBoundary::follow`]).
     ///
     /// Spheres identical to the current ones (fixed arrays) keep their forced faces.
     pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
         assert_eq!(spheres.len(), ids.len(), "one id per sphere");
-        if self.built && self.spheres == spheres && self.ids == ids {
+        let same_particles = self.built && self.ids == ids;
+        if same_particles && self.spheres == spheres {
+            self.last_rebuilt = false;
             return;
         }
-        self.built = true;
         self.spheres.clear();
         self.spheres.extend_from_slice(spheres);
         self.ids.clear();
@@ -160,7 +170,76 @@ impl DirectCoupling {
                     )
                 });
         }
-        self.boundary.update(&self.spheres);
+        let restored = !self.built && self.build_where_restored();
+        self.built = true;
+        self.last_rebuilt = if same_particles || restored {
+            let skin = self.settings.rebuild_distance * self.h;
+            self.boundary.follow(&self.spheres, skin)
+        } else {
+            self.boundary.update(&self.spheres);
+            true
+        };
+    }
+
+    /// Whether the last [`Self::set_spheres`] rebuilt the forced faces.
+    pub fn last_rebuilt(&self) -> bool {
+        self.last_rebuilt
+    }
+
+    /// Name of the restart array of [`Self::build_state`].
+    pub const BUILD_RESTART_NAME: &'static str = "direct.build";
+
+    /// Where the current forced faces were built, for a bit-identical restart: per sphere
+    /// (in order) `id, x, y, z, r`.
+    pub fn build_state(&self) -> Vec<f64> {
+        let built = self.boundary.built_spheres();
+        let mut out = Vec::with_capacity(5 * built.len());
+        for (s, &id) in built.iter().zip(&self.ids) {
+            out.push(id as f64);
+            out.extend_from_slice(&s.centre);
+            out.push(s.radius);
+        }
+        out
+    }
+
+    /// Restores what [`Self::build_state`] saved: the first [`Self::set_spheres`] builds
+    /// the forced faces there (if it hands the same particles in the same order) and lets
+    /// them follow the spheres from there.
+    pub fn restore_build_state(&mut self, data: &[f64]) -> Result<(), String> {
+        if !data.len().is_multiple_of(5) {
+            return Err(format!(
+                "restart array '{}' has {} values, not a multiple of 5",
+                Self::BUILD_RESTART_NAME,
+                data.len()
+            ));
+        }
+        self.restored_build = Some(data.to_vec());
+        Ok(())
+    }
+
+    /// Builds the forced faces where a restart says they were built, with the current
+    /// spheres' velocities; false (nothing built) if the restart names other particles.
+    fn build_where_restored(&mut self) -> bool {
+        let Some(saved) = self.restored_build.take() else {
+            return false;
+        };
+        let rows = saved.chunks_exact(5);
+        if rows.len() != self.spheres.len()
+            || rows.zip(&self.ids).any(|(row, &id)| row[0] as u64 != id)
+        {
+            return false;
+        }
+        let built: Vec<RigidSphere> = saved
+            .chunks_exact(5)
+            .zip(&self.spheres)
+            .map(|(row, s)| RigidSphere {
+                centre: [row[1], row[2], row[3]],
+                radius: row[4],
+                ..*s
+            })
+            .collect();
+        self.boundary.update(&built);
+        true
     }
 
     /// The DEM's particles as spheres (same order), then as [`Self::set_spheres`].

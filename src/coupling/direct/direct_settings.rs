@@ -16,6 +16,8 @@ use crate::case::{CaseError, Coupling};
 ///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
 ///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)
+///     rebuildDistance 0;      // cells a sphere may move before its forced faces are
+///                             // rebuilt (between builds they follow it); 0: every step
 /// }
 /// ```
 ///
@@ -27,14 +29,22 @@ pub struct DirectSettings {
     pub integral: StressIntegral,
     /// Hold every particle fixed (flow through a fixed array).
     pub fixed_particles: bool,
+    /// Distance (cells) a sphere may move from where its forced faces were built before
+    /// they are rebuilt ([`super::ImmersedBoundary::follow`]).
+    pub rebuild_distance: f64,
 }
 
-const KEYWORDS: [&str; 4] = [
+const KEYWORDS: [&str; 5] = [
     "surfaceOffset",
     "interpolation",
     "quadrangles",
     "fixedParticles",
+    "rebuildDistance",
 ];
+
+/// The largest `rebuildDistance`, cells: beyond half a cell a face's role would lag the
+/// surface by more than the forcing's own reach.
+pub const MAX_REBUILD_DISTANCE: f64 = 0.5;
 
 impl DirectSettings {
     /// From the case's coupling file; the defaults when it has no `direct` dictionary.
@@ -78,6 +88,19 @@ impl DirectSettings {
             settings.integral.quadrangles = (n > 0).then_some(n);
         }
         settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
+        if let Some(distance) = d.opt_scalar("rebuildDistance")? {
+            if !(0.0..=MAX_REBUILD_DISTANCE).contains(&distance) {
+                let loc = d.get_entry("rebuildDistance")?.value_loc();
+                return Err(CaseError::at(
+                    loc,
+                    format!(
+                        "rebuildDistance must be between 0 and {MAX_REBUILD_DISTANCE} cells, \
+                         got {distance}"
+                    ),
+                ));
+            }
+            settings.rebuild_distance = distance;
+        }
         Ok(settings)
     }
 }
@@ -99,9 +122,10 @@ mod tests {
         assert_eq!(s.integral.surface_offset, 3.0);
         let s = settings(
             "model direct; direct { surfaceOffset 2; interpolation linear; quadrangles 600; \
-             fixedParticles yes; }",
+             fixedParticles yes; rebuildDistance 0.1; }",
         )
         .unwrap();
+        assert_eq!(s.rebuild_distance, 0.1);
         assert_eq!(s.integral.surface_offset, 2.0);
         assert_eq!(s.integral.interpolation, Interpolation::Linear);
         assert_eq!(s.integral.quadrangles, Some(600));
@@ -113,6 +137,8 @@ mod tests {
         );
         let e = settings("model direct; direct { surfaceOffset -1; }").unwrap_err();
         assert!(e.to_string().contains("between 0 and 8"), "{e}");
+        let e = settings("model direct; direct { rebuildDistance 0.8; }").unwrap_err();
+        assert!(e.to_string().contains("between 0 and 0.5"), "{e}");
         let e = settings("model direct; direct { interpolation quintic; }").unwrap_err();
         assert!(e.to_string().contains("quintic"), "{e}");
     }
