@@ -87,6 +87,30 @@ pub(crate) fn wrap_index(i: isize, n: isize) -> isize {
     }
 }
 
+/// `r − L round(r/L)`: the nearest periodic image of a separation `r` along a box length `L`,
+/// without a libm call for the usual `|r| < 1.5 L` (the same value as `round`, which rounds
+/// halves away from zero).
+#[inline]
+pub(crate) fn nearest_image(r: f64, length: f64) -> f64 {
+    let q = r / length;
+    let k = if q >= 0.5 {
+        if q < 1.5 {
+            1.0
+        } else {
+            q.round()
+        }
+    } else if q <= -0.5 {
+        if q > -1.5 {
+            -1.0
+        } else {
+            q.round()
+        }
+    } else {
+        0.0
+    };
+    r - length * k
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -110,6 +134,11 @@ mod tests {
         }
         for i in -25..25 {
             assert_eq!(wrap_index(i, 7), i.rem_euclid(7), "{i}");
+        }
+        for r in [
+            -3.7, -1.5, -1.2, -0.5, -0.49, 0.0, 0.3, 0.5, 1.25, 1.75, 4.4,
+        ] {
+            assert_eq!(nearest_image(r, 1.0), r - (r / 1.0f64).round(), "{r}");
         }
     }
 }

@@ -14,7 +14,7 @@ use super::stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };
 use crate::fluid::{FluidSolver, PredictedVelocity};
-use crate::grid::Grid;
+use crate::grid::{nearest_image, Grid};
 use crate::particles::ParticleState;
 
 /// Resolved coupling (paper §2.1) for one run. Each fluid step:
@@ -33,8 +33,16 @@ pub struct DirectCoupling {
     /// Box lengths and which directions are periodic (for the gaps between spheres).
     length: [f64; 3],
     periodic: [bool; 3],
+    /// The spheres and their ids, ordered by id (whatever order the caller hands them in:
+    /// the DEM re-sorts its particles, and the forced faces name spheres by index).
     spheres: Vec<RigidSphere>,
     ids: Vec<u64>,
+    /// The caller's ids of the last call, and the caller's index of each sphere above.
+    caller_ids: Vec<u64>,
+    order: Vec<usize>,
+    /// The caller's spheres in id order (scratch of [`Self::set_spheres`]).
+    sorted: Vec<RigidSphere>,
+    sorted_ids: Vec<u64>,
     /// Surface quadrature and shell rules per distinct radius (bit pattern of the radius).
     quadratures: HashMap<u64, (SphereQuadrature, SphereQuadratureFamily)>,
     /// Shell momentum at the last load evaluation, per particle id, with its time and the
@@ -66,6 +74,10 @@ impl DirectCoupling {
             periodic: periodic_directions(fluid.boundary_conditions()),
             spheres: Vec::new(),
             ids: Vec::new(),
+            caller_ids: Vec::new(),
+            order: Vec::new(),
+            sorted: Vec::new(),
+            sorted_ids: Vec::new(),
             quadratures: HashMap::new(),
             previous_shell: HashMap::new(),
             loads: Vec::new(),
@@ -136,7 +148,7 @@ impl DirectCoupling {
         &self.boundary
     }
 
-    /// The spheres as last set.
+    /// The spheres as last set, in the order of their ids.
     pub fn spheres(&self) -> &[RigidSphere] {
         &self.spheres
     }
@@ -146,19 +158,30 @@ impl DirectCoupling {
     /// last call (in the same order) or one has moved more than `rebuildDistance` cells from
     /// where they were built, else following them ([`ImmersedBoundary::follow`]).
     ///
-    /// Spheres identical to the current ones (fixed arrays) keep their forced faces.
+    /// Spheres identical to the current ones (fixed arrays) keep their forced faces. The
+    /// order of the call does not matter (the spheres are kept in id order, so a DEM that
+    /// re-sorts its particles costs no rebuild); the loads come back in the call's order.
     pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
         assert_eq!(spheres.len(), ids.len(), "one id per sphere");
-        let same_particles = self.built && self.ids == ids;
-        if same_particles && self.spheres == spheres {
+        if self.caller_ids != ids {
+            self.caller_ids.clear();
+            self.caller_ids.extend_from_slice(ids);
+            self.order.clear();
+            self.order.extend(0..ids.len());
+            self.order.sort_unstable_by_key(|&i| ids[i]);
+        }
+        self.sorted.clear();
+        self.sorted.extend(self.order.iter().map(|&i| spheres[i]));
+        self.sorted_ids.clear();
+        self.sorted_ids.extend(self.order.iter().map(|&i| ids[i]));
+        let same_particles = self.built && self.ids == self.sorted_ids;
+        if same_particles && self.spheres == self.sorted {
             self.last_rebuilt = false;
             return;
         }
-        self.spheres.clear();
-        self.spheres.extend_from_slice(spheres);
-        self.ids.clear();
-        self.ids.extend_from_slice(ids);
-        for s in spheres {
+        std::mem::swap(&mut self.spheres, &mut self.sorted);
+        std::mem::swap(&mut self.ids, &mut self.sorted_ids);
+        for s in &self.spheres {
             let h = self.h;
             let integral = self.settings.integral;
             self.quadratures
@@ -320,6 +343,8 @@ impl DirectCoupling {
             })
             .collect();
         self.loads.clear();
+        self.loads
+            .resize(self.spheres.len(), HydrodynamicLoad::default());
         for (k, (mut load, shell)) in results.into_iter().enumerate() {
             let id = self.ids[k];
             if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
@@ -334,7 +359,7 @@ impl DirectCoupling {
             if with_shell {
                 self.previous_shell.insert(id, (time, offsets[k], shell));
             }
-            self.loads.push(load);
+            self.loads[self.order[k]] = load;
         }
         &self.loads
     }
@@ -348,6 +373,9 @@ impl DirectCoupling {
         let h = self.h;
         let nominal = self.settings.integral.surface_offset;
         let spheres = &self.spheres;
+        // Gaps of (nominal + 1) h and more leave the nominal offset: farther pairs are
+        // skipped as soon as one axis separates them by that much.
+        let reach = (nominal + 1.0) * h;
         let gap_of = |i: usize| {
             let a = &spheres[i];
             let mut gap = f64::INFINITY;
@@ -356,15 +384,19 @@ impl DirectCoupling {
                     gap = gap.min(self.length[d] - 2.0 * a.radius);
                 }
             }
-            for (j, b) in spheres.iter().enumerate() {
+            'pairs: for (j, b) in spheres.iter().enumerate() {
                 if j == i {
                     continue;
                 }
+                let cutoff = a.radius + b.radius + reach;
                 let mut dist2 = 0.0;
                 for d in 0..3 {
                     let mut r = a.centre[d] - b.centre[d];
                     if self.periodic[d] {
-                        r -= self.length[d] * (r / self.length[d]).round();
+                        r = nearest_image(r, self.length[d]);
+                    }
+                    if r.abs() >= cutoff {
+                        continue 'pairs;
                     }
                     dist2 += r * r;
                 }
@@ -426,5 +458,41 @@ impl DirectCoupling {
     /// The loads of the last [`Self::compute_loads`].
     pub fn loads(&self) -> &[HydrodynamicLoad] {
         &self.loads
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fluid::{BoundaryConditions, FluidSettings};
+    use crate::particles::SplitMix64;
+
+    #[test]
+    fn spheres_handed_in_another_order_keep_their_faces_and_get_their_own_loads() {
+        let h = 0.1;
+        let grid = Grid::new([16; 3], [h; 3], [0.0; 3]);
+        let mut fluid = FluidSolver::new(
+            grid,
+            BoundaryConditions::periodic(),
+            FluidSettings::new(0.1),
+        )
+        .unwrap();
+        let mut rng = SplitMix64::new(5);
+        let phase: [f64; 3] = std::array::from_fn(|_| rng.next_f64());
+        fluid.set_velocity(|c, x| (x[(c + 1) % 3] * 3.0 + phase[c]).sin() + 0.3 * x[c].cos());
+        let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+        let mut a = RigidSphere::fixed([0.4, 0.5, 0.6], 0.25);
+        a.velocity = [0.1, 0.0, -0.2];
+        let mut b = RigidSphere::fixed([1.2, 1.1, 0.9], 0.25);
+        b.angular_velocity = [0.0, 1.0, 0.0];
+        coupling.set_spheres(&[a, b], &[7, 3]);
+        assert!(coupling.last_rebuilt());
+        let forward = coupling.compute_loads(&fluid, 1.0).to_vec();
+        // as a DEM that re-sorted its particles hands them
+        coupling.set_spheres(&[b, a], &[3, 7]);
+        assert!(!coupling.last_rebuilt(), "a new order alone needs no build");
+        let reversed = coupling.compute_loads(&fluid, 1.0).to_vec();
+        assert_eq!(reversed, vec![forward[1], forward[0]]);
+        assert!(forward[0] != forward[1]);
     }
 }

@@ -40,7 +40,7 @@
 
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
-use crate::grid::{wrap_index, Grid};
+use crate::grid::{nearest_image, wrap_index, Grid};
 use rayon::prelude::*;
 
 /// A face inside a sphere: it moves with the sphere. Indices are `u32` (a grid has fewer
@@ -251,7 +251,7 @@ impl ImmersedBoundary {
             for d in 0..3 {
                 let mut r = a.centre[d] - b.centre[d];
                 if periodic[d] {
-                    r -= length[d] * (r / length[d]).round();
+                    r = nearest_image(r, length[d]);
                 }
                 d2 += r * r;
             }
@@ -748,30 +748,13 @@ impl Lattice<'_> {
     /// `x − x_p` for the nearest periodic image of sphere `s`.
     #[inline]
     fn relative(&self, x: [f64; 3], s: &RigidSphere) -> [f64; 3] {
-        let len = self.length;
         std::array::from_fn(|d| {
-            let mut r = x[d] - s.centre[d];
+            let r = x[d] - s.centre[d];
             if self.periodic[d] {
-                // round(q) without a call into libm for the usual |q| < 1.5
-                let q = r / len[d];
-                let k = if q >= 0.5 {
-                    if q < 1.5 {
-                        1.0
-                    } else {
-                        q.round()
-                    }
-                } else if q <= -0.5 {
-                    if q > -1.5 {
-                        -1.0
-                    } else {
-                        q.round()
-                    }
-                } else {
-                    0.0
-                };
-                r -= len[d] * k;
+                nearest_image(r, self.length[d])
+            } else {
+                r
             }
-            r
         })
     }
 }
