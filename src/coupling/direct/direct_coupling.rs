@@ -155,7 +155,7 @@ impl DirectCoupling {
 
     /// Sets the spheres (ids name them across calls, for the shell's rate of change) and
     /// brings the forced faces up to them: rebuilt when the particles are not those of the
-    /// last call (in the same order) or one has moved more than `rebuildDistance` cells from
+    /// last call (the same ids) or one has moved more than `rebuildDistance` cells from
     /// where they were built, else following them ([`ImmersedBoundary::follow`]).
     ///
     /// Spheres identical to the current ones (fixed arrays) keep their forced faces. The
@@ -226,16 +226,10 @@ impl DirectCoupling {
     }
 
     /// Restores what [`Self::build_state`] saved: the first [`Self::set_spheres`] builds
-    /// the forced faces there (if it hands the same particles in the same order) and lets
-    /// them follow the spheres from there.
+    /// the forced faces there (if it hands the same particles) and lets them follow the
+    /// spheres from there.
     pub fn restore_build_state(&mut self, data: &[f64]) -> Result<(), String> {
-        if !data.len().is_multiple_of(5) {
-            return Err(format!(
-                "restart array '{}' has {} values, not a multiple of 5",
-                Self::BUILD_RESTART_NAME,
-                data.len()
-            ));
-        }
+        check_rows(Self::BUILD_RESTART_NAME, data, 5)?;
         self.restored_build = Some(data.to_vec());
         Ok(())
     }
@@ -436,13 +430,7 @@ impl DirectCoupling {
 
     /// Restores what [`Self::shell_state`] saved.
     pub fn restore_shell_state(&mut self, data: &[f64]) -> Result<(), String> {
-        if !data.len().is_multiple_of(9) {
-            return Err(format!(
-                "restart array '{}' has {} values, not a multiple of 9",
-                Self::RESTART_NAME,
-                data.len()
-            ));
-        }
+        check_rows(Self::RESTART_NAME, data, 9)?;
         self.previous_shell.clear();
         for row in data.chunks_exact(9) {
             let m = ShellMomentum {
@@ -458,6 +446,18 @@ impl DirectCoupling {
     /// The loads of the last [`Self::compute_loads`].
     pub fn loads(&self) -> &[HydrodynamicLoad] {
         &self.loads
+    }
+}
+
+/// A restart array of rows of `width` values.
+fn check_rows(name: &str, data: &[f64], width: usize) -> Result<(), String> {
+    if data.len().is_multiple_of(width) {
+        Ok(())
+    } else {
+        Err(format!(
+            "restart array '{name}' has {} values, not a multiple of {width}",
+            data.len()
+        ))
     }
 }
 
