@@ -37,12 +37,10 @@ pub struct DirectCoupling {
     /// the DEM re-sorts its particles, and the forced faces name spheres by index).
     spheres: Vec<RigidSphere>,
     ids: Vec<u64>,
-    /// The caller's ids of the last call, and the caller's index of each sphere above.
-    caller_ids: Vec<u64>,
+    /// The caller's index of each sphere above.
     order: Vec<usize>,
     /// The caller's spheres in id order (scratch of [`Self::set_spheres`]).
     sorted: Vec<RigidSphere>,
-    sorted_ids: Vec<u64>,
     /// Surface quadrature and shell rules per distinct radius (bit pattern of the radius).
     quadratures: HashMap<u64, (SphereQuadrature, SphereQuadratureFamily)>,
     /// Shell momentum at the last load evaluation, per particle id, with its time and the
@@ -74,10 +72,8 @@ impl DirectCoupling {
             periodic: periodic_directions(fluid.boundary_conditions()),
             spheres: Vec::new(),
             ids: Vec::new(),
-            caller_ids: Vec::new(),
             order: Vec::new(),
             sorted: Vec::new(),
-            sorted_ids: Vec::new(),
             quadratures: HashMap::new(),
             previous_shell: HashMap::new(),
             loads: Vec::new(),
@@ -163,24 +159,30 @@ impl DirectCoupling {
     /// re-sorts its particles costs no rebuild); the loads come back in the call's order.
     pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
         assert_eq!(spheres.len(), ids.len(), "one id per sphere");
-        if self.caller_ids != ids {
-            self.caller_ids.clear();
-            self.caller_ids.extend_from_slice(ids);
+        // The same particles in the same caller order as last time: the order holds.
+        let order_holds = self.order.len() == ids.len()
+            && self
+                .order
+                .iter()
+                .zip(&self.ids)
+                .all(|(&i, &id)| ids[i] == id);
+        let mut same_particles = self.built && order_holds;
+        if !order_holds {
             self.order.clear();
             self.order.extend(0..ids.len());
             self.order.sort_unstable_by_key(|&i| ids[i]);
+            let sorted_ids: Vec<u64> = self.order.iter().map(|&i| ids[i]).collect();
+            // a re-sort of the same particles keeps them
+            same_particles = self.built && sorted_ids == self.ids;
+            self.ids = sorted_ids;
         }
         self.sorted.clear();
         self.sorted.extend(self.order.iter().map(|&i| spheres[i]));
-        self.sorted_ids.clear();
-        self.sorted_ids.extend(self.order.iter().map(|&i| ids[i]));
-        let same_particles = self.built && self.ids == self.sorted_ids;
         if same_particles && self.spheres == self.sorted {
             self.last_rebuilt = false;
             return;
         }
         std::mem::swap(&mut self.spheres, &mut self.sorted);
-        std::mem::swap(&mut self.ids, &mut self.sorted_ids);
         for s in &self.spheres {
             let h = self.h;
             let integral = self.settings.integral;

@@ -767,40 +767,6 @@ struct Candidate {
     direction: u8,
 }
 
-/// The forcing stencil of a [`ForcingFace`], as its neighbours record it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Stencil {
-    /// Through the wall and two fluid faces.
-    Quadratic,
-    /// Through the wall and one fluid face.
-    Linear,
-    /// No fluid face along the line (a gap under about two cells): the wall's velocity.
-    Staircase,
-}
-
-impl Stencil {
-    fn of(face: &ForcingFace) -> Self {
-        if face.neighbours[0] == face.slot {
-            Stencil::Staircase
-        } else if face.neighbours[1] == face.neighbours[0] {
-            Stencil::Linear
-        } else {
-            Stencil::Quadratic
-        }
-    }
-
-    /// Weights of the outer faces for the wall at distance `t` on spacing `h` (module
-    /// docs): linear `δ/(δ+h)`, quadratic `[2δ/(δ+h), −δ/(δ+2h)]`.
-    #[inline]
-    fn weights(self, t: f64, h: f64) -> [f64; 2] {
-        match self {
-            Stencil::Quadratic => [2.0 * t / (t + h), -t / (t + 2.0 * h)],
-            Stencil::Linear => [t / (t + h), 0.0],
-            Stencil::Staircase => [0.0, 0.0],
-        }
-    }
-}
-
 /// The forced faces of one component, rebuilt (see [`ImmersedBoundary::update`]).
 struct ComponentUpdate<'a> {
     lattice: Lattice<'a>,
@@ -952,24 +918,24 @@ impl ComponentUpdate<'_> {
             };
             let cells = lat.cells(site);
             let slot = slot as u32;
-            let (neighbours, neighbour_cells) = match (free(outer), free(outer2)) {
-                (Some((n1, s1)), Some((n2, s2))) if quadratic => {
-                    ([n1, n2], [lat.cells(s1), lat.cells(s2)])
-                }
-                (Some((n1, s1)), _) => ([n1, n1], [lat.cells(s1); 2]),
-                (None, _) => ([slot, slot], [cells, cells]),
+            let (neighbours, neighbour_cells, weights) = match (free(outer), free(outer2)) {
+                (Some((n1, s1)), Some((n2, s2))) if quadratic => (
+                    [n1, n2],
+                    [lat.cells(s1), lat.cells(s2)],
+                    [2.0 * t / (t + h), -t / (t + 2.0 * h)],
+                ),
+                (Some((n1, s1)), _) => ([n1, n1], [lat.cells(s1); 2], [t / (t + h), 0.0]),
+                (None, _) => ([slot, slot], [cells, cells], [0.0, 0.0]),
             };
-            let mut face = ForcingFace {
+            self.forcing.push(ForcingFace {
                 slot,
                 cells,
                 neighbours,
                 neighbour_cells,
-                weights: [0.0; 2],
+                weights,
                 wall,
                 line: line.pack(),
-            };
-            face.weights = Stencil::of(&face).weights(t, h);
-            self.forcing.push(face);
+            });
         }
     }
 }
