@@ -3,7 +3,8 @@
 //! - [`RigidSphere`]: a particle as the fluid sees it, `v = v_p + ω_p × (x − x_p)`;
 //! - [`ImmersedBoundary`]: no-slip on every sphere on the MAC grid (sharp-interface direct
 //!   forcing, imposed in [`crate::fluid::FluidSolver::step_with`]'s hook);
-//! - [`stress_integral_force`] with [`StressIntegral`], [`SphereQuadrature`], [`FieldView`]:
+//! - [`stress_integral_force`] with [`StressIntegral`], [`SphereQuadrature`], a
+//!   [`FieldSampler`] ([`FieldView`] of the whole grid, [`FieldBrick`] around one sphere):
 //!   force and torque from the stress tensor over a sphere split into quadrangles
 //!   (paper eq. 4–6);
 //! - [`DirectCoupling`] and [`DirectSettings`]: the model in a run (`model direct;`);
@@ -22,6 +23,8 @@
 mod close_pairs;
 mod direct_coupling;
 mod direct_settings;
+mod field_brick;
+mod field_sampler;
 mod field_view;
 mod gmres;
 mod immersed_boundary;
@@ -39,7 +42,9 @@ mod stress_integral;
 pub use close_pairs::{ClosePairs, PeriodicBox};
 pub use direct_coupling::DirectCoupling;
 pub use direct_settings::DirectSettings;
-pub use field_view::{periodic_directions, FieldView, Interpolation};
+pub use field_brick::FieldBrick;
+pub use field_sampler::{FieldSampler, Interpolation};
+pub use field_view::{periodic_directions, FieldView};
 pub use gmres::{gmres, GmresReport, GmresWorkspace};
 pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
 pub use implicit_forcing::{ImplicitForcing, ImplicitForcingReport};

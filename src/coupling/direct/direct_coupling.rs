@@ -2,9 +2,13 @@
 
 use std::collections::HashMap;
 
+use std::sync::Mutex;
+
 use rayon::prelude::*;
 
 use super::direct_settings::DirectSettings;
+use super::field_brick::FieldBrick;
+use super::field_sampler::{FieldSampler, Interpolation};
 use super::field_view::{periodic_directions, FieldView};
 use super::immersed_boundary::ImmersedBoundary;
 use super::implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
@@ -47,6 +51,8 @@ pub struct DirectCoupling {
     /// surface offset it was taken with (a changed surface has no rate).
     previous_shell: HashMap<u64, (f64, f64, ShellMomentum)>,
     loads: Vec<HydrodynamicLoad>,
+    /// One brick per worker thread: the fields around the sphere whose loads it computes.
+    bricks: Vec<Mutex<FieldBrick>>,
     /// Whether the forced faces have been built once.
     built: bool,
     /// Whether the last [`Self::set_spheres`] rebuilt them (else they followed the spheres).
@@ -77,6 +83,7 @@ impl DirectCoupling {
             quadratures: HashMap::new(),
             previous_shell: HashMap::new(),
             loads: Vec::new(),
+            bricks: Vec::new(),
             built: false,
             last_rebuilt: false,
             restored_build: None,
@@ -319,6 +326,19 @@ impl DirectCoupling {
         let with_shell = integral.surface_offset > 0.0;
         let quadratures = &self.quadratures;
         let offsets = self.surface_offsets();
+        let workers = rayon::current_num_threads();
+        if self.bricks.len() != workers {
+            self.bricks = (0..workers)
+                .map(|_| Mutex::new(FieldBrick::new()))
+                .collect();
+        }
+        let bricks = &self.bricks;
+        let h = self.h;
+        // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
+        // the tricubic ones, 64 samples a field, copying it cost as much as it saved
+        // (measured, docs/direct_model.md).
+        let use_brick =
+            integral.interpolation == Interpolation::Linear && self.periodic == [true; 3];
         let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
             .spheres
             .par_iter()
@@ -329,13 +349,16 @@ impl DirectCoupling {
                     surface_offset: offset,
                     ..integral
                 };
-                let load = stress_integral_force(&view, s, rho, body, &integral, q);
-                let shell = if with_shell {
-                    shell_momentum(&view, s, &integral, shell_rules)
-                } else {
-                    ShellMomentum::default()
-                };
-                (load, shell)
+                let shell = with_shell.then_some(shell_rules);
+                if !use_brick {
+                    return sphere_load(&view, s, rho, body, &integral, q, shell);
+                }
+                // Each worker holds its own brick: the lock is never contended.
+                let worker = rayon::current_thread_index().unwrap_or(0) % bricks.len();
+                let mut brick = bricks[worker].lock().expect("no worker panics holding it");
+                let reach = integral.surface_radius(s.radius, h);
+                brick.gather(&view, s.centre, reach, integral.interpolation);
+                sphere_load(&*brick, s, rho, body, &integral, q, shell)
             })
             .collect();
         self.loads.clear();
@@ -452,6 +475,23 @@ impl DirectCoupling {
 }
 
 /// A restart array of rows of `width` values.
+/// The stress integral of one sphere and, with `shell` rules, its shell momentum.
+fn sphere_load(
+    fields: &impl FieldSampler,
+    sphere: &RigidSphere,
+    rho: f64,
+    body: [f64; 3],
+    integral: &StressIntegral,
+    quadrature: &SphereQuadrature,
+    shell: Option<&SphereQuadratureFamily>,
+) -> (HydrodynamicLoad, ShellMomentum) {
+    let load = stress_integral_force(fields, sphere, rho, body, integral, quadrature);
+    let shell = shell.map_or_else(ShellMomentum::default, |rules| {
+        shell_momentum(fields, sphere, integral, rules)
+    });
+    (load, shell)
+}
+
 fn check_rows(name: &str, data: &[f64], width: usize) -> Result<(), String> {
     if data.len().is_multiple_of(width) {
         Ok(())

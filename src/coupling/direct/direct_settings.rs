@@ -1,6 +1,6 @@
 //! The direct model's settings in `constant/couplingProperties`.
 
-use super::field_view::Interpolation;
+use super::field_sampler::Interpolation;
 use super::stress_integral::StressIntegral;
 use crate::case::control_dict::choice;
 use crate::case::{CaseError, Coupling};

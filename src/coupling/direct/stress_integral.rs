@@ -1,6 +1,6 @@
 //! Hydrodynamic force and torque on a sphere from the stress tensor (paper eq. 4–6).
 
-use super::field_view::{FieldView, Interpolation};
+use super::field_sampler::{FieldSampler, Interpolation};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use nalgebra::{Matrix3, Vector3};
@@ -98,16 +98,16 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// density (kg/m³), `body_force` the uniform body force on the fluid (m/s²), `quadrature`
 /// from [`StressIntegral::quadrature`].
 pub fn stress_integral_force(
-    fields: &FieldView,
+    fields: &impl FieldSampler,
     sphere: &RigidSphere,
     rho: f64,
     body_force: [f64; 3],
     integral: &StressIntegral,
     quadrature: &SphereQuadrature,
 ) -> HydrodynamicLoad {
-    let h = fields.grid.h.iter().cloned().fold(0.0, f64::max);
+    let h = fields.cell_size();
     let radius = integral.surface_radius(sphere.radius, h);
-    let nu = fields.nu;
+    let nu = fields.nu();
     let centre = Vector3::from(sphere.centre);
     let v_sphere = Vector3::from(sphere.velocity);
     let mut force = Vector3::zeros();
@@ -141,12 +141,12 @@ pub fn stress_integral_force(
 /// sphere itself). Trilinear whatever the surface's interpolation: the shell term is a small
 /// correction (its rate of change), and this keeps it at an eighth of the cost.
 pub fn shell_momentum(
-    fields: &FieldView,
+    fields: &impl FieldSampler,
     sphere: &RigidSphere,
     integral: &StressIntegral,
     rules: &SphereQuadratureFamily,
 ) -> ShellMomentum {
-    let h = fields.grid.h.iter().cloned().fold(0.0, f64::max);
+    let h = fields.cell_size();
     let (r0, r1) = (sphere.radius, integral.surface_radius(sphere.radius, h));
     let mut out = ShellMomentum::default();
     if r1 <= r0 {
