@@ -170,12 +170,16 @@ impl FieldBrick {
                     let (i0, i1) = rows.span(j, k);
                     row[..i0].fill(f64::NAN);
                     row[i1..].fill(f64::NAN);
-                    for i in i0..i1 {
-                        let x = xs[i];
-                        row[i] = if x == OUTSIDE || y == OUTSIDE || z == OUTSIDE {
+                    if y == OUTSIDE || z == OUTSIDE {
+                        row[i0..i1].fill(f64::NAN);
+                        continue;
+                    }
+                    let yz = y + z;
+                    for (out, &x) in row[i0..i1].iter_mut().zip(&xs[i0..i1]) {
+                        *out = if x == OUTSIDE {
                             f64::NAN
                         } else {
-                            source[x + y + z]
+                            source[x + yz]
                         };
                     }
                 }
@@ -220,13 +224,14 @@ impl StoredFields for FieldBrick {
 impl FieldBrick {
     /// The trilinear stencil of the four fields at once, one field per lane (the velocity
     /// components, then the pressure): values and gradients. The operations are those of
-    /// the fields one after another ([`sample_stored`]) in the same order, so the results
+    /// the fields one after another ([`sample_stored`]) in the same order (values, and
+    /// gradients when `gradient`), so the results
     /// are the same bit for bit (tested), but on four lanes that the compiler maps onto one
     /// vector register, and with the six stencil placements shared by the fields (one after
     /// another, the fields spend most of their time in scalar index arithmetic). In a fully
     /// periodic box only: no stencil is shifted at a wall.
     #[inline]
-    fn linear_lanes(&self, x: [f64; 3]) -> ([f64; 4], [[f64; 4]; 3]) {
+    fn linear_lanes(&self, x: [f64; 3], gradient: bool) -> ([f64; 4], [[f64; 4]; 3]) {
         let g = &self.geometry;
         // Per axis: the first node's offset and the fraction on the faces (0) and centres (1).
         let mut first = [[0usize; 2]; 3];
@@ -272,6 +277,9 @@ impl FieldBrick {
         let a: [[f64; 4]; 4] = std::array::from_fn(|q| blend(v[q][0], v[q][1], fx));
         let b = [blend(a[0], a[1], fy), blend(a[2], a[3], fy)];
         let value = blend(b[0], b[1], fz);
+        if !gradient {
+            return (value, [[0.0; 4]; 3]);
+        }
         let ax: [[f64; 4]; 4] = std::array::from_fn(|q| minus(v[q][1], v[q][0]));
         let bx = [blend(ax[0], ax[1], fy), blend(ax[2], ax[3], fy)];
         let by = [minus(a[1], a[0]), minus(a[3], a[2])];
@@ -295,13 +303,9 @@ impl FieldSampler for FieldBrick {
         pressure: bool,
     ) -> ([f64; 3], [[f64; 3]; 3], f64) {
         if interpolation == Interpolation::Linear && self.geometry.periodic == [true; 3] {
-            let (value, grad) = self.linear_lanes(x);
+            let (value, grad) = self.linear_lanes(x, gradient);
             let u = [value[0], value[1], value[2]];
-            let g = if gradient {
-                std::array::from_fn(|c| [grad[0][c], grad[1][c], grad[2][c]])
-            } else {
-                [[0.0; 3]; 3]
-            };
+            let g = std::array::from_fn(|c| [grad[0][c], grad[1][c], grad[2][c]]);
             return (u, g, if pressure { value[3] } else { 0.0 });
         }
         sample_stored(self, x, interpolation, gradient, pressure)
