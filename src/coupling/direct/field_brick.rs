@@ -1,8 +1,8 @@
 //! The fluid's fields around one sphere, copied into one small block of memory.
 
 use super::field_sampler::{
-    pressure_stored, sample_stored, stencil_span, stored_range, FieldSampler, Interpolation,
-    LatticeGeometry, StoredFields, PRESSURE,
+    sample_stored, stencil_span, stored_range, FieldSampler, Interpolation, LatticeGeometry,
+    StoredFields, PRESSURE,
 };
 use super::field_view::FieldView;
 use crate::grid::fast_floor;
@@ -309,10 +309,6 @@ impl FieldSampler for FieldBrick {
             return (u, g, if pressure { value[3] } else { 0.0 });
         }
         sample_stored(self, x, interpolation, gradient, pressure)
-    }
-
-    fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64 {
-        pressure_stored(self, x, interpolation)
     }
 
     fn nu(&self) -> f64 {

@@ -89,9 +89,6 @@ pub trait FieldSampler {
         pressure: bool,
     ) -> ([f64; 3], [[f64; 3]; 3], f64);
 
-    /// Kinematic pressure at `x`.
-    fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64;
-
     /// Kinematic viscosity, m²/s.
     fn nu(&self) -> f64;
 
@@ -115,6 +112,11 @@ pub trait FieldSampler {
         interpolation: Interpolation,
     ) -> ([f64; 3], [[f64; 3]; 3], f64) {
         self.sample(x, interpolation, true, true)
+    }
+
+    /// Kinematic pressure at `x`.
+    fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64 {
+        self.sample(x, interpolation, false, true).2
     }
 
     /// Velocity at `x`.
@@ -177,20 +179,6 @@ pub(super) fn sample_stored<S: StoredFields>(
     match interpolation {
         Interpolation::Linear => fields::<S, 2>(source, &geometry, &placement, gradient, pressure),
         Interpolation::Cubic => fields::<S, 4>(source, &geometry, &placement, gradient, pressure),
-    }
-}
-
-/// [`FieldSampler::pressure_at`] on stored samples.
-pub(super) fn pressure_stored<S: StoredFields>(
-    source: &S,
-    x: [f64; 3],
-    interpolation: Interpolation,
-) -> f64 {
-    let geometry = source.geometry();
-    let placement = Placement::new(&geometry, x, interpolation);
-    match interpolation {
-        Interpolation::Linear => field::<S, 2>(source, &geometry, &placement, PRESSURE, false).0,
-        Interpolation::Cubic => field::<S, 4>(source, &geometry, &placement, PRESSURE, false).0,
     }
 }
 

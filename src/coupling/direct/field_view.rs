@@ -2,8 +2,7 @@
 //! (periodic images wrapped).
 
 use super::field_sampler::{
-    pressure_stored, sample_stored, FieldSampler, Interpolation, LatticeGeometry, StoredFields,
-    PRESSURE,
+    sample_stored, FieldSampler, Interpolation, LatticeGeometry, StoredFields, PRESSURE,
 };
 use crate::fluid::{BoundaryConditions, FaceCondition, FluidSolver, PaddedLayout};
 use crate::grid::{wrap_index, Grid};
@@ -91,10 +90,6 @@ impl FieldSampler for FieldView<'_> {
         pressure: bool,
     ) -> ([f64; 3], [[f64; 3]; 3], f64) {
         sample_stored(self, x, interpolation, gradient, pressure)
-    }
-
-    fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64 {
-        pressure_stored(self, x, interpolation)
     }
 
     fn nu(&self) -> f64 {
