@@ -1,7 +1,6 @@
 //! The direct model's state in a run: the spheres, their forced faces, and their loads.
 
 use std::collections::HashMap;
-
 use std::sync::Mutex;
 
 use rayon::prelude::*;
@@ -326,19 +325,19 @@ impl DirectCoupling {
         let with_shell = integral.surface_offset > 0.0;
         let quadratures = &self.quadratures;
         let offsets = self.surface_offsets();
+        // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
+        // the tricubic ones, 64 samples a field, copying it cost as much as it saved
+        // (measured, docs/direct_model.md).
+        let use_brick =
+            integral.interpolation == Interpolation::Linear && self.periodic == [true; 3];
         let workers = rayon::current_num_threads();
-        if self.bricks.len() != workers {
+        if use_brick && self.bricks.len() != workers {
             self.bricks = (0..workers)
                 .map(|_| Mutex::new(FieldBrick::new()))
                 .collect();
         }
         let bricks = &self.bricks;
         let h = self.h;
-        // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
-        // the tricubic ones, 64 samples a field, copying it cost as much as it saved
-        // (measured, docs/direct_model.md).
-        let use_brick =
-            integral.interpolation == Interpolation::Linear && self.periodic == [true; 3];
         let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
             .spheres
             .par_iter()
@@ -474,7 +473,6 @@ impl DirectCoupling {
     }
 }
 
-/// A restart array of rows of `width` values.
 /// The stress integral of one sphere and, with `shell` rules, its shell momentum.
 fn sphere_load(
     fields: &impl FieldSampler,
@@ -492,6 +490,7 @@ fn sphere_load(
     (load, shell)
 }
 
+/// A restart array of rows of `width` values.
 fn check_rows(name: &str, data: &[f64], width: usize) -> Result<(), String> {
     if data.len().is_multiple_of(width) {
         Ok(())

@@ -186,15 +186,6 @@ impl FieldBrick {
             }
         }
     }
-
-    /// Samples held (four fields).
-    pub fn len(&self) -> usize {
-        4 * self.volume
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.volume == 0
-    }
 }
 
 impl StoredFields for FieldBrick {
