@@ -124,8 +124,22 @@ pub struct FluidSolver {
     stages_taken: usize,
     /// Bumped whenever the velocity may change.
     generation: u64,
-    /// `(generation, ½ max Σ|u_f|/h)` of the last diagnostics.
-    courant_cache: Option<(u64, f64)>,
+    /// What the last [`Self::diagnostics`] found besides its report, and the generation of
+    /// the velocity it read.
+    reductions: Option<(u64, CachedReductions)>,
+}
+
+/// The reductions that a step's health check finds and the next step's rules read again
+/// (the Courant rule, the scheme's bound, the sedimentation's mean): one pass over the
+/// field instead of three.
+#[derive(Clone, Copy, Debug)]
+struct CachedReductions {
+    /// `½ max Σ|u_f|/h`.
+    courant_rate: f64,
+    /// [`FluidSolver::max_speed`].
+    max_speed: [f64; 3],
+    /// [`FluidSolver::mean_component`], bit for bit (the same sums in the same order).
+    mean: [f64; 3],
 }
 
 impl FluidSolver {
@@ -164,7 +178,7 @@ impl FluidSolver {
             scalars: [0.0; 2],
             stages_taken: 0,
             generation: 0,
-            courant_cache: None,
+            reductions: None,
             grid,
             layout,
             bc,
@@ -741,6 +755,9 @@ impl FluidSolver {
     /// Volume mean of component `c` (mean of the cell-centre interpolants), summed plane by
     /// plane in a fixed order so the result does not depend on the thread count.
     pub fn mean_component(&mut self, c: usize) -> f64 {
+        if let Some(cached) = self.cached_reductions() {
+            return cached.mean[c];
+        }
         let l = &self.layout;
         let n = l.n;
         let uc = &self.u[c][..];
@@ -766,20 +783,30 @@ impl FluidSolver {
     }
 
     /// Divergence, kinetic energy, mean velocity, speeds and Courant number for step `dt`.
+    /// The same pass finds what [`Self::max_speed`] and [`Self::mean_component`] return,
+    /// and keeps it until the velocity changes.
     pub fn diagnostics(&mut self, dt: f64) -> FluidDiagnostics {
         let l = &self.layout;
         let n = l.n;
         let s = l.stride;
         let h = self.grid.h;
+        let plane = l.plane_len();
         let (ux, uy, uz) = (&self.u[0][..], &self.u[1][..], &self.u[2][..]);
         self.partials
             .par_iter_mut()
             .enumerate()
             .for_each(|(k, part)| {
                 *part = [0.0; 12];
+                // max_speed's: every stored value of the plane, ghosts included
+                for (c, u) in [ux, uy, uz].into_iter().enumerate() {
+                    let stored = &u[k * plane..(k + 1) * plane];
+                    part[9 + c] = stored.iter().fold(0.0, |m, x| larger(m, x.abs()));
+                }
                 if k == 0 || k > n[2] {
                     return;
                 }
+                // mean_component's sums, in its order
+                let mut sums = [0.0; 3];
                 for j in 1..=n[1] {
                     let base = l.index(0, j, k);
                     for i in 1..=n[0] {
@@ -796,7 +823,7 @@ impl FluidSolver {
                                 + f[4] * f[4]
                                 + f[5] * f[5]);
                         for c in 0..3 {
-                            part[2 + c] += 0.5 * (f[2 * c] + f[2 * c + 1]);
+                            sums[c] += f[2 * c] + f[2 * c + 1];
                             part[5 + c] =
                                 larger(larger(part[5 + c], f[2 * c].abs()), f[2 * c + 1].abs());
                         }
@@ -807,6 +834,9 @@ impl FluidSolver {
                         part[8] = larger(part[8], co);
                     }
                 }
+                for c in 0..3 {
+                    part[2 + c] = 0.5 * sums[c];
+                }
             });
         let mut total = [0.0f64; 12];
         for part in &self.partials {
@@ -814,13 +844,14 @@ impl FluidSolver {
             for c in 1..5 {
                 total[c] += part[c];
             }
-            for c in 5..9 {
+            for c in 5..12 {
                 total[c] = total[c].max(part[c]);
             }
         }
         let cells = self.grid.cell_count() as f64;
         let h_min = self.active_h_min();
         let speed = total[5].max(total[6]).max(total[7]);
+        let mean = [total[2] / cells, total[3] / cells, total[4] / cells];
         // f64::max skips NaN: a blown-up field must not report a clean divergence.
         let blown_up = !total[1].is_finite();
         let diagnostics = FluidDiagnostics {
@@ -833,12 +864,25 @@ impl FluidSolver {
             },
             max_divergence: total[0],
             kinetic_energy: total[1] / cells,
-            mean_velocity: [total[2] / cells, total[3] / cells, total[4] / cells],
+            mean_velocity: mean,
             max_speed: [total[5], total[6], total[7]],
             max_courant: total[8] * dt,
         };
-        self.courant_cache = Some((self.generation, total[8]));
+        let cached = CachedReductions {
+            courant_rate: total[8],
+            max_speed: [total[9], total[10], total[11]],
+            mean,
+        };
+        self.reductions = Some((self.generation, cached));
         diagnostics
+    }
+
+    /// The last diagnostics' reductions, if the velocity has not changed since.
+    fn cached_reductions(&self) -> Option<CachedReductions> {
+        match self.reductions {
+            Some((generation, cached)) if generation == self.generation => Some(cached),
+            _ => None,
+        }
     }
 
     fn active(&self) -> [bool; 3] {
@@ -853,8 +897,11 @@ impl FluidSolver {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// Largest face speed per component, m/s.
+    /// Largest face speed per component over every stored value (ghosts included), m/s.
     pub fn max_speed(&self) -> [f64; 3] {
+        if let Some(cached) = self.cached_reductions() {
+            return cached.max_speed;
+        }
         std::array::from_fn(|c| {
             self.u[c]
                 .par_chunks(self.layout.plane_len())
@@ -879,16 +926,16 @@ impl FluidSolver {
     /// [`Self::diagnostics`] when the velocity has not changed since (a time loop's health
     /// check and the next step's Courant rule read the same field), else computed.
     pub fn courant_rate(&mut self) -> f64 {
-        match self.courant_cache {
-            Some((generation, rate)) if generation == self.generation => rate,
-            _ => self.diagnostics(1.0).max_courant,
+        match self.cached_reductions() {
+            Some(cached) => cached.courant_rate,
+            None => self.diagnostics(1.0).max_courant,
         }
     }
 
     /// Marks the velocity as changed (the cached Courant rate no longer holds).
     fn velocity_changes(&mut self) {
         self.generation = self.generation.wrapping_add(1);
-        self.courant_cache = None;
+        self.reductions = None;
     }
 
     /// Next time step under `adjustTimeStep yes`, by OpenFOAM's rule (setDeltaT): with
@@ -1061,6 +1108,35 @@ mod tests {
         s.diagnostics(0.5);
         s.restore_array("U.y", &saved).unwrap();
         assert!((s.courant_rate() - 10.0).abs() < 1e-9);
+    }
+
+    /// The health check's pass leaves behind exactly what the separate passes of
+    /// `max_speed` and `mean_component` find (a random field with walls along y, whose
+    /// ghosts differ from the faces), and a change of the velocity discards it.
+    #[test]
+    fn the_cached_speeds_and_means_are_those_of_the_separate_passes() {
+        let grid = Grid::new([9, 7, 6], [0.1, 0.12, 0.09], [0.0; 3]);
+        let mut bc = BoundaryConditions::periodic();
+        for side in 0..2 {
+            bc.faces[2 + side] = FaceCondition::Wall {
+                velocity: [0.7, 0.0, -0.4],
+            };
+        }
+        let mut s = FluidSolver::new(grid, bc, FluidSettings::new(1e-3)).unwrap();
+        let mut rng = crate::particles::SplitMix64::new(17);
+        for u in s.velocity_mut().iter_mut() {
+            u.iter_mut().for_each(|x| *x = 2.0 * rng.next_f64() - 1.0);
+        }
+        let separate = (s.max_speed(), [0, 1, 2].map(|c| s.mean_component(c)));
+        s.diagnostics(0.01);
+        assert!(s.cached_reductions().is_some());
+        assert_eq!(
+            (s.max_speed(), [0, 1, 2].map(|c| s.mean_component(c))),
+            separate
+        );
+        s.velocity_mut()[1].iter_mut().for_each(|x| *x *= 3.0);
+        assert!(s.cached_reductions().is_none());
+        assert!((s.max_speed()[1] - 3.0 * separate.0[1]).abs() < 1e-12);
     }
 
     #[test]
