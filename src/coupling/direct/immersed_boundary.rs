@@ -148,10 +148,12 @@ pub struct ImmersedBoundary {
     near_cells: Vec<usize>,
     near_classes: Vec<u8>,
     queue: Vec<usize>,
+    group: Vec<usize>,
     /// Scratch per component: the unwrapped lattice indices of the interior faces, and the
     /// candidate forcing faces next to them.
     candidates: [Vec<Candidate>; 3],
     sites: [Vec<[i32; 3]>; 3],
+    offsets: [Vec<usize>; 3],
     /// Quadratic (two fluid faces) rather than linear forcing stencil.
     quadratic: bool,
     /// The spheres as at the last [`Self::update`] (their faces' labels and lines).
@@ -184,8 +186,10 @@ impl ImmersedBoundary {
             near_cells: Vec::new(),
             near_classes: Vec::new(),
             queue: Vec::new(),
+            group: Vec::new(),
             candidates: Default::default(),
             sites: Default::default(),
+            offsets: Default::default(),
             quadratic: true,
             built: Vec::new(),
         }
@@ -313,8 +317,9 @@ impl ImmersedBoundary {
     }
 
     /// Rebuilds the forced faces for `spheres` (positions, sizes and velocities); the
-    /// three components in parallel (each writes only its own lists, so the result does not
-    /// depend on the thread count).
+    /// three components in parallel (each writes only its own lists), and within each the
+    /// interior faces in parallel over the spheres and the forcing faces over the
+    /// candidates, in an order that does not depend on the thread count.
     pub fn update(&mut self, spheres: &[RigidSphere]) {
         assert!(
             spheres.len() < ForcingLine::MAX_SPHERES,
@@ -331,6 +336,7 @@ impl ImmersedBoundary {
         let [f0, f1, f2] = &mut self.forcing;
         let [c0, c1, c2] = &mut self.candidates;
         let [s0, s1, s2] = &mut self.sites;
+        let [o0, o1, o2] = &mut self.offsets;
         let length = grid.length();
         let lattice = |c: usize| Lattice {
             grid,
@@ -349,6 +355,7 @@ impl ImmersedBoundary {
                 forcing: f0,
                 candidates: c0,
                 sites: s0,
+                offsets: o0,
             },
             ComponentUpdate {
                 lattice: lattice(1),
@@ -358,6 +365,7 @@ impl ImmersedBoundary {
                 forcing: f1,
                 candidates: c1,
                 sites: s1,
+                offsets: o1,
             },
             ComponentUpdate {
                 lattice: lattice(2),
@@ -367,6 +375,7 @@ impl ImmersedBoundary {
                 forcing: f2,
                 candidates: c2,
                 sites: s2,
+                offsets: o2,
             },
         ];
         jobs.par_iter_mut()
@@ -387,6 +396,8 @@ impl ImmersedBoundary {
         const NEAR: u8 = 1;
         const REACHED: u8 = 2;
         const CLOSED: u8 = 3;
+        const GROUPED: u8 = 4;
+        const POCKET: u8 = 5;
         let mut near = std::mem::take(&mut self.near_cells);
         near.clear();
         for c in 0..3 {
@@ -409,8 +420,8 @@ impl ImmersedBoundary {
                 .filter(|(_, &m)| m != 0)
                 .map(|(cell, _)| cell),
         );
-        // Open near cells are reached from the open fluid through free faces (a search from
-        // every near cell with a free face onto a cell that is not near); the open near
+        // Open near cells are reached from the open fluid through free faces (from the
+        // seeds: near cells with a free face onto a cell that is not near); the open near
         // cells left unreached form pockets enclosed by forced faces: closed too.
         // Each near cell's class depends only on the forced faces and on which cells are
         // near, so the classes are found in parallel and applied in order.
@@ -451,8 +462,6 @@ impl ImmersedBoundary {
                     OPEN
                 };
             });
-        let mut queue = std::mem::take(&mut self.queue);
-        queue.clear();
         for (&cell, &class) in near.iter().zip(&classes) {
             match class {
                 ALL_FORCED => {
@@ -460,36 +469,59 @@ impl ImmersedBoundary {
                     let faces = self.cell_faces(cell).expect("a cell with six faces");
                     self.closed.push(ClosedCell { cell, faces });
                 }
-                SEED => {
-                    self.cell_marks[cell] = REACHED;
-                    queue.push(cell);
-                }
+                SEED => self.cell_marks[cell] = REACHED,
                 _ => {}
             }
         }
-        self.near_classes = classes;
-        while let Some(cell) = queue.pop() {
-            let idx = self.cell_coords(cell);
-            let Some(faces) = self.cell_faces_at(idx) else {
+        // The open near cells left (few: most near cells are seeds), by connected groups
+        // through free faces: a group is reached if one of its cells has a free face onto a
+        // seed that the search from the seeds would go on from (one with six faces), else
+        // it is a pocket. The free faces join cells both ways, so this marks what a search
+        // from every seed would, at the cost of the open cells only.
+        let mut stack = std::mem::take(&mut self.queue);
+        let mut group = std::mem::take(&mut self.group);
+        for (&start, &class) in near.iter().zip(&classes) {
+            if class != OPEN || self.cell_marks[start] != NEAR {
                 continue;
-            };
-            for c in 0..3 {
-                for side in 0..2 {
-                    if self.forced(c, faces[c][side]) {
-                        continue;
-                    }
-                    if let Some(next) = self.neighbour_cell_at(cell, idx, c, side) {
-                        if self.cell_marks[next] == NEAR {
-                            self.cell_marks[next] = REACHED;
-                            queue.push(next);
+            }
+            stack.clear();
+            group.clear();
+            stack.push(start);
+            self.cell_marks[start] = GROUPED;
+            let mut reached = false;
+            while let Some(cell) = stack.pop() {
+                group.push(cell);
+                let idx = self.cell_coords(cell);
+                let faces = self.cell_faces_at(idx).expect("an open cell has six faces");
+                for c in 0..3 {
+                    for side in 0..2 {
+                        if self.forced(c, faces[c][side]) {
+                            continue;
+                        }
+                        let Some(next) = self.neighbour_cell_at(cell, idx, c, side) else {
+                            continue;
+                        };
+                        match self.cell_marks[next] {
+                            NEAR => {
+                                self.cell_marks[next] = GROUPED;
+                                stack.push(next);
+                            }
+                            REACHED if !reached => reached = self.cell_faces(next).is_some(),
+                            _ => {}
                         }
                     }
                 }
             }
+            let mark = if reached { REACHED } else { POCKET };
+            for &cell in &group {
+                self.cell_marks[cell] = mark;
+            }
         }
-        self.queue = queue;
+        self.near_classes = classes;
+        self.queue = stack;
+        self.group = group;
         for &cell in &near {
-            if self.cell_marks[cell] == NEAR {
+            if self.cell_marks[cell] == POCKET {
                 if let Some(faces) = self.cell_faces(cell) {
                     self.closed.push(ClosedCell { cell, faces });
                 }
@@ -776,6 +808,8 @@ struct ComponentUpdate<'a> {
     forcing: &'a mut Vec<ForcingFace>,
     candidates: &'a mut Vec<Candidate>,
     sites: &'a mut Vec<[i32; 3]>,
+    /// Per sphere, where its interior faces start in the lists (and their total last).
+    offsets: &'a mut Vec<usize>,
 }
 
 impl ComponentUpdate<'_> {
@@ -793,51 +827,59 @@ impl ComponentUpdate<'_> {
         self.build_forcing(spheres, quadratic);
     }
 
-    /// Faces inside a sphere (the first sphere in order that holds them).
+    /// Faces inside a sphere (the first sphere in order that holds them). The spheres'
+    /// faces are found in parallel, each sphere's into its own stretch of the lists in
+    /// sphere order; one pass in that order then labels them and drops a face already
+    /// taken by an earlier sphere (overlapping spheres, or a sphere wider than a periodic
+    /// box): the lists the spheres one after another would give.
     fn mark_interior(&mut self, spheres: &[RigidSphere]) {
         let lat = &self.lattice;
-        for (k, s) in spheres.iter().enumerate() {
-            let b = lat.bounds(s, 0);
-            let r2 = s.radius * s.radius;
-            for m2 in b[2].0..=b[2].1 {
-                let rel2 = lat.coordinate(2, m2) - s.centre[2];
-                let Some(s2) = lat.axis_slot(2, m2) else {
-                    continue;
-                };
-                for m1 in b[1].0..=b[1].1 {
-                    let rel1 = lat.coordinate(1, m1) - s.centre[1];
-                    // (rel₀² + rel₁²) + rel₂² ≥ rel₁² + rel₂² in floating point too
-                    // (rounding is monotone): a line outside stays outside.
-                    if rel1 * rel1 + rel2 * rel2 >= r2 {
-                        continue;
-                    }
-                    let Some(s1) = lat.axis_slot(1, m1) else {
-                        continue;
-                    };
-                    for m0 in b[0].0..=b[0].1 {
-                        let rel0 = lat.coordinate(0, m0) - s.centre[0];
-                        if rel0 * rel0 + rel1 * rel1 + rel2 * rel2 >= r2 {
-                            continue;
-                        }
-                        let Some(s0) = lat.axis_slot(0, m0) else {
-                            continue;
-                        };
-                        let slot = lat.layout.index(s0, s1, s2);
-                        if self.labels[slot] != FLUID {
-                            continue;
-                        }
-                        self.labels[slot] = k as u32 + 1;
-                        self.touched.push(slot);
-                        self.sites.push([m0 as i32, m1 as i32, m2 as i32]);
-                        self.interior.push(InteriorFace {
-                            slot: slot as u32,
-                            cells: lat.cells([s0, s1, s2]),
-                            target: lat.interior_target(slot, s),
-                            sphere: k as u32,
-                        });
-                    }
-                }
+        self.offsets.clear();
+        self.offsets.push(0);
+        self.offsets.par_extend(spheres.par_iter().map(|s| {
+            let mut count = 0;
+            visit_inside(lat, s, |_, _| count += 1);
+            count
+        }));
+        for k in 1..self.offsets.len() {
+            self.offsets[k] += self.offsets[k - 1];
+        }
+        let total = self.offsets[spheres.len()];
+        let unset = InteriorFace {
+            slot: 0,
+            cells: [0; 2],
+            target: 0.0,
+            sphere: 0,
+        };
+        self.interior.resize(total, unset);
+        self.sites.resize(total, [0; 3]);
+        fill_inside(
+            lat,
+            spheres,
+            0,
+            self.offsets,
+            &mut self.interior[..],
+            &mut self.sites[..],
+        );
+        let mut taken = 0;
+        for f in self.interior.iter_mut() {
+            let slot = f.slot as usize;
+            if self.labels[slot] == FLUID {
+                self.labels[slot] = f.sphere + 1;
+                self.touched.push(slot);
+            } else {
+                f.sphere = TAKEN;
+                taken += 1;
             }
+        }
+        if taken > 0 {
+            let keep: Vec<bool> = self.interior.iter().map(|f| f.sphere != TAKEN).collect();
+            let mut k = 0;
+            self.sites.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
+            self.interior.retain(|f| f.sphere != TAKEN);
         }
     }
 
@@ -864,79 +906,174 @@ impl ComponentUpdate<'_> {
         }
     }
 
-    /// Sphere index of the face at lattice index `m`, if inside one.
-    #[inline]
-    fn inside_at(&self, m: [isize; 3]) -> Option<usize> {
-        let slot = self.lattice.slot(m)?;
-        let l = self.labels[slot];
-        (l != FLUID && l != FORCING).then(|| (l - 1) as usize)
-    }
-
-    /// The interpolation stencil of every candidate forcing face.
+    /// The interpolation stencil of every candidate forcing face, in parallel over the
+    /// candidates and in their order (each reads only the labels, final by now).
     fn build_forcing(&mut self, spheres: &[RigidSphere], quadratic: bool) {
-        let lat = &self.lattice;
-        for candidate in self.candidates.iter() {
-            let mut m = self.sites[candidate.site as usize].map(|v| v as isize);
-            let d = usize::from(candidate.direction / 2);
-            m[d] += if candidate.direction % 2 == 1 { 1 } else { -1 };
-            let site = lat.site(m).expect("a candidate is an advanced face");
+        let (lat, labels, sites) = (&self.lattice, &self.labels[..], &self.sites[..]);
+        const CHUNK: usize = 1024;
+        self.forcing.par_extend(
+            self.candidates
+                .par_iter()
+                .with_min_len(CHUNK)
+                .map(|candidate| forcing_face(lat, labels, sites, candidate, spheres, quadratic)),
+        );
+    }
+}
+
+/// Marks an interior face found inside an earlier sphere (dropped by
+/// [`ComponentUpdate::mark_interior`]).
+const TAKEN: u32 = u32::MAX;
+
+/// Calls `visit(m, site)` for every advanced face inside sphere `s`, in a fixed order: `m`
+/// its lattice index (unwrapped), `site` its padded indices.
+#[inline]
+fn visit_inside(lat: &Lattice, s: &RigidSphere, mut visit: impl FnMut([isize; 3], [usize; 3])) {
+    let b = lat.bounds(s, 0);
+    let r2 = s.radius * s.radius;
+    for m2 in b[2].0..=b[2].1 {
+        let rel2 = lat.coordinate(2, m2) - s.centre[2];
+        let Some(s2) = lat.axis_slot(2, m2) else {
+            continue;
+        };
+        for m1 in b[1].0..=b[1].1 {
+            let rel1 = lat.coordinate(1, m1) - s.centre[1];
+            // (rel₀² + rel₁²) + rel₂² ≥ rel₁² + rel₂² in floating point too
+            // (rounding is monotone): a line outside stays outside.
+            if rel1 * rel1 + rel2 * rel2 >= r2 {
+                continue;
+            }
+            let Some(s1) = lat.axis_slot(1, m1) else {
+                continue;
+            };
+            for m0 in b[0].0..=b[0].1 {
+                let rel0 = lat.coordinate(0, m0) - s.centre[0];
+                if rel0 * rel0 + rel1 * rel1 + rel2 * rel2 >= r2 {
+                    continue;
+                }
+                let Some(s0) = lat.axis_slot(0, m0) else {
+                    continue;
+                };
+                visit([m0, m1, m2], [s0, s1, s2]);
+            }
+        }
+    }
+}
+
+/// The interior faces of spheres `first..` into `interior` and `sites`, sphere `k`'s at
+/// `offsets[k] − offsets[first]..`: halves of the spheres in parallel.
+fn fill_inside(
+    lat: &Lattice,
+    spheres: &[RigidSphere],
+    first: usize,
+    offsets: &[usize],
+    interior: &mut [InteriorFace],
+    sites: &mut [[i32; 3]],
+) {
+    const SPHERES: usize = 16;
+    if spheres.len() > SPHERES {
+        let half = spheres.len() / 2;
+        let split = offsets[first + half] - offsets[first];
+        let (i0, i1) = interior.split_at_mut(split);
+        let (s0, s1) = sites.split_at_mut(split);
+        let (a, b) = spheres.split_at(half);
+        rayon::join(
+            || fill_inside(lat, a, first, offsets, i0, s0),
+            || fill_inside(lat, b, first + half, offsets, i1, s1),
+        );
+        return;
+    }
+    let mut next = 0;
+    for (j, s) in spheres.iter().enumerate() {
+        let k = first + j;
+        visit_inside(lat, s, |m, site| {
             let slot = lat.layout.index(site[0], site[1], site[2]);
-            // From the wrapped index, as [`ImmersedBoundary::refresh`] does: the same rounding.
-            let x = lat.slot_position(slot);
-            // The line most nearly normal to the surface among those crossing it.
-            let mut best: Option<(f64, usize, isize, usize)> = None;
-            for d in 0..3 {
-                for step in [-1isize, 1] {
-                    let mut q = m;
-                    q[d] += step;
-                    if let Some(k) = self.inside_at(q) {
-                        let rel = lat.relative(x, &spheres[k]);
-                        let norm = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
-                        // Outward direction along the line is −step.
-                        let score = -(step as f64) * rel[d] / norm.max(f64::MIN_POSITIVE);
-                        if best.is_none_or(|b| score > b.0) {
-                            best = Some((score, d, step, k));
-                        }
-                    }
+            sites[next] = [m[0] as i32, m[1] as i32, m[2] as i32];
+            interior[next] = InteriorFace {
+                slot: slot as u32,
+                cells: lat.cells(site),
+                target: lat.interior_target(slot, s),
+                sphere: k as u32,
+            };
+            next += 1;
+        });
+    }
+}
+
+/// Sphere index of the face at lattice index `m`, if inside one.
+#[inline]
+fn inside_at(lat: &Lattice, labels: &[u32], m: [isize; 3]) -> Option<usize> {
+    let slot = lat.slot(m)?;
+    let l = labels[slot];
+    (l != FLUID && l != FORCING).then(|| (l - 1) as usize)
+}
+
+/// The forcing face of `candidate`: the line most nearly normal to the surface among those
+/// that cross it, and the stencil along it.
+fn forcing_face(
+    lat: &Lattice,
+    labels: &[u32],
+    sites: &[[i32; 3]],
+    candidate: &Candidate,
+    spheres: &[RigidSphere],
+    quadratic: bool,
+) -> ForcingFace {
+    let mut m = sites[candidate.site as usize].map(|v| v as isize);
+    let d = usize::from(candidate.direction / 2);
+    m[d] += if candidate.direction % 2 == 1 { 1 } else { -1 };
+    let site = lat.site(m).expect("a candidate is an advanced face");
+    let slot = lat.layout.index(site[0], site[1], site[2]);
+    // From the wrapped index, as [`ImmersedBoundary::refresh`] does: the same rounding.
+    let x = lat.slot_position(slot);
+    let mut best: Option<(f64, usize, isize, usize)> = None;
+    for d in 0..3 {
+        for step in [-1isize, 1] {
+            let mut q = m;
+            q[d] += step;
+            if let Some(k) = inside_at(lat, labels, q) {
+                let rel = lat.relative(x, &spheres[k]);
+                let norm = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
+                // Outward direction along the line is −step.
+                let score = -(step as f64) * rel[d] / norm.max(f64::MIN_POSITIVE);
+                if best.is_none_or(|b| score > b.0) {
+                    best = Some((score, d, step, k));
                 }
             }
-            let (_, d, step, k) = best.expect("a candidate has an inside neighbour");
-            let line = ForcingLine { sphere: k, d, step };
-            let h = lat.grid.h[d];
-            let t = lat.surface_distance(x, &spheres[k], line);
-            let wall = lat.wall_velocity(x, t, line, &spheres[k]);
-            let mut outer = m;
-            outer[d] -= step;
-            let mut outer2 = outer;
-            outer2[d] -= step;
-            let labels = &self.labels;
-            // (slot, padded indices) of a fluid face
-            let free = |q: [isize; 3]| {
-                let site = lat.site(q)?;
-                let n = lat.layout.index(site[0], site[1], site[2]);
-                (labels[n] == FLUID).then_some((n as u32, site))
-            };
-            let cells = lat.cells(site);
-            let slot = slot as u32;
-            let (neighbours, neighbour_cells, weights) = match (free(outer), free(outer2)) {
-                (Some((n1, s1)), Some((n2, s2))) if quadratic => (
-                    [n1, n2],
-                    [lat.cells(s1), lat.cells(s2)],
-                    [2.0 * t / (t + h), -t / (t + 2.0 * h)],
-                ),
-                (Some((n1, s1)), _) => ([n1, n1], [lat.cells(s1); 2], [t / (t + h), 0.0]),
-                (None, _) => ([slot, slot], [cells, cells], [0.0, 0.0]),
-            };
-            self.forcing.push(ForcingFace {
-                slot,
-                cells,
-                neighbours,
-                neighbour_cells,
-                weights,
-                wall,
-                line: line.pack(),
-            });
         }
+    }
+    let (_, d, step, k) = best.expect("a candidate has an inside neighbour");
+    let line = ForcingLine { sphere: k, d, step };
+    let h = lat.grid.h[d];
+    let t = lat.surface_distance(x, &spheres[k], line);
+    let wall = lat.wall_velocity(x, t, line, &spheres[k]);
+    let mut outer = m;
+    outer[d] -= step;
+    let mut outer2 = outer;
+    outer2[d] -= step;
+    // (slot, padded indices) of a fluid face
+    let free = |q: [isize; 3]| {
+        let site = lat.site(q)?;
+        let n = lat.layout.index(site[0], site[1], site[2]);
+        (labels[n] == FLUID).then_some((n as u32, site))
+    };
+    let cells = lat.cells(site);
+    let slot = slot as u32;
+    let (neighbours, neighbour_cells, weights) = match (free(outer), free(outer2)) {
+        (Some((n1, s1)), Some((n2, s2))) if quadratic => (
+            [n1, n2],
+            [lat.cells(s1), lat.cells(s2)],
+            [2.0 * t / (t + h), -t / (t + 2.0 * h)],
+        ),
+        (Some((n1, s1)), _) => ([n1, n1], [lat.cells(s1); 2], [t / (t + h), 0.0]),
+        (None, _) => ([slot, slot], [cells, cells], [0.0, 0.0]),
+    };
+    ForcingFace {
+        slot,
+        cells,
+        neighbours,
+        neighbour_cells,
+        weights,
+        wall,
+        line: line.pack(),
     }
 }
 
@@ -1019,6 +1156,112 @@ mod tests {
             }
         }
         spheres
+    }
+
+    /// Spheres at seeded random positions that may overlap one another.
+    fn overlapping_spheres(count: usize, length: f64, radius: f64, seed: u64) -> Vec<RigidSphere> {
+        let mut rng = crate::particles::SplitMix64::new(seed);
+        (0..count)
+            .map(|_| {
+                let centre = [0; 3].map(|_| rng.next_f64() * length);
+                let mut s = RigidSphere::fixed(centre, radius * (0.8 + 0.4 * rng.next_f64()));
+                s.velocity = [0; 3].map(|_| rng.next_f64() - 0.5);
+                s
+            })
+            .collect()
+    }
+
+    /// The interior faces found in parallel are those of the spheres one after another, a
+    /// face shared by overlapping spheres going to the first: the same faces, spheres and
+    /// order.
+    #[test]
+    fn interior_faces_go_to_the_first_sphere_that_holds_them() {
+        let (n, h) = (18, 0.1);
+        let mut ib = periodic_boundary(n, h);
+        let spheres = overlapping_spheres(60, n as f64 * h, 0.3, 5);
+        ib.update(&spheres);
+        let length = ib.grid.length();
+        let mut shared = 0;
+        for c in 0..3 {
+            let lat = Lattice {
+                grid: &ib.grid,
+                length,
+                layout: &ib.layout,
+                periodic: ib.periodic,
+                range: ib.ranges[c],
+                c,
+            };
+            let mut seen = std::collections::HashSet::new();
+            let mut expected = Vec::new();
+            for (k, s) in spheres.iter().enumerate() {
+                visit_inside(&lat, s, |_, site| {
+                    let slot = ib.layout.index(site[0], site[1], site[2]) as u32;
+                    if seen.insert(slot) {
+                        expected.push((slot, k as u32));
+                    } else {
+                        shared += 1;
+                    }
+                });
+            }
+            let found: Vec<(u32, u32)> = ib
+                .interior_faces(c)
+                .iter()
+                .map(|f| (f.slot, f.sphere))
+                .collect();
+            assert_eq!(found, expected, "component {c}");
+            assert_eq!(ib.sites[c].len(), expected.len());
+        }
+        assert!(shared > 100, "the spheres overlap ({shared} faces shared)");
+    }
+
+    /// The closed cells are the cells next to forced faces that no path of free faces joins
+    /// to a cell with no forced face (six forced faces, or a pocket): a plain search over
+    /// the whole grid agrees, on overlapping spheres that leave pockets between them.
+    #[test]
+    fn closed_cells_are_those_no_free_path_reaches() {
+        let (n, h) = (16, 0.1);
+        let mut ib = periodic_boundary(n, h);
+        let cells = n * n * n;
+        let mut pockets = 0;
+        for seed in 0..4 {
+            ib.update(&overlapping_spheres(40, n as f64 * h, 0.22, 100 + seed));
+            let faces: Vec<[[usize; 2]; 3]> = (0..cells)
+                .map(|cell| ib.cell_faces(cell).unwrap())
+                .collect();
+            let near =
+                |cell: usize| (0..3).any(|c| faces[cell][c].iter().any(|&slot| ib.forced(c, slot)));
+            let mut reached: Vec<bool> = (0..cells).map(|cell| !near(cell)).collect();
+            let mut stack: Vec<usize> = (0..cells).filter(|&cell| reached[cell]).collect();
+            while let Some(cell) = stack.pop() {
+                let idx = ib.cell_coords(cell);
+                for c in 0..3 {
+                    for side in 0..2 {
+                        if ib.forced(c, faces[cell][c][side]) {
+                            continue;
+                        }
+                        let next = ib.neighbour_cell_at(cell, idx, c, side).unwrap();
+                        if !reached[next] {
+                            reached[next] = true;
+                            stack.push(next);
+                        }
+                    }
+                }
+            }
+            let mut expected: Vec<usize> = (0..cells).filter(|&cell| !reached[cell]).collect();
+            let mut found: Vec<usize> = ib.closed_cells().iter().map(|cc| cc.cell).collect();
+            assert!(found.iter().all(|&cell| ib
+                .closed_cells()
+                .iter()
+                .any(|cc| cc.cell == cell && cc.faces == faces[cell])));
+            found.sort_unstable();
+            expected.sort_unstable();
+            assert_eq!(found, expected, "seed {seed}");
+            pockets += found
+                .iter()
+                .filter(|&&cell| (0..3).any(|c| faces[cell][c].iter().any(|&s| !ib.forced(c, s))))
+                .count();
+        }
+        assert!(pockets > 0, "the configurations hold pockets");
     }
 
     fn lists(ib: &ImmersedBoundary) -> Vec<(Vec<InteriorFace>, Vec<ForcingFace>)> {
