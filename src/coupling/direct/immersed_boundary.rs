@@ -863,26 +863,22 @@ impl ComponentUpdate<'_> {
             &mut self.interior[..],
             &mut self.sites[..],
         );
-        let mut taken = 0;
-        for f in self.interior.iter_mut() {
+        // Labels in sphere order; a face already labelled is dropped, the rest closed up.
+        let mut kept = 0;
+        for i in 0..total {
+            let f = self.interior[i];
             let slot = f.slot as usize;
-            if self.labels[slot] == FLUID {
-                self.labels[slot] = f.sphere + 1;
-                self.touched.push(slot as u32);
-            } else {
-                f.sphere = TAKEN;
-                taken += 1;
+            if self.labels[slot] != FLUID {
+                continue;
             }
+            self.labels[slot] = f.sphere + 1;
+            self.touched.push(slot as u32);
+            self.interior[kept] = f;
+            self.sites[kept] = self.sites[i];
+            kept += 1;
         }
-        if taken > 0 {
-            let keep: Vec<bool> = self.interior.iter().map(|f| f.sphere != TAKEN).collect();
-            let mut k = 0;
-            self.sites.retain(|_| {
-                k += 1;
-                keep[k - 1]
-            });
-            self.interior.retain(|f| f.sphere != TAKEN);
-        }
+        self.interior.truncate(kept);
+        self.sites.truncate(kept);
     }
 
     /// Fluid faces next to an interior face (along any axis) become forcing faces.
@@ -921,10 +917,6 @@ impl ComponentUpdate<'_> {
         );
     }
 }
-
-/// Marks an interior face found inside an earlier sphere (dropped by
-/// [`ComponentUpdate::mark_interior`]).
-const TAKEN: u32 = u32::MAX;
 
 /// Calls `visit(m, site)` for every advanced face inside sphere `s`, in a fixed order: `m`
 /// its lattice index (unwrapped), `site` its padded indices.
