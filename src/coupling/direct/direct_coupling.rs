@@ -52,6 +52,8 @@ pub struct DirectCoupling {
     loads: Vec<HydrodynamicLoad>,
     /// One brick per worker thread: the fields around the sphere whose loads it computes.
     bricks: Vec<Mutex<FieldBrick>>,
+    /// The order in which the loads visit the spheres (scratch of [`Self::compute_loads`]).
+    spatial_order: Vec<usize>,
     /// Whether the forced faces have been built once.
     built: bool,
     /// Whether the last [`Self::set_spheres`] rebuilt them (else they followed the spheres).
@@ -83,6 +85,7 @@ impl DirectCoupling {
             previous_shell: HashMap::new(),
             loads: Vec::new(),
             bricks: Vec::new(),
+            spatial_order: Vec::new(),
             built: false,
             last_rebuilt: false,
             restored_build: None,
@@ -315,6 +318,7 @@ impl DirectCoupling {
     /// settings' plus the `meanVelocityForce` gradient) enters as `f_h0`; the shell term uses
     /// the shell momentum of the previous call (none at the first).
     pub fn compute_loads(&mut self, fluid: &FluidSolver, rho: f64) -> &[HydrodynamicLoad] {
+        self.order_spatially();
         let view = FieldView::of(fluid);
         let mut body = fluid.settings().body_force;
         if let Some(d) = fluid.mean_velocity_force() {
@@ -338,11 +342,14 @@ impl DirectCoupling {
         }
         let bricks = &self.bricks;
         let h = self.h;
+        let spheres = &self.spheres;
+        // In the order of the curve, so that a worker's next sphere mostly neighbours its
+        // last one and finds part of its brick's samples still in the cache.
         let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
-            .spheres
+            .spatial_order
             .par_iter()
-            .zip(offsets.par_iter())
-            .map(|(s, &offset)| {
+            .map(|&k| {
+                let (s, offset) = (&spheres[k], offsets[k]);
                 let (q, shell_rules) = &quadratures[&s.radius.to_bits()];
                 let integral = StressIntegral {
                     surface_offset: offset,
@@ -363,7 +370,7 @@ impl DirectCoupling {
         self.loads.clear();
         self.loads
             .resize(self.spheres.len(), HydrodynamicLoad::default());
-        for (k, (mut load, shell)) in results.into_iter().enumerate() {
+        for (&k, (mut load, shell)) in self.spatial_order.iter().zip(results) {
             let id = self.ids[k];
             if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
@@ -380,6 +387,27 @@ impl DirectCoupling {
             self.loads[self.order[k]] = load;
         }
         &self.loads
+    }
+
+    /// Fills [`Self::spatial_order`]: the spheres' indices along the Z-order (Morton) curve
+    /// through the cells that hold their centres.
+    fn order_spatially(&mut self) {
+        let (h, length, periodic) = (self.h, self.length, self.periodic);
+        let key = |s: &RigidSphere| -> u64 {
+            let cell = |d: usize| -> u64 {
+                let mut x = s.centre[d] / h;
+                if periodic[d] {
+                    x = x.rem_euclid(length[d] / h);
+                }
+                (x.max(0.0) as u64).min((1 << 21) - 1)
+            };
+            spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2
+        };
+        let spheres = &self.spheres;
+        self.spatial_order.clear();
+        self.spatial_order.extend(0..spheres.len());
+        self.spatial_order
+            .sort_unstable_by_key(|&k| (key(&spheres[k]), k));
     }
 
     /// The integration surface offset (cells) per sphere: the setting, reduced where a
@@ -490,6 +518,17 @@ fn sphere_load(
     (load, shell)
 }
 
+/// The low 21 bits of `v`, each moved to three times its place (bit `i` to bit `3i`): one
+/// axis of a three-dimensional Morton key.
+fn spread_bits(v: u64) -> u64 {
+    let mut v = v & 0x1f_ffff;
+    v = (v | v << 32) & 0x001f_0000_0000_ffff;
+    v = (v | v << 16) & 0x001f_0000_ff00_00ff;
+    v = (v | v << 8) & 0x100f_00f0_0f00_f00f;
+    v = (v | v << 4) & 0x10c3_0c30_c30c_30c3;
+    (v | v << 2) & 0x1249_2492_4924_9249
+}
+
 /// A restart array of rows of `width` values.
 fn check_rows(name: &str, data: &[f64], width: usize) -> Result<(), String> {
     if data.len().is_multiple_of(width) {
@@ -535,5 +574,16 @@ mod tests {
         let reversed = coupling.compute_loads(&fluid, 1.0).to_vec();
         assert_eq!(reversed, vec![forward[1], forward[0]]);
         assert!(forward[0] != forward[1]);
+    }
+
+    #[test]
+    fn spread_bits_moves_each_bit_to_three_times_its_place() {
+        let mut rng = SplitMix64::new(11);
+        for _ in 0..1000 {
+            let v = (rng.next_f64() * (1u64 << 21) as f64) as u64;
+            let naive = (0..21).fold(0u64, |acc, i| acc | ((v >> i) & 1) << (3 * i));
+            assert_eq!(spread_bits(v), naive, "v = {v:#x}");
+        }
+        assert_eq!(spread_bits(u64::MAX), 0x1249_2492_4924_9249);
     }
 }
