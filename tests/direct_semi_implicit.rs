@@ -249,6 +249,7 @@ fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
                     velocity,
                     mass_source,
                     implicit,
+                    components,
                 } = stage;
                 let kappa = implicit.as_ref().unwrap().kappa();
                 let before = velocity.clone();
@@ -261,6 +262,7 @@ fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
                     velocity: &mut *velocity,
                     mass_source,
                     implicit,
+                    components,
                 });
                 worst_constraint =
                     worst_constraint.max(coupling.implicit_forcing_report().relative_residual);

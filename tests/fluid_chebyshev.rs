@@ -229,3 +229,31 @@ fn rejects_outlets() {
     let error = FluidSolver::new(grid, bc, settings).err().unwrap();
     assert!(error.contains("outlets"), "{error}");
 }
+
+/// The stages do not couple the components, so a step takes each component through all its
+/// stages in turn (its arrays stay in the cache) and hands the hook one component a call;
+/// the mass source comes in one last call that hands no component, after every stage.
+#[test]
+fn the_hook_gets_each_component_through_its_stages_then_the_mass_source() {
+    let grid = Grid::new([8, 8, 8], [0.1; 3], [0.0; 3]);
+    let settings = FluidSettings {
+        nu: 1.0,
+        scheme: TimeScheme::EulerRKC,
+        body_force: [0.0; 3],
+    };
+    let mut s = FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap();
+    s.set_velocity(|c, x| (x[(c + 1) % 3] * 5.0).sin());
+    s.mass_source_mut();
+    let dt = 20.0 * 0.01 / 6.0; // 20 times the explicit bound h²/(6ν)
+    let mut calls = Vec::new();
+    s.step_with(dt, &mut |stage| {
+        calls.push((stage.components, stage.mass_source.is_some()));
+    });
+    let stages = s.chebyshev_stages_taken();
+    assert!(stages > 1, "{stages} stages");
+    let mut expected: Vec<([bool; 3], bool)> = (0..3)
+        .flat_map(|c| std::iter::repeat_n((std::array::from_fn(|d| d == c), false), stages))
+        .collect();
+    expected.push(([false; 3], true));
+    assert_eq!(calls, expected);
+}

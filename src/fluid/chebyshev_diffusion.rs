@@ -51,18 +51,17 @@ pub(crate) struct StageTerms<'a> {
     pub frozen: &'a [Vec<f64>; 3],
 }
 
-/// One stage: `next ← μ current + ν next + μ̃ Δt (ν∇² current + N)` on every momentum face
-/// (`next` is read only when `ν ≠ 0`). `current` has its ghosts filled.
+/// One stage of component `c`: `next ← μ current + ν next + μ̃ Δt (ν∇² current + N)` on its
+/// momentum faces (`next` is read only when `ν ≠ 0`). `current` has its ghosts filled.
 pub(crate) fn chebyshev_stage(
-    next: &mut [Vec<f64>; 3],
-    current: &[Vec<f64>; 3],
+    next: &mut [f64],
+    current: &[f64],
     terms: &StageTerms,
+    c: usize,
     stage: &ChebyshevStage,
     dt: f64,
 ) {
-    for (c, out) in next.iter_mut().enumerate() {
-        stage_component(out, &current[c], &terms.frozen[c], terms, c, stage, dt);
-    }
+    stage_component(next, current, &terms.frozen[c], terms, c, stage, dt);
 }
 
 fn stage_component(

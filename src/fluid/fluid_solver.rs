@@ -4,7 +4,7 @@ use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::chebyshev_diffusion::{chebyshev_stage, ChebyshevDiffusion, StageTerms};
 use super::chebyshev_stages::ChebyshevStages;
 use super::diagnostics::FluidDiagnostics;
-use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
+use super::ghost_fill::{extrapolate_outlets, fill_component_ghosts, fill_velocity_ghosts};
 use super::implicit_stage::ImplicitStage;
 use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
@@ -72,6 +72,10 @@ pub struct PredictedVelocity<'a> {
     /// `velocity` holds; a hook that constrains faces solves its constrained problem with it
     /// (see [`ImplicitStage`]). `None` for the explicit schemes.
     pub implicit: Option<ImplicitStage<'a>>,
+    /// The components this call hands over predicted: a hook acts on these only (the others
+    /// hold what the last call left them). All three but with `EulerRKC`, whose stages
+    /// advance one component at a time (see [`FluidSolver::step_with`]).
+    pub components: [bool; 3],
 }
 
 /// What one step did.
@@ -481,6 +485,7 @@ impl FluidSolver {
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
                 implicit: None,
+                components: [true; 3],
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
@@ -575,6 +580,7 @@ impl FluidSolver {
                     kappa,
                     index,
                 }),
+                components: [true; 3],
             });
             fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
             let mut phi = std::mem::take(&mut implicit.increment);
@@ -613,7 +619,9 @@ impl FluidSolver {
     /// 1. `N = −∇·(uⁿuⁿ) + f + s − ∇pⁿ`, frozen over the step;
     /// 2. `s` Runge–Kutta–Chebyshev stages of `u' = ν∇²u + N` from `Y₀ = uⁿ`
     ///    ([`ChebyshevStages`], `s` from `Δt · 4ν Σ 1/h²`), the hook on each stage's velocity
-    ///    (a constrained face then holds its constraint in every Laplacian that reads it);
+    ///    (a constrained face then holds its constraint in every Laplacian that reads it),
+    ///    one component through all its stages after another (each call hands the hook one
+    ///    component; then one call hands none, with the mass source to set);
     /// 3. `∇²φ = ∇·u*/Δt`, `u = u* − Δt ∇φ`, `p ← p + φ` (incremental: at a steady state
     ///    `N + ν∇²u = 0`, every stage is `uⁿ` and `φ = 0`, whatever `Δt`).
     fn step_chebyshev(
@@ -640,35 +648,51 @@ impl FluidSolver {
             ranges: &self.momentum_ranges,
         };
         frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
-        for (j, stage) in method.stages().enumerate() {
-            let terms = StageTerms {
-                layout: &self.layout,
-                h,
-                nu,
-                ranges: &self.momentum_ranges,
-                frozen: &self.q,
-            };
-            // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
-            chebyshev_stage(&mut work.register, &self.u, &terms, &stage, dt);
-            // Both registers' fixed boundary faces hold the conditions (the register's from
-            // its allocation, the stage writes momentum faces only): the hook may read them.
-            std::mem::swap(&mut self.u, &mut work.register);
+        let terms = StageTerms {
+            layout: &self.layout,
+            h,
+            nu,
+            ranges: &self.momentum_ranges,
+            frozen: &self.q,
+        };
+        // The stages do not couple the components (the hook's forced faces of a component
+        // read that component only): each is taken through all its stages in turn, so that
+        // its three arrays stay in the last-level cache from one stage to the next.
+        for c in 0..3 {
+            for stage in method.stages() {
+                // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
+                chebyshev_stage(&mut work.register[c], &self.u[c], &terms, c, &stage, dt);
+                // Both registers' fixed boundary faces hold the conditions (the register's
+                // from its allocation, the stage writes momentum faces only): the hook may
+                // read them.
+                std::mem::swap(&mut self.u[c], &mut work.register[c]);
+                hook(PredictedVelocity {
+                    grid: &self.grid,
+                    layout: &self.layout,
+                    time: t0 + stage.time * dt,
+                    tau: dt,
+                    pressure: &[],
+                    velocity: &mut self.u,
+                    mass_source: None,
+                    implicit: None,
+                    components: std::array::from_fn(|d| d == c),
+                });
+                fill_component_ghosts(&self.layout, &self.bc, &mut self.u[c], c);
+            }
+        }
+        // Only the last stage's velocity is projected: its mass source.
+        if let Some(mass_source) = self.mass_source.as_deref_mut() {
             hook(PredictedVelocity {
                 grid: &self.grid,
                 layout: &self.layout,
-                time: t0 + stage.time * dt,
+                time: t0 + dt,
                 tau: dt,
                 pressure: &[],
                 velocity: &mut self.u,
-                // Only the last stage's velocity is projected.
-                mass_source: if j + 1 == method.count {
-                    self.mass_source.as_deref_mut()
-                } else {
-                    None
-                },
+                mass_source: Some(mass_source),
                 implicit: None,
+                components: [false; 3],
             });
-            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
         }
         let mut phi = std::mem::take(&mut work.increment);
         self.project_increment(&mut phi, dt);

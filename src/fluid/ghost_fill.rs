@@ -31,21 +31,34 @@ pub(crate) fn fill_component_ghosts(
     }
 }
 
-/// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`.
+/// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`: in parallel over
+/// the z-planes of the array for `d` = x and y (each such ghost lies in the z-plane of its
+/// source; the x ghosts are one sample a row, strided), a plane copy for `d` = z.
 fn plane_map(
     layout: &PaddedLayout,
     a: &mut [f64],
     d: usize,
     dst: usize,
     src: usize,
-    f: impl Fn(f64) -> f64,
+    f: impl Fn(f64) -> f64 + Sync,
 ) {
-    let (d1, d2) = ((d + 1) % 3, (d + 2) % 3);
     let s = layout.stride;
-    for b in 0..layout.dims[d2] {
-        for c in 0..layout.dims[d1] {
-            let base = c * s[d1] + b * s[d2];
-            a[base + dst * s[d]] = f(a[base + src * s[d]]);
+    let [d0, d1, _] = layout.dims;
+    match d {
+        0 => a.par_chunks_mut(s[2]).for_each(|plane| {
+            for j in 0..d1 {
+                plane[j * s[1] + dst] = f(plane[j * s[1] + src]);
+            }
+        }),
+        1 => a.par_chunks_mut(s[2]).for_each(|plane| {
+            for i in 0..d0 {
+                plane[dst * s[1] + i] = f(plane[src * s[1] + i]);
+            }
+        }),
+        _ => {
+            for i in 0..d0 * d1 {
+                a[dst * s[2] + i] = f(a[src * s[2] + i]);
+            }
         }
     }
 }

@@ -19,7 +19,7 @@
 //!
 //! Hooks for the coupling models: [`FluidSolver::step_with`] hands each stage's predicted
 //! velocity to a closure before it is projected (the direct model imposes the particles'
-//! rigid motion there), and [`FluidSolver::face_source_mut`] holds per-face accelerations
+//! rigid motion there; `EulerRKC` hands the components one at a time), and [`FluidSolver::face_source_mut`] holds per-face accelerations
 //! (the drag-law model's reaction forces). `RK3CN` removes the viscous time-step limit that
 //! dominates when the grid is finer than the particles.
 //!

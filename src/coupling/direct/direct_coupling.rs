@@ -294,13 +294,19 @@ impl DirectCoupling {
             tau,
             mass_source,
             implicit,
+            components,
             ..
         } = stage;
         if let Some(mut implicit) = implicit {
+            assert_eq!(
+                components, [true; 3],
+                "a constrained solve takes every component"
+            );
             self.implicit_forcing
                 .solve(&self.boundary, velocity, &mut implicit);
         }
-        self.boundary.impose(velocity, pressure, tau, mass_source);
+        self.boundary
+            .impose(velocity, components, pressure, tau, mass_source);
     }
 
     /// Cost and residual of the last constrained viscous solve (`RK3CN`).

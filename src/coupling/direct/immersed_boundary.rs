@@ -600,42 +600,53 @@ impl ImmersedBoundary {
     /// Imposes the rigid motion on a stage's predicted velocity (padded), so that after the
     /// coming projection `u ← u − τ∇p` the forced faces hold their targets (exactly when the
     /// pressure `p` the hook sees is the one the projection subtracts; see the module docs).
-    /// `tau = 0` or an empty `pressure` imposes the targets as they are. With a `mass_source`, every
-    /// [`ClosedCell`] gets the divergence the imposed faces give it (less their mean, so that
-    /// the sources sum to zero), the others zero.
+    /// `tau = 0` or an empty `pressure` imposes the targets as they are. Only the `components`
+    /// named are imposed. With a `mass_source`, every [`ClosedCell`] then gets the divergence
+    /// of the velocity (less their mean, so that the sources sum to zero), the others zero.
     pub fn impose(
         &self,
         velocity: &mut [Vec<f64>; 3],
+        components: [bool; 3],
         pressure: &[f64],
         tau: f64,
         mass_source: Option<&mut [f64]>,
     ) {
-        // Each component writes only its own array: the three run in parallel.
-        velocity
-            .par_iter_mut()
-            .zip(self.interior.par_iter().zip(self.forcing.par_iter()))
-            .enumerate()
-            .for_each(|(c, (u, (interior, forcing)))| {
-                let scale = tau / self.grid.h[c];
-                let correction = |cells: [u32; 2]| {
-                    if tau == 0.0 || pressure.is_empty() {
-                        0.0
-                    } else {
-                        scale * (pressure[cells[1] as usize] - pressure[cells[0] as usize])
-                    }
-                };
-                for f in interior {
-                    u[f.slot as usize] = f.target + correction(f.cells);
+        // A component's faces in chunks, in parallel (the stages of `EulerRKC` hand one
+        // component at a time).
+        const CHUNK: usize = 4096;
+        for (c, u) in velocity.iter_mut().enumerate() {
+            if !components[c] {
+                continue;
+            }
+            let u = SharedComponent {
+                ptr: u.as_mut_ptr(),
+                len: u.len(),
+            };
+            let scale = tau / self.grid.h[c];
+            let correction = |cells: [u32; 2]| {
+                if tau == 0.0 || pressure.is_empty() {
+                    0.0
+                } else {
+                    scale * (pressure[cells[1] as usize] - pressure[cells[0] as usize])
                 }
-                for f in forcing {
-                    let mut value = f.wall + correction(f.cells);
-                    for k in 0..2 {
-                        let outer = u[f.neighbours[k] as usize] - correction(f.neighbour_cells[k]);
-                        value += f.weights[k] * (outer - f.wall);
-                    }
-                    u[f.slot as usize] = value;
+            };
+            self.interior[c].par_chunks(CHUNK).for_each(|chunk| {
+                for f in chunk {
+                    u.write(f.slot as usize, f.target + correction(f.cells));
                 }
             });
+            self.forcing[c].par_chunks(CHUNK).for_each(|chunk| {
+                for f in chunk {
+                    let mut value = f.wall + correction(f.cells);
+                    for k in 0..2 {
+                        let outer =
+                            u.read(f.neighbours[k] as usize) - correction(f.neighbour_cells[k]);
+                        value += f.weights[k] * (outer - f.wall);
+                    }
+                    u.write(f.slot as usize, value);
+                }
+            });
+        }
         if let Some(q) = mass_source {
             for &cell in &self.previous_closed {
                 q[cell] = 0.0;
@@ -660,6 +671,42 @@ impl ImmersedBoundary {
                 (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / self.grid.h[c]
             })
             .sum()
+    }
+}
+
+/// One velocity component during [`ImmersedBoundary::impose`], shared by the workers that
+/// impose its forced faces chunk by chunk. Each forced face is written by its own worker
+/// only (a slot has one role: the labels of the build), and what a forcing face reads are
+/// fluid faces, which no worker writes (or, for the staircase fallback, its own slot): no
+/// sample is written by one worker and touched by another, so the chunks may run in any
+/// order and give the same velocity.
+#[derive(Clone, Copy)]
+struct SharedComponent {
+    ptr: *mut f64,
+    len: usize,
+}
+
+// SAFETY: see the type's doc: the workers touch disjoint samples, except those that all
+// only read; the pointer outlives them (`impose` holds the velocity borrowed).
+unsafe impl Send for SharedComponent {}
+unsafe impl Sync for SharedComponent {}
+
+impl SharedComponent {
+    #[inline]
+    fn read(self, slot: usize) -> f64 {
+        assert!(
+            slot < self.len,
+            "a forced face's neighbour inside the array"
+        );
+        // SAFETY: in bounds (checked); no worker writes a sample that another reads.
+        unsafe { *self.ptr.add(slot) }
+    }
+
+    #[inline]
+    fn write(self, slot: usize, value: f64) {
+        assert!(slot < self.len, "a forced face inside the array");
+        // SAFETY: in bounds (checked); each forced slot is written by one worker only.
+        unsafe { *self.ptr.add(slot) = value }
     }
 }
 
@@ -1342,7 +1389,7 @@ mod tests {
         let layout = PaddedLayout::new([16; 3]);
         let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![7.0; layout.len]);
         let p = vec![0.0; 16 * 16 * 16];
-        ib.impose(&mut u, &p, 0.0, None);
+        ib.impose(&mut u, [true; 3], &p, 0.0, None);
         for c in 0..3 {
             let w = sphere.velocity[c];
             for f in ib.interior_faces(c) {
@@ -1358,7 +1405,7 @@ mod tests {
         let p: Vec<f64> = (0..grid.cell_count())
             .map(|i| (i % 16) as f64 * 0.5)
             .collect();
-        ib.impose(&mut u, &p, 0.2, None);
+        ib.impose(&mut u, [true; 3], &p, 0.2, None);
         let f = ib
             .interior_faces(0)
             .iter()
