@@ -144,6 +144,8 @@ pub struct ImmersedBoundary {
     /// is cleared at the next imposition).
     closed: Vec<ClosedCell>,
     previous_closed: Vec<usize>,
+    /// Scratch of [`Self::impose`]: the divergence of each closed cell.
+    closed_divergence: Vec<f64>,
     /// Scratch of the closed-cell search: a mark per cell (0 outside the search) and the
     /// cells next to forced faces.
     cell_marks: Vec<u8>,
@@ -184,6 +186,7 @@ impl ImmersedBoundary {
             forcing: Default::default(),
             closed: Vec::new(),
             previous_closed: Vec::new(),
+            closed_divergence: Vec::new(),
             cell_marks: vec![0; grid.cell_count()],
             near_cells: Vec::new(),
             near_classes: Vec::new(),
@@ -604,7 +607,7 @@ impl ImmersedBoundary {
     /// named are imposed. With a `mass_source`, every [`ClosedCell`] then gets the divergence
     /// of the velocity (less their mean, so that the sources sum to zero), the others zero.
     pub fn impose(
-        &self,
+        &mut self,
         velocity: &mut [Vec<f64>; 3],
         components: [bool; 3],
         pressure: &[f64],
@@ -618,10 +621,7 @@ impl ImmersedBoundary {
             if !components[c] {
                 continue;
             }
-            let u = SharedComponent {
-                ptr: u.as_mut_ptr(),
-                len: u.len(),
-            };
+            let u = SharedSamples::of(u);
             let scale = tau / self.grid.h[c];
             let correction = |cells: [u32; 2]| {
                 if tau == 0.0 || pressure.is_empty() {
@@ -648,50 +648,66 @@ impl ImmersedBoundary {
             });
         }
         if let Some(q) = mass_source {
-            for &cell in &self.previous_closed {
-                q[cell] = 0.0;
-            }
-            let mut total = 0.0;
-            for cc in &self.closed {
-                let div = self.divergence(velocity, cc);
-                q[cc.cell] = div;
-                total += div;
-            }
-            let mean = total / self.closed.len().max(1) as f64;
-            for cc in &self.closed {
-                q[cc.cell] -= mean;
-            }
+            // In parallel: the cells are distinct, and the total is summed in list order.
+            const CELLS: usize = 2048;
+            let q = SharedSamples::of(q);
+            self.previous_closed
+                .par_iter()
+                .with_min_len(CELLS)
+                .for_each(|&cell| q.write(cell, 0.0));
+            let velocity = &*velocity;
+            let (closed, grid) = (&self.closed, &self.grid);
+            self.closed_divergence.clear();
+            self.closed_divergence.par_extend(
+                closed
+                    .par_iter()
+                    .with_min_len(CELLS)
+                    .map(|cc| closed_divergence(grid, velocity, cc)),
+            );
+            let total = self.closed_divergence.iter().fold(0.0, |t, d| t + d);
+            let mean = total / closed.len().max(1) as f64;
+            closed
+                .par_iter()
+                .zip(&self.closed_divergence)
+                .with_min_len(CELLS)
+                .for_each(|(cc, div)| q.write(cc.cell, div - mean));
         }
-    }
-
-    /// Discrete divergence of `velocity` in a closed cell.
-    pub fn divergence(&self, velocity: &[Vec<f64>; 3], cell: &ClosedCell) -> f64 {
-        (0..3)
-            .map(|c| {
-                (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / self.grid.h[c]
-            })
-            .sum()
     }
 }
 
-/// One velocity component during [`ImmersedBoundary::impose`], shared by the workers that
-/// impose its forced faces chunk by chunk. Each forced face is written by its own worker
-/// only (a slot has one role: the labels of the build), and what a forcing face reads are
-/// fluid faces, which no worker writes (or, for the staircase fallback, its own slot): no
-/// sample is written by one worker and touched by another, so the chunks may run in any
-/// order and give the same velocity.
+/// Discrete divergence of `velocity` in a closed cell.
+fn closed_divergence(grid: &Grid, velocity: &[Vec<f64>; 3], cell: &ClosedCell) -> f64 {
+    (0..3)
+        .map(|c| (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / grid.h[c])
+        .sum()
+}
+
+/// An array that [`ImmersedBoundary::impose`]'s workers share: a velocity component whose
+/// forced faces they impose chunk by chunk, or the mass source of the closed cells. Each
+/// forced face (closed cell) is written by one worker only (a slot has one role: the labels
+/// of the build; the closed cells are distinct), and what a forcing face reads are fluid
+/// faces, which no worker writes (or, for the staircase fallback, its own slot): no sample
+/// is written by one worker and touched by another, so the chunks may run in any order and
+/// give the same result.
 #[derive(Clone, Copy)]
-struct SharedComponent {
+struct SharedSamples {
     ptr: *mut f64,
     len: usize,
 }
 
 // SAFETY: see the type's doc: the workers touch disjoint samples, except those that all
 // only read; the pointer outlives them (`impose` holds the velocity borrowed).
-unsafe impl Send for SharedComponent {}
-unsafe impl Sync for SharedComponent {}
+unsafe impl Send for SharedSamples {}
+unsafe impl Sync for SharedSamples {}
 
-impl SharedComponent {
+impl SharedSamples {
+    fn of(samples: &mut [f64]) -> Self {
+        SharedSamples {
+            ptr: samples.as_mut_ptr(),
+            len: samples.len(),
+        }
+    }
+
     #[inline]
     fn read(self, slot: usize) -> f64 {
         assert!(
@@ -704,7 +720,7 @@ impl SharedComponent {
 
     #[inline]
     fn write(self, slot: usize, value: f64) {
-        assert!(slot < self.len, "a forced face inside the array");
+        assert!(slot < self.len, "a sample inside the array");
         // SAFETY: in bounds (checked); each forced slot is written by one worker only.
         unsafe { *self.ptr.add(slot) = value }
     }
