@@ -7,36 +7,34 @@
 //! ```
 //!
 //! A stage reads `Y_{j−1}` around each face and `Y_{j−2}` at the face only, so `Y_j`
-//! overwrites `Y_{j−2}` in place: two velocity registers and `N`, whatever `s`.
+//! overwrites `Y_{j−2}` in place: two velocity registers and `N`, whatever `s`. The stages
+//! do not couple the components, which take them one after another: the second register
+//! is one array, handed from component to component.
 
-use super::boundary_conditions::BoundaryConditions;
 use super::chebyshev_stages::ChebyshevStage;
-use super::ghost_fill::fill_velocity_ghosts;
 use super::padded_layout::PaddedLayout;
 use rayon::prelude::*;
 
 pub(crate) struct ChebyshevDiffusion {
-    /// The second velocity register (`Y_{j−2}`, then `Y_j`), padded.
-    pub register: [Vec<f64>; 3],
+    /// The second velocity register (`Y_{j−2}`, then `Y_j`) of the component whose stages
+    /// run, padded. Its fixed boundary faces must be that component's before its first stage
+    /// (a stage writes only momentum faces, and a hook handed the register after the swap
+    /// may read them: a closed cell's divergence at a wall).
+    pub register: Vec<f64>,
     /// Pressure increment of the projection, cell-centred.
     pub increment: Vec<f64>,
 }
 
 impl ChebyshevDiffusion {
-    /// The register starts with its fixed boundary faces set by the conditions `bc`; a
-    /// stage writes only momentum faces, so they stay set (a hook handed the register after
-    /// the swap may read them: a closed cell's divergence at a wall).
-    pub fn new(layout: &PaddedLayout, bc: &BoundaryConditions, cells: usize) -> Self {
-        let mut register = std::array::from_fn(|_| vec![0.0; layout.len]);
-        fill_velocity_ghosts(layout, bc, &mut register);
+    pub fn new(layout: &PaddedLayout, cells: usize) -> Self {
         ChebyshevDiffusion {
-            register,
+            register: vec![0.0; layout.len],
             increment: vec![0.0; cells],
         }
     }
 
     pub fn bytes(&self) -> usize {
-        8 * (self.register.iter().map(Vec::len).sum::<usize>() + self.increment.len())
+        8 * (self.register.len() + self.increment.len())
     }
 }
 

@@ -4,7 +4,9 @@ use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::chebyshev_diffusion::{chebyshev_stage, ChebyshevDiffusion, StageTerms};
 use super::chebyshev_stages::ChebyshevStages;
 use super::diagnostics::FluidDiagnostics;
-use super::ghost_fill::{extrapolate_outlets, fill_component_ghosts, fill_velocity_ghosts};
+use super::ghost_fill::{
+    extrapolate_outlets, fill_component_ghosts, fill_fixed_faces, fill_velocity_ghosts,
+};
 use super::implicit_stage::ImplicitStage;
 use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
@@ -114,7 +116,8 @@ pub struct FluidSolver {
     poisson: SpectralPoisson,
     /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
     implicit: Option<ImplicitViscosity>,
-    /// `EulerRKC`'s second velocity register and pressure increment.
+    /// `EulerRKC`'s second velocity register (one, for the component whose stages run) and
+    /// pressure increment.
     chebyshev: Option<ChebyshevDiffusion>,
     drive: Option<MeanVelocityForce>,
     time: f64,
@@ -235,7 +238,6 @@ impl FluidSolver {
             if self.chebyshev.is_none() {
                 self.chebyshev = Some(ChebyshevDiffusion::new(
                     &self.layout,
-                    &self.bc,
                     self.grid.cell_count(),
                 ));
             }
@@ -659,13 +661,13 @@ impl FluidSolver {
         // read that component only): each is taken through all its stages in turn, so that
         // its three arrays stay in the last-level cache from one stage to the next.
         for c in 0..3 {
+            fill_fixed_faces(&self.layout, &self.bc, &mut work.register, c);
             for stage in method.stages() {
                 // register: Y_{j−2} → Y_j; then u holds Y_j and the register Y_{j−1}.
-                chebyshev_stage(&mut work.register[c], &self.u[c], &terms, c, &stage, dt);
-                // Both registers' fixed boundary faces hold the conditions (the register's
-                // from its allocation, the stage writes momentum faces only): the hook may
-                // read them.
-                std::mem::swap(&mut self.u[c], &mut work.register[c]);
+                chebyshev_stage(&mut work.register, &self.u[c], &terms, c, &stage, dt);
+                // Both registers' fixed boundary faces hold the conditions (the stage writes
+                // momentum faces only): the hook may read them.
+                std::mem::swap(&mut self.u[c], &mut work.register);
                 hook(PredictedVelocity {
                     grid: &self.grid,
                     layout: &self.layout,

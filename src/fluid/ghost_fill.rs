@@ -31,6 +31,26 @@ pub(crate) fn fill_component_ghosts(
     }
 }
 
+/// Sets the fixed boundary faces of component `c` alone (the normal faces of walls, inlets
+/// and slip planes) as [`fill_component_ghosts`] sets them: for a work array that last held
+/// another component.
+pub(crate) fn fill_fixed_faces(
+    layout: &PaddedLayout,
+    bc: &BoundaryConditions,
+    a: &mut [f64],
+    c: usize,
+) {
+    let n = layout.n[c];
+    for (side, slot) in [(0, 1), (1, n + 1)] {
+        let value = match bc.face(c, side) {
+            FaceCondition::Wall { velocity } | FaceCondition::Inlet { velocity } => velocity[c],
+            FaceCondition::Slip => 0.0,
+            _ => continue,
+        };
+        plane_map(layout, a, c, slot, slot, |_| value);
+    }
+}
+
 /// Sets `a[dst] = f(a[src])` over the whole padded plane normal to `d`: in parallel over
 /// the z-planes of the array for `d` = x and y (each such ghost lies in the z-plane of its
 /// source; the x ghosts are one sample a row, strided), a plane copy for `d` = z.
@@ -177,5 +197,65 @@ mod tests {
         // Slip in z: no normal velocity, tangential ghost mirrors the interior.
         assert_eq!(u[2][layout.index(2, 2, 1)], 0.0);
         assert_eq!(u[0][layout.index(2, 2, 0)], u[0][layout.index(2, 2, 1)]);
+    }
+
+    /// A work array that held anything gets component `c`'s fixed boundary faces as the
+    /// whole ghost fill would set them, and nothing else changes.
+    #[test]
+    fn fixed_faces_are_those_the_ghost_fill_sets() {
+        let layout = PaddedLayout::new([5, 4, 3]);
+        let bc = BoundaryConditions {
+            faces: [
+                FaceCondition::Inlet {
+                    velocity: [1.5, 0.2, 0.0],
+                },
+                FaceCondition::Wall {
+                    velocity: [-0.5, 0.0, 0.3],
+                },
+                FaceCondition::Periodic,
+                FaceCondition::Periodic,
+                FaceCondition::Slip,
+                FaceCondition::Wall { velocity: [0.0; 3] },
+            ],
+        };
+        let mut seed = 0x2545F4914F6CDD1Du64;
+        let mut noise = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        // Whether slot's index along every direction but `c` is interior (not a ghost, which
+        // the later passes of the whole fill overwrite along the edges).
+        let interior_across = |slot: usize, c: usize| {
+            (0..3).filter(|&d| d != c).all(|d| {
+                let along = slot / layout.stride[d] % layout.dims[d];
+                (1..=layout.n[d]).contains(&along)
+            })
+        };
+        for c in 0..3 {
+            let held: Vec<f64> = (0..layout.len).map(|_| noise()).collect();
+            let mut filled = held.clone();
+            fill_component_ghosts(&layout, &bc, &mut filled, c);
+            let mut fixed = held.clone();
+            fill_fixed_faces(&layout, &bc, &mut fixed, c);
+            let n = layout.n[c];
+            for slot in 0..layout.len {
+                let along = slot / layout.stride[c] % layout.dims[c];
+                let boundary = bc.face(c, usize::from(along > 1));
+                let is_fixed = (along == 1 || along == n + 1)
+                    && matches!(
+                        boundary,
+                        FaceCondition::Wall { .. }
+                            | FaceCondition::Inlet { .. }
+                            | FaceCondition::Slip
+                    );
+                if !is_fixed {
+                    assert_eq!(fixed[slot], held[slot], "component {c}, slot {slot}");
+                } else if interior_across(slot, c) {
+                    assert_eq!(fixed[slot], filled[slot], "component {c}, slot {slot}");
+                }
+            }
+        }
     }
 }
