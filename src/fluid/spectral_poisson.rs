@@ -376,23 +376,25 @@ impl SpectralPoisson {
                     transform_plane_columns(&transforms[1], p, n0, n1, w, true);
                 }
             });
-        transform_z(&transforms[2], data, self.n, work, true);
-
-        // Divide by the eigenvalue sum (and the transforms' round-trip factor).
-        let ev = &self.eigenvalues;
-        let scale = self.round_trip;
-        data.par_chunks_mut(plane).enumerate().for_each(|(k, p)| {
-            for j in 0..n1 {
-                let ejk = ev[1][j] + ev[2][k] - sigma;
-                let row = &mut p[j * n0..(j + 1) * n0];
-                for i in 0..n0 {
-                    let denom = (ev[0][i] + ejk) * scale;
-                    row[i] = if denom == 0.0 { 0.0 } else { row[i] / denom };
+        // Divide by the eigenvalue sum (and the transforms' round-trip factor): along z, each
+        // line as soon as it is transformed and back at once, while it is in the cache.
+        let divide = Spectrum {
+            eigenvalues: &self.eigenvalues,
+            scale: self.round_trip,
+            sigma,
+        };
+        if matches!(transforms[2], AxisTransform::Identity) {
+            data.par_chunks_mut(plane).enumerate().for_each(|(k, p)| {
+                for j in 0..n1 {
+                    let row = &mut p[j * n0..(j + 1) * n0];
+                    for (i, v) in row.iter_mut().enumerate() {
+                        *v = divide.apply(*v, i, j, k);
+                    }
                 }
-            }
-        });
-
-        transform_z(&transforms[2], data, self.n, work, false);
+            });
+        } else {
+            solve_z(&transforms[2], data, self.n, work, &divide);
+        }
         data.par_chunks_mut(plane * planes_per_worker)
             .zip(work.par_iter_mut())
             .for_each(|(run, w)| {
@@ -497,12 +499,39 @@ fn transform_plane_columns(
 }
 
 /// Transforms every line along z, each worker a run of `j`s.
-fn transform_z(
+/// The division of the transformed right-hand side by the operator's eigenvalues.
+struct Spectrum<'a> {
+    eigenvalues: &'a [Vec<f64>; 3],
+    /// The transforms' round-trip factor.
+    scale: f64,
+    /// The shift of `L − σ`.
+    sigma: f64,
+}
+
+impl Spectrum<'_> {
+    /// The mode `(i, j, k)`'s coefficient `v` divided by its eigenvalue (zero for a zero
+    /// eigenvalue: the constant mode of a singular problem).
+    #[inline]
+    fn apply(&self, v: f64, i: usize, j: usize, k: usize) -> f64 {
+        let ev = self.eigenvalues;
+        let ejk = ev[1][j] + ev[2][k] - self.sigma;
+        let denom = (ev[0][i] + ejk) * self.scale;
+        if denom == 0.0 {
+            0.0
+        } else {
+            v / denom
+        }
+    }
+}
+
+/// Along z: each line transformed, divided by the eigenvalues and transformed back, the
+/// lines of a `j` by one worker (their samples are disjoint between workers).
+fn solve_z(
     t: &AxisTransform,
     data: &mut [f64],
     n: [usize; 3],
     work: &mut [LineWork],
-    forward: bool,
+    divide: &Spectrum,
 ) {
     if matches!(t, AxisTransform::Identity) {
         return;
@@ -513,21 +542,21 @@ fn transform_z(
     work.par_iter_mut().enumerate().for_each(|(wi, w)| {
         let mut lines = std::mem::take(&mut w.lines);
         for j in wi * per_worker..((wi + 1) * per_worker).min(n1) {
-            transform_z_lines(t, &ptr, n, j, &mut lines, w, forward);
+            solve_z_lines(t, &ptr, n, j, &mut lines, w, divide);
         }
         w.lines = lines;
     });
 }
 
-/// The `n₀` lines along z at `j`, `LINE_BATCH` at a time (see [`transform_z`]).
-fn transform_z_lines(
+/// The `n₀` lines along z at `j`, `LINE_BATCH` at a time (see [`solve_z`]).
+fn solve_z_lines(
     t: &AxisTransform,
     ptr: &DisjointPtr,
     n: [usize; 3],
     j: usize,
     lines: &mut [f64],
     w: &mut LineWork,
-    forward: bool,
+    divide: &Spectrum,
 ) {
     let [n0, n1, n2] = n;
     let mut i0 = 0;
@@ -542,11 +571,11 @@ fn transform_z_lines(
         }
         for bb in 0..b {
             let line = &mut lines[bb * n2..(bb + 1) * n2];
-            if forward {
-                t.forward(line, w, 2);
-            } else {
-                t.inverse(line, w, 2);
+            t.forward(line, w, 2);
+            for (k, v) in line.iter_mut().enumerate() {
+                *v = divide.apply(*v, i0 + bb, j, k);
             }
+            t.inverse(line, w, 2);
         }
         for k in 0..n2 {
             let base = i0 + n0 * (j + n1 * k);
