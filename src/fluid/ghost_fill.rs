@@ -218,13 +218,8 @@ mod tests {
                 FaceCondition::Wall { velocity: [0.0; 3] },
             ],
         };
-        let mut seed = 0x2545F4914F6CDD1Du64;
-        let mut noise = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rng = crate::particles::SplitMix64::new(17);
+        let mut noise = || rng.next_f64() - 0.5;
         // Whether slot's index along every direction but `c` is interior (not a ghost, which
         // the later passes of the whole fill overwrite along the edges).
         let interior_across = |slot: usize, c: usize| {
