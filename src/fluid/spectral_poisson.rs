@@ -498,7 +498,6 @@ fn transform_plane_columns(
     w.lines = lines;
 }
 
-/// Transforms every line along z, each worker a run of `j`s.
 /// The division of the transformed right-hand side by the operator's eigenvalues.
 struct Spectrum<'a> {
     eigenvalues: &'a [Vec<f64>; 3],
@@ -524,8 +523,8 @@ impl Spectrum<'_> {
     }
 }
 
-/// Along z: each line transformed, divided by the eigenvalues and transformed back, the
-/// lines of a `j` by one worker (their samples are disjoint between workers).
+/// Along z: each line transformed, divided by the eigenvalues and transformed back, each
+/// worker a run of `j`s (their samples are disjoint between workers).
 fn solve_z(
     t: &AxisTransform,
     data: &mut [f64],
