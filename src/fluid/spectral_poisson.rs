@@ -22,6 +22,7 @@
 //! When every direction is periodic or zero-gradient the problem is singular; the constant
 //! mode is set to zero (zero-mean solution) and the right-hand side's mean is ignored.
 
+use super::shared_samples::SharedSamples;
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
@@ -244,21 +245,6 @@ fn axis_angles(n: usize, kind: AxisKind) -> Vec<f64> {
             },
         })
         .collect()
-}
-
-/// A raw pointer shared by workers that write provably disjoint index sets.
-#[derive(Clone, Copy)]
-struct DisjointPtr(*mut f64);
-// SAFETY: used only in `solve_shifted`'s z pass, where worker `j` touches exactly the
-// indices `i + n₀ (j + n₁ k)`, disjoint between workers.
-unsafe impl Send for DisjointPtr {}
-unsafe impl Sync for DisjointPtr {}
-impl DisjointPtr {
-    #[inline]
-    fn at(self, index: usize) -> *mut f64 {
-        // SAFETY: callers stay inside the slice this pointer was taken from.
-        unsafe { self.0.add(index) }
-    }
 }
 
 /// Exact Poisson/Helmholtz solver for cell-centred data on an `n₀ × n₁ × n₂` grid.
@@ -536,12 +522,14 @@ fn solve_z(
         return;
     }
     let n1 = n[1];
-    let ptr = DisjointPtr(data.as_mut_ptr());
+    // SAFETY of the shared field: worker `j` touches exactly the indices `i + n₀ (j + n₁ k)`,
+    // disjoint between workers.
+    let shared = SharedSamples::of(data);
     let per_worker = n1.div_ceil(work.len());
     work.par_iter_mut().enumerate().for_each(|(wi, w)| {
         let mut lines = std::mem::take(&mut w.lines);
         for j in wi * per_worker..((wi + 1) * per_worker).min(n1) {
-            solve_z_lines(t, &ptr, n, j, &mut lines, w, divide);
+            solve_z_lines(t, shared, n, j, &mut lines, w, divide);
         }
         w.lines = lines;
     });
@@ -550,7 +538,7 @@ fn solve_z(
 /// The `n₀` lines along z at `j`, `LINE_BATCH` at a time (see [`solve_z`]).
 fn solve_z_lines(
     t: &AxisTransform,
-    ptr: &DisjointPtr,
+    shared: SharedSamples,
     n: [usize; 3],
     j: usize,
     lines: &mut [f64],
@@ -564,8 +552,7 @@ fn solve_z_lines(
         for k in 0..n2 {
             let base = i0 + n0 * (j + n1 * k);
             for bb in 0..b {
-                // SAFETY: index < n0 n1 n2, and line j belongs to one worker only.
-                lines[bb * n2 + k] = unsafe { *ptr.at(base + bb) };
+                lines[bb * n2 + k] = shared.read(base + bb);
             }
         }
         for bb in 0..b {
@@ -579,8 +566,7 @@ fn solve_z_lines(
         for k in 0..n2 {
             let base = i0 + n0 * (j + n1 * k);
             for bb in 0..b {
-                // SAFETY: as above.
-                unsafe { *ptr.at(base + bb) = lines[bb * n2 + k] };
+                shared.write(base + bb, lines[bb * n2 + k]);
             }
         }
         i0 += b;

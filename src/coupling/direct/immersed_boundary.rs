@@ -39,7 +39,7 @@
 //! ([`super::ImplicitForcing`]), so that its steady state does not depend on `Δt` either.
 
 use super::rigid_sphere::RigidSphere;
-use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
+use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout, SharedSamples};
 use crate::grid::{nearest_image, wrap_index, Grid};
 use rayon::prelude::*;
 
@@ -615,7 +615,10 @@ impl ImmersedBoundary {
         mass_source: Option<&mut [f64]>,
     ) {
         // A component's faces in chunks, in parallel (the stages of `EulerRKC` hand one
-        // component at a time).
+        // component at a time). SAFETY of the shared component: each forced face is written
+        // by one worker only (a slot has one role: the labels of the build), and what a
+        // forcing face reads are fluid faces, which no worker writes (or, for the staircase
+        // fallback, its own slot); so the chunks may run in any order and give one result.
         const CHUNK: usize = 4096;
         for (c, u) in velocity.iter_mut().enumerate() {
             if !components[c] {
@@ -648,7 +651,8 @@ impl ImmersedBoundary {
             });
         }
         if let Some(q) = mass_source {
-            // In parallel: the cells are distinct, and the total is summed in list order.
+            // In parallel: the cells are distinct (SAFETY of the shared source: one worker
+            // writes each), and the total is summed in list order.
             const CELLS: usize = 2048;
             let q = SharedSamples::of(q);
             self.previous_closed
@@ -680,50 +684,6 @@ fn closed_divergence(grid: &Grid, velocity: &[Vec<f64>; 3], cell: &ClosedCell) -
     (0..3)
         .map(|c| (velocity[c][cell.faces[c][1]] - velocity[c][cell.faces[c][0]]) / grid.h[c])
         .sum()
-}
-
-/// An array that [`ImmersedBoundary::impose`]'s workers share: a velocity component whose
-/// forced faces they impose chunk by chunk, or the mass source of the closed cells. Each
-/// forced face (closed cell) is written by one worker only (a slot has one role: the labels
-/// of the build; the closed cells are distinct), and what a forcing face reads are fluid
-/// faces, which no worker writes (or, for the staircase fallback, its own slot): no sample
-/// is written by one worker and touched by another, so the chunks may run in any order and
-/// give the same result.
-#[derive(Clone, Copy)]
-struct SharedSamples {
-    ptr: *mut f64,
-    len: usize,
-}
-
-// SAFETY: see the type's doc: the workers touch disjoint samples, except those that all
-// only read; the pointer outlives them (`impose` holds the velocity borrowed).
-unsafe impl Send for SharedSamples {}
-unsafe impl Sync for SharedSamples {}
-
-impl SharedSamples {
-    fn of(samples: &mut [f64]) -> Self {
-        SharedSamples {
-            ptr: samples.as_mut_ptr(),
-            len: samples.len(),
-        }
-    }
-
-    #[inline]
-    fn read(self, slot: usize) -> f64 {
-        assert!(
-            slot < self.len,
-            "a forced face's neighbour inside the array"
-        );
-        // SAFETY: in bounds (checked); no worker writes a sample that another reads.
-        unsafe { *self.ptr.add(slot) }
-    }
-
-    #[inline]
-    fn write(self, slot: usize, value: f64) {
-        assert!(slot < self.len, "a sample inside the array");
-        // SAFETY: in bounds (checked); each forced slot is written by one worker only.
-        unsafe { *self.ptr.add(slot) = value }
-    }
 }
 
 /// One velocity component's lattice, as the forced-face search reads it.
