@@ -319,12 +319,16 @@ impl FieldBrick {
         let mut frac = [[0.0; 2]; 3];
         for d in 0..3 {
             let faces = (x[d] - g.origin[d]) / g.h[d];
+            // ⌊faces − ½⌋ from ⌊faces⌋: both subtractions are exact, so these are the floors
+            // of each lattice's own coordinate.
+            let node = fast_floor(faces);
+            let nodes = [node, node - isize::from(faces - (node as f64) < 0.5)];
             for lattice in 0..2 {
                 let t = faces - 0.5 * lattice as f64;
-                let node = fast_floor(t);
-                frac[d][lattice] = t - node as f64;
-                let i = (node - self.first[d]) as usize;
-                assert!(i + 1 < self.dims[d], "a stencil node outside the brick");
+                frac[d][lattice] = t - nodes[lattice] as f64;
+                // a node below the brick wraps to a huge index and fails too
+                let i = (nodes[lattice] - self.first[d]) as usize;
+                assert!(i < self.dims[d] - 1, "a stencil node outside the brick");
                 first[d][lattice] = i * self.stride[d];
             }
         }
@@ -341,13 +345,11 @@ impl FieldBrick {
         let (oz, fz) = lane(2);
         let [sx, sy, sz] = self.stride;
         let base: [usize; 4] = std::array::from_fn(|f| f * self.volume + ox[f] + oy[f] + oz[f]);
-        let data = &self.data;
-        let corner =
-            |offset: usize| -> [f64; 4] { std::array::from_fn(|f| data[base[f] + offset]) };
-        let blend = |a: [f64; 4], b: [f64; 4], t: [f64; 4]| -> [f64; 4] {
-            std::array::from_fn(|f| a[f] + t[f] * (b[f] - a[f]))
-        };
-        let minus = |a: [f64; 4], b: [f64; 4]| -> [f64; 4] { std::array::from_fn(|f| a[f] - b[f]) };
+        let data = &self.data[..4 * self.volume];
+        // SAFETY: every lane's first node is at least one node inside its field's block on
+        // each axis (the asserts above), so `base[f] + sx + sy + sz` stays in field `f`.
+        let corner = |offset: usize| unsafe { Lanes::gather_unchecked(data, base, offset) };
+        let (fx, fy, fz) = (Lanes::new(fx), Lanes::new(fy), Lanes::new(fz));
         // along x, on the four x-lines of the cell (y low/high, z low/high)
         let v = [
             [corner(0), corner(sx)],
@@ -355,22 +357,21 @@ impl FieldBrick {
             [corner(sz), corner(sx + sz)],
             [corner(sy + sz), corner(sx + sy + sz)],
         ];
-        let a: [[f64; 4]; 4] = std::array::from_fn(|q| blend(v[q][0], v[q][1], fx));
-        let b = [blend(a[0], a[1], fy), blend(a[2], a[3], fy)];
-        let value = blend(b[0], b[1], fz);
+        let a: [Lanes; 4] = std::array::from_fn(|q| v[q][0].blend(v[q][1], fx));
+        let b = [a[0].blend(a[1], fy), a[2].blend(a[3], fy)];
+        let value = b[0].blend(b[1], fz);
         if !gradient {
-            return (value, [[0.0; 4]; 3]);
+            return (value.array(), [[0.0; 4]; 3]);
         }
-        let ax: [[f64; 4]; 4] = std::array::from_fn(|q| minus(v[q][1], v[q][0]));
-        let bx = [blend(ax[0], ax[1], fy), blend(ax[2], ax[3], fy)];
-        let by = [minus(a[1], a[0]), minus(a[3], a[2])];
-        let per_h = |v: [f64; 4], d: usize| -> [f64; 4] { v.map(|e| e / g.h[d]) };
+        let ax: [Lanes; 4] = std::array::from_fn(|q| v[q][1].minus(v[q][0]));
+        let bx = [ax[0].blend(ax[1], fy), ax[2].blend(ax[3], fy)];
+        let by = [a[1].minus(a[0]), a[3].minus(a[2])];
         let grad = [
-            per_h(blend(bx[0], bx[1], fz), 0),
-            per_h(blend(by[0], by[1], fz), 1),
-            per_h(minus(b[1], b[0]), 2),
+            bx[0].blend(bx[1], fz).per(g.h[0]).array(),
+            by[0].blend(by[1], fz).per(g.h[1]).array(),
+            b[1].minus(b[0]).per(g.h[2]).array(),
         ];
-        (value, grad)
+        (value.array(), grad)
     }
 }
 
@@ -403,6 +404,111 @@ impl FieldSampler for FieldBrick {
 
 /// The pressure is the fourth field.
 const _: () = assert!(PRESSURE == 3);
+
+/// Four `f64` lanes, one per field, in one 256-bit register where the build has AVX (this
+/// project builds for x86-64-v3, .cargo/config.toml), else in an array. The operations are
+/// the scalar ones lane by lane (`a + t (b − a)`, no fused multiply-add), so both give the
+/// scalar stencil's results bit for bit.
+#[derive(Clone, Copy)]
+struct Lanes(LaneRegister);
+
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+type LaneRegister = std::arch::x86_64::__m256d;
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+type LaneRegister = [f64; 4];
+
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+impl Lanes {
+    #[inline(always)]
+    fn new(v: [f64; 4]) -> Self {
+        use std::arch::x86_64::_mm256_set_pd;
+        // SAFETY (here and below): the build enables AVX (the cfg of this impl).
+        Lanes(unsafe { _mm256_set_pd(v[3], v[2], v[1], v[0]) })
+    }
+
+    /// `data[base[f] + offset]` in lane `f`.
+    ///
+    /// # Safety
+    /// Every `base[f] + offset` is inside `data`.
+    #[inline(always)]
+    unsafe fn gather_unchecked(data: &[f64], base: [usize; 4], offset: usize) -> Self {
+        // SAFETY: the caller's.
+        Self::new(std::array::from_fn(|f| unsafe {
+            *data.get_unchecked(base[f] + offset)
+        }))
+    }
+
+    /// `self + t (other − self)`.
+    #[inline(always)]
+    fn blend(self, other: Self, t: Self) -> Self {
+        use std::arch::x86_64::{_mm256_add_pd, _mm256_mul_pd, _mm256_sub_pd};
+        Lanes(unsafe { _mm256_add_pd(self.0, _mm256_mul_pd(t.0, _mm256_sub_pd(other.0, self.0))) })
+    }
+
+    #[inline(always)]
+    fn minus(self, other: Self) -> Self {
+        Lanes(unsafe { std::arch::x86_64::_mm256_sub_pd(self.0, other.0) })
+    }
+
+    /// `self / h`.
+    #[inline(always)]
+    fn per(self, h: f64) -> Self {
+        use std::arch::x86_64::{_mm256_div_pd, _mm256_set1_pd};
+        Lanes(unsafe { _mm256_div_pd(self.0, _mm256_set1_pd(h)) })
+    }
+
+    #[inline(always)]
+    fn array(self) -> [f64; 4] {
+        let mut out = [0.0; 4];
+        // SAFETY: AVX as above; an unaligned store of four lanes into four f64s.
+        unsafe { std::arch::x86_64::_mm256_storeu_pd(out.as_mut_ptr(), self.0) };
+        out
+    }
+}
+
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+impl Lanes {
+    #[inline(always)]
+    fn new(v: [f64; 4]) -> Self {
+        Lanes(v)
+    }
+
+    /// `data[base[f] + offset]` in lane `f`.
+    ///
+    /// # Safety
+    /// Every `base[f] + offset` is inside `data`.
+    #[inline(always)]
+    unsafe fn gather_unchecked(data: &[f64], base: [usize; 4], offset: usize) -> Self {
+        // SAFETY: the caller's.
+        Lanes(std::array::from_fn(|f| unsafe {
+            *data.get_unchecked(base[f] + offset)
+        }))
+    }
+
+    /// `self + t (other − self)`.
+    #[inline(always)]
+    fn blend(self, other: Self, t: Self) -> Self {
+        Lanes(std::array::from_fn(|f| {
+            self.0[f] + t.0[f] * (other.0[f] - self.0[f])
+        }))
+    }
+
+    #[inline(always)]
+    fn minus(self, other: Self) -> Self {
+        Lanes(std::array::from_fn(|f| self.0[f] - other.0[f]))
+    }
+
+    /// `self / h`.
+    #[inline(always)]
+    fn per(self, h: f64) -> Self {
+        Lanes(self.0.map(|e| e / h))
+    }
+
+    #[inline(always)]
+    fn array(self) -> [f64; 4] {
+        self.0
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -755,11 +755,31 @@ impl Lattice<'_> {
         (slot >= lo as isize && slot <= hi as isize).then_some(slot as usize)
     }
 
-    /// Padded slot of lattice index `m`, if the fluid advances that face.
+    /// Padded indices of the face `step` (±1) along `d` from the advanced face at padded
+    /// indices `site`, if the fluid advances it: [`Self::site`] of the neighbouring lattice
+    /// index, without unwrapping (the wrap of a neighbour is one step around the box).
     #[inline]
-    fn slot(&self, m: [isize; 3]) -> Option<usize> {
-        let s = self.site(m)?;
-        Some(self.layout.index(s[0], s[1], s[2]))
+    fn adjacent(&self, site: [usize; 3], d: usize, step: isize) -> Option<[usize; 3]> {
+        let n = self.grid.n[d] as isize;
+        let mut v = site[d] as isize + step;
+        if self.periodic[d] {
+            if v < 1 {
+                v += n;
+            } else if v > n {
+                v -= n;
+            }
+        }
+        let (lo, hi) = self.range[d];
+        let mut out = site;
+        out[d] = v as usize;
+        (v >= lo as isize && v <= hi as isize).then_some(out)
+    }
+
+    /// Position of the sample at padded indices `site` ([`Self::slot_position`] of its slot,
+    /// the same arithmetic without the slot's divisions).
+    #[inline]
+    fn site_position(&self, site: [usize; 3]) -> [f64; 3] {
+        std::array::from_fn(|d| self.coordinate(d, site[d] as isize - 1))
     }
 
     /// Padded indices of lattice index `m`, if the fluid advances that face.
@@ -906,14 +926,17 @@ impl ComponentUpdate<'_> {
 
     /// Fluid faces next to an interior face (along any axis) become forcing faces.
     fn mark_candidates(&mut self) {
+        let lat = &self.lattice;
         for (site, m) in self.sites.iter().enumerate() {
+            let here = lat
+                .site(m.map(|v| v as isize))
+                .expect("an interior face is an advanced face");
             for d in 0..3 {
                 for step in [-1isize, 1] {
-                    let mut q = m.map(|v| v as isize);
-                    q[d] += step;
-                    let Some(slot) = self.lattice.slot(q) else {
+                    let Some(q) = lat.adjacent(here, d, step) else {
                         continue;
                     };
+                    let slot = lat.layout.index(q[0], q[1], q[2]);
                     if self.labels[slot] == FLUID {
                         self.labels[slot] = FORCING;
                         self.touched.push(slot as u32);
@@ -1016,11 +1039,11 @@ fn fill_inside(
     }
 }
 
-/// Sphere index of the face at lattice index `m`, if inside one.
+/// Sphere index of the face at padded indices `site`, if inside one.
 #[inline]
-fn inside_at(lat: &Lattice, labels: &[u32], m: [isize; 3]) -> Option<usize> {
-    let slot = lat.slot(m)?;
-    let l = labels[slot];
+fn inside_at(lat: &Lattice, labels: &[u32], site: Option<[usize; 3]>) -> Option<usize> {
+    let s = site?;
+    let l = labels[lat.layout.index(s[0], s[1], s[2])];
     (l != FLUID && l != FORCING).then(|| (l - 1) as usize)
 }
 
@@ -1040,13 +1063,11 @@ fn forcing_face(
     let site = lat.site(m).expect("a candidate is an advanced face");
     let slot = lat.layout.index(site[0], site[1], site[2]);
     // From the wrapped index, as [`ImmersedBoundary::refresh`] does: the same rounding.
-    let x = lat.slot_position(slot);
+    let x = lat.site_position(site);
     let mut best: Option<(f64, usize, isize, usize)> = None;
     for d in 0..3 {
         for step in [-1isize, 1] {
-            let mut q = m;
-            q[d] += step;
-            if let Some(k) = inside_at(lat, labels, q) {
+            if let Some(k) = inside_at(lat, labels, lat.adjacent(site, d, step)) {
                 let rel = lat.relative(x, &spheres[k]);
                 let norm = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
                 // Outward direction along the line is −step.
@@ -1062,15 +1083,13 @@ fn forcing_face(
     let h = lat.grid.h[d];
     let t = lat.surface_distance(x, &spheres[k], line);
     let wall = lat.wall_velocity(x, t, line, &spheres[k]);
-    let mut outer = m;
-    outer[d] -= step;
-    let mut outer2 = outer;
-    outer2[d] -= step;
-    // (slot, padded indices) of a fluid face
-    let free = |q: [isize; 3]| {
-        let site = lat.site(q)?;
-        let n = lat.layout.index(site[0], site[1], site[2]);
-        (labels[n] == FLUID).then_some((n as u32, site))
+    // The two faces outward along the line, as (slot, padded indices) when fluid.
+    let outer = lat.adjacent(site, d, -step);
+    let outer2 = outer.and_then(|s| lat.adjacent(s, d, -step));
+    let free = |site: Option<[usize; 3]>| {
+        let s = site?;
+        let n = lat.layout.index(s[0], s[1], s[2]);
+        (labels[n] == FLUID).then_some((n as u32, s))
     };
     let cells = lat.cells(site);
     let slot = slot as u32;
