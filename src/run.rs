@@ -103,16 +103,21 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     while sim.time.running() {
         let clock = Instant::now();
         let dt = sim.next_time_step()?;
-        let (fluid, cloud) = if sim.drag.is_some() {
+        let (fluid, cloud, diagnostics) = if sim.drag.is_some() {
             let cloud = sim.evolve_cloud(dt);
-            (sim.evolve_fluid(dt)?, cloud)
+            let fluid = sim.evolve_fluid(dt)?;
+            (fluid, cloud, None)
         } else {
             let fluid = sim.evolve_fluid(dt)?;
             sim.hydrodynamic_loads();
-            (fluid, sim.evolve_cloud(dt))
+            let (cloud, diagnostics) = sim.evolve_cloud_beside_diagnostics(dt);
+            (fluid, cloud, Some(diagnostics))
         };
         let write_due = sim.time.advance(dt);
-        let health = sim.check_health()?;
+        let health = match diagnostics {
+            Some(d) => sim.check_diagnostics(d)?,
+            None => sim.check_health()?,
+        };
         sim.update_sedimentation();
         let name = output.time_name(sim.time.time);
         reporter.step(

@@ -532,15 +532,37 @@ impl Simulation {
         if let Some(drag) = self.drag.as_mut() {
             drag.particle_forces(&self.fluid, &mut p.dem, dt);
         }
-        p.substeps = p.dem.advance(dt);
+        let report = advance_cloud(p, dt);
         self.phase_times.particles = clock.elapsed().as_secs_f64();
-        Some(CloudReport {
-            count: p.dem.particles().len(),
-            kinetic_energy: p.dem.kinetic_energy(),
-            mean_velocity: p.dem.mean_velocity(),
-            max_overlap: p.dem.max_overlap_ratio(),
-            substeps: p.substeps,
-        })
+        Some(report)
+    }
+
+    /// [`Self::evolve_cloud`] for a cloud whose loads are already set (`model direct`, after
+    /// [`Self::hydrodynamic_loads`]), with the fluid's diagnostics of the step found beside
+    /// it for [`Self::check_diagnostics`]. The cloud reads only the particles and their
+    /// loads, the diagnostics only the velocity. A cloud of a few hundred particles is one
+    /// chunk of the DEM's passes, so its sub-steps (about 100 per fluid step in
+    /// tutorials/benchmark) keep one worker busy while the diagnostics take the other.
+    pub fn evolve_cloud_beside_diagnostics(
+        &mut self,
+        dt: f64,
+    ) -> (Option<CloudReport>, FluidDiagnostics) {
+        assert!(
+            self.drag.is_none(),
+            "the drag law's cloud reads the fluid it steps beside"
+        );
+        let (particles, fluid, step) = (&mut self.particles, &mut self.fluid, self.dt);
+        let seconds = &mut self.phase_times.particles;
+        rayon::join(
+            || {
+                let p = particles.as_mut()?;
+                let clock = Instant::now();
+                let report = advance_cloud(p, dt);
+                *seconds = clock.elapsed().as_secs_f64();
+                Some(report)
+            },
+            || fluid.diagnostics(step),
+        )
     }
 
     /// Writes the particles (id, d, U, omega, F_hydro, F_contact) to `path`, when there are any.
@@ -567,6 +589,12 @@ impl Simulation {
     /// that is no longer finite means the run diverged.
     pub fn check_health(&mut self) -> Result<FluidDiagnostics, FsimError> {
         let d = self.fluid.diagnostics(self.dt);
+        self.check_diagnostics(d)
+    }
+
+    /// [`Self::check_health`] with the step's diagnostics already found
+    /// ([`Self::evolve_cloud_beside_diagnostics`]).
+    pub fn check_diagnostics(&self, d: FluidDiagnostics) -> Result<FluidDiagnostics, FsimError> {
         if !d.kinetic_energy.is_finite() || !d.max_courant.is_finite() {
             return Err(FsimError::run(format!(
                 "the solution diverged at t = {} s (step {}): the velocity is no longer finite",
@@ -915,4 +943,16 @@ fn check_direct_resolution(
     // Its errors (r/h below 2, a sphere wider than the box) are reported, with the particle
     // named, by `DirectCoupling::check_particles` and the DEM loader; here the warnings.
     report.warnings
+}
+
+/// The cloud's DEM step over one fluid step `dt` (its loads already set), and its report.
+fn advance_cloud(p: &mut Particles, dt: f64) -> CloudReport {
+    p.substeps = p.dem.advance(dt);
+    CloudReport {
+        count: p.dem.particles().len(),
+        kinetic_energy: p.dem.kinetic_energy(),
+        mean_velocity: p.dem.mean_velocity(),
+        max_overlap: p.dem.max_overlap_ratio(),
+        substeps: p.substeps,
+    }
 }
