@@ -106,18 +106,15 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         let (fluid, cloud, diagnostics) = if sim.drag.is_some() {
             let cloud = sim.evolve_cloud(dt);
             let fluid = sim.evolve_fluid(dt)?;
-            (fluid, cloud, None)
+            (fluid, cloud, sim.fluid_diagnostics())
         } else {
             let fluid = sim.evolve_fluid(dt)?;
             sim.hydrodynamic_loads();
             let (cloud, diagnostics) = sim.evolve_cloud_beside_diagnostics(dt);
-            (fluid, cloud, Some(diagnostics))
+            (fluid, cloud, diagnostics)
         };
         let write_due = sim.time.advance(dt);
-        let health = match diagnostics {
-            Some(d) => sim.check_diagnostics(d)?,
-            None => sim.check_health()?,
-        };
+        let health = sim.check_health(diagnostics)?;
         sim.update_sedimentation();
         let name = output.time_name(sim.time.time);
         reporter.step(

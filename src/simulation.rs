@@ -539,7 +539,7 @@ impl Simulation {
 
     /// [`Self::evolve_cloud`] for a cloud whose loads are already set (`model direct`, after
     /// [`Self::hydrodynamic_loads`]), with the fluid's diagnostics of the step found beside
-    /// it for [`Self::check_diagnostics`]. The cloud reads only the particles and their
+    /// it for [`Self::check_health`]. The cloud reads only the particles and their
     /// loads, the diagnostics only the velocity. A cloud of a few hundred particles is one
     /// chunk of the DEM's passes, so its sub-steps (about 100 per fluid step in
     /// tutorials/benchmark) keep one worker busy while the diagnostics take the other.
@@ -585,16 +585,16 @@ impl Simulation {
         .map_err(|e| FsimError::run(e.to_string()))
     }
 
-    /// Divergence, energy, mean velocity and Courant number of the last step; a velocity
-    /// that is no longer finite means the run diverged.
-    pub fn check_health(&mut self) -> Result<FluidDiagnostics, FsimError> {
-        let d = self.fluid.diagnostics(self.dt);
-        self.check_diagnostics(d)
+    /// Divergence, energy, mean velocity and Courant number of the last step (for
+    /// [`Self::check_health`]).
+    pub fn fluid_diagnostics(&mut self) -> FluidDiagnostics {
+        self.fluid.diagnostics(self.dt)
     }
 
-    /// [`Self::check_health`] with the step's diagnostics already found
-    /// ([`Self::evolve_cloud_beside_diagnostics`]).
-    pub fn check_diagnostics(&self, d: FluidDiagnostics) -> Result<FluidDiagnostics, FsimError> {
+    /// The last step's diagnostics ([`Self::fluid_diagnostics`], or those of
+    /// [`Self::evolve_cloud_beside_diagnostics`]) back, unless the run diverged: a velocity
+    /// that is no longer finite.
+    pub fn check_health(&self, d: FluidDiagnostics) -> Result<FluidDiagnostics, FsimError> {
         if !d.kinetic_energy.is_finite() || !d.max_courant.is_finite() {
             return Err(FsimError::run(format!(
                 "the solution diverged at t = {} s (step {}): the velocity is no longer finite",

@@ -417,15 +417,7 @@ type LaneRegister = std::arch::x86_64::__m256d;
 #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
 type LaneRegister = [f64; 4];
 
-#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
 impl Lanes {
-    #[inline(always)]
-    fn new(v: [f64; 4]) -> Self {
-        use std::arch::x86_64::_mm256_set_pd;
-        // SAFETY (here and below): the build enables AVX (the cfg of this impl).
-        Lanes(unsafe { _mm256_set_pd(v[3], v[2], v[1], v[0]) })
-    }
-
     /// `data[base[f] + offset]` in lane `f`.
     ///
     /// # Safety
@@ -436,6 +428,16 @@ impl Lanes {
         Self::new(std::array::from_fn(|f| unsafe {
             *data.get_unchecked(base[f] + offset)
         }))
+    }
+}
+
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+impl Lanes {
+    #[inline(always)]
+    fn new(v: [f64; 4]) -> Self {
+        use std::arch::x86_64::_mm256_set_pd;
+        // SAFETY (here and below): the build enables AVX (the cfg of this impl).
+        Lanes(unsafe { _mm256_set_pd(v[3], v[2], v[1], v[0]) })
     }
 
     /// `self + t (other − self)`.
@@ -471,18 +473,6 @@ impl Lanes {
     #[inline(always)]
     fn new(v: [f64; 4]) -> Self {
         Lanes(v)
-    }
-
-    /// `data[base[f] + offset]` in lane `f`.
-    ///
-    /// # Safety
-    /// Every `base[f] + offset` is inside `data`.
-    #[inline(always)]
-    unsafe fn gather_unchecked(data: &[f64], base: [usize; 4], offset: usize) -> Self {
-        // SAFETY: the caller's.
-        Lanes(std::array::from_fn(|f| unsafe {
-            *data.get_unchecked(base[f] + offset)
-        }))
     }
 
     /// `self + t (other − self)`.

@@ -712,8 +712,7 @@ impl Lattice<'_> {
     fn slot_position(&self, slot: usize) -> [f64; 3] {
         let dims = self.layout.dims;
         let column = slot / dims[0];
-        let padded = [slot - column * dims[0], column % dims[1], column / dims[1]];
-        std::array::from_fn(|d| self.coordinate(d, padded[d] as isize - 1))
+        self.site_position([slot - column * dims[0], column % dims[1], column / dims[1]])
     }
 
     /// Rigid velocity (this component) of `sphere` at the face in slot `slot`.
@@ -775,8 +774,8 @@ impl Lattice<'_> {
         (v >= lo as isize && v <= hi as isize).then_some(out)
     }
 
-    /// Position of the sample at padded indices `site` ([`Self::slot_position`] of its slot,
-    /// the same arithmetic without the slot's divisions).
+    /// Position of the sample at padded indices `site` (what [`Self::slot_position`] gives
+    /// for its slot, without the slot's divisions).
     #[inline]
     fn site_position(&self, site: [usize; 3]) -> [f64; 3] {
         std::array::from_fn(|d| self.coordinate(d, site[d] as isize - 1))
