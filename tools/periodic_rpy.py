@@ -63,13 +63,14 @@ def mobility_matrix(centres, a, length, ka_max=20.0, chunk=100_000):
     return m * 6 * math.pi * a
 
 
-def settling(centres, a, length, phi, ka_max=20.0):
+def settling(centres, a, length, phi, ka_max=20.0, axes=(0, 1, 2)):
     """Mean settling velocity of a free suspension and 1/F of the fixed array, both over the
-    Stokes velocity and averaged over the three directions of gravity."""
+    Stokes velocity and averaged over the directions of gravity `axes` (all three: a random
+    packing's isotropy; one, for a microstructure that settling has made anisotropic)."""
     m = mobility_matrix(centres, a, length, ka_max)
     n = len(centres)
     mob, res = [], []
-    for axis in range(3):
+    for axis in axes:
         e = np.zeros(3 * n)
         e[axis::3] = 1.0
         mob.append(e @ m @ e / n)

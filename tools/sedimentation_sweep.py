@@ -50,6 +50,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 import numpy as np
 
@@ -79,7 +80,15 @@ def block_mean(values, blocks=5):
     return float(values.mean()), float(means.std(ddof=1) / math.sqrt(len(means)))
 
 
-def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed):
+def response_time(d, nu):
+    """The Stokes response time of a sphere with its added mass, (rho_p + rho_f / 2) d^2 /
+    (18 mu): the time scale of an explicitly coupled sphere's velocity, which bounds the step
+    once the viscous bound does not (EulerRKC)."""
+    return (RHO_P / RHO_F + 0.5) * d * d / (18 * nu)
+
+
+def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed,
+            scheme="Euler", step_fraction=0.2, settling_radii=None, windows=1):
     h = 1e-4
     d = 2 * cells_per_radius * h
     volume = count * direct_cases.sphere_volume(d) / phi
@@ -90,30 +99,57 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
     nu = math.sqrt((RHO_P / RHO_F - 1) * 9.81 * d ** 3 / (18 * reynolds))
     v0 = direct_cases.stokes_velocity(d, RHO_P, RHO_F, nu)
     end = run_length * (n * h) ** 2 / nu
+    if settling_radii:
+        end = settling_radii * (d / 2) / v0
+    max_dt = end / 400 if scheme == "Euler" else min(end / 100, step_fraction * response_time(d, nu))
     case = os.path.join(scratch, f"phi{phi:g}")
     shutil.rmtree(case, ignore_errors=True)
     # random sequential addition jams near phi = 0.38: keep the gaps small when dense
     centres = direct_cases.periodic_packing(L, d, count, seed=seed,
                                             min_gap=(0.5 if phi < 0.25 else 0.1) * h)
     direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=nu, rho_p=RHO_P,
-                            end_time=end, write_interval=end, centres=centres, max_co=0.5,
-                            max_dt=end / 400, restitution=0.5,
+                            end_time=end, write_interval=end / windows, centres=centres,
+                            max_co=0.5, max_dt=max_dt, restitution=0.5, scheme=scheme,
                             coupling_extra=direct_cases.LINEAR,
                             title=f"sedimentation sweep, phi = {phi_actual:.4f}")
     log = os.path.join(case, "log.fsimFoam")
+    start = time.monotonic()
     with open(log, "w") as f:
         subprocess.run(["nice", binary, "-case", case, "-threads", str(threads)], stdout=f,
                        stderr=subprocess.STDOUT, check=True)
+    wall = time.monotonic() - start
     m = read_monitor(case)
     t = m["Time"]
     late = t >= 0.5 * t[-1]
     vm, err = block_mean(m["settlingVelocity"][late])
     rpy = periodic_rpy.settling(centres, d / 2, n * h, phi_actual)
-    return dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
-                v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
-                reynolds=vm * d / nu, end_time=end,
-                rpy_ratio=rpy["mobility"], rpy_fixed_ratio=rpy["resistance"],
-                hard_sphere_ratio=hindered_settling.hard_spheres(phi_actual))
+    row = dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
+               v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
+               reynolds=vm * d / nu, end_time=end,
+               rpy_ratio=rpy["mobility"], rpy_fixed_ratio=rpy["resistance"],
+               hard_sphere_ratio=hindered_settling.hard_spheres(phi_actual),
+               scheme=scheme, steps=len(t), wall_seconds=round(wall, 1),
+               settling_radii=end * v0 / (d / 2), seed=seed)
+    if windows > 1:
+        # how the settling velocity and the RPY mobility of the spheres (along gravity, the
+        # direction a settled microstructure singles out) move as the suspension settles
+        bounds = np.linspace(0, t[-1], windows + 1)
+        for w in range(windows):
+            inside = (t > bounds[w]) & (t <= bounds[w + 1])
+            row[f"ratio_{w + 1}"] = float(m["settlingVelocity"][inside].mean() / v0)
+        for w, centres_w in enumerate([centres] + written_centres(case, windows)):
+            row[f"rpy_y_{w}"] = periodic_rpy.settling(centres_w, d / 2, n * h, phi_actual,
+                                                      axes=[1])["mobility"]
+    return row
+
+
+def written_centres(case, count):
+    """The sphere centres of the case's time directories, in time order (the last `count`)."""
+    import meshio
+
+    times = sorted((d for d in os.listdir(case) if d.replace(".", "").replace("e-", "").isdigit()
+                    and d != "0"), key=float)
+    return [meshio.read(os.path.join(case, d, "particles.vtu")).points for d in times[-count:]]
 
 
 def resolution(phi, cells_per_radius, gap_cells):
@@ -183,6 +219,15 @@ def main():
                     help="raise r/h so that the mean gap between neighbours spans this many cells")
     ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
     ap.add_argument("--run-length", type=float, default=0.15, help="in units of L^2 / nu")
+    ap.add_argument("--settling-radii", type=float,
+                    help="run length in radii settled at the Stokes velocity, a / V_Stokes "
+                         "(in place of --run-length)")
+    ap.add_argument("--scheme", default="Euler", choices=["Euler", "EulerRKC"])
+    ap.add_argument("--step-fraction", type=float, default=0.2,
+                    help="EulerRKC: the step's bound as a fraction of the spheres' response time")
+    ap.add_argument("--windows", type=int, default=1,
+                    help="split the run into this many windows: the settling velocity of each, "
+                         "and the RPY mobility of the spheres where each ends")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--csv", default="sedimentation_sweep.csv")
@@ -202,12 +247,20 @@ def main():
             for count in a.particles:
                 r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
                             resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
-                            a.run_length, a.threads, a.seed)
+                            a.run_length, a.threads, a.seed, scheme=a.scheme,
+                            step_fraction=a.step_fraction, settling_radii=a.settling_radii,
+                            windows=a.windows)
                 runs.append(r)
                 print(f"phi {r['phi']:.4f}, N {count}: v_m = {r['v_m']:.4e} +- "
                       f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
                       f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
-                      f"Re = {r['reynolds']:.3f}, {r['cells']} cells", flush=True)
+                      f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
+                      f"{r['wall_seconds']} s", flush=True)
+                if a.windows > 1:
+                    print("  by window: v_m/V_Stokes " + " ".join(
+                        f"{r[f'ratio_{w + 1}']:.4f}" for w in range(a.windows))
+                        + "; RPY along gravity " + " ".join(
+                        f"{r[f'rpy_y_{w}']:.4f}" for w in range(a.windows + 1)), flush=True)
     finally:
         if not a.keep:
             shutil.rmtree(scratch, ignore_errors=True)

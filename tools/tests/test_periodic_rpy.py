@@ -26,3 +26,19 @@ def test_free_suspension_settles_at_least_as_fast_as_the_fixed_array():
     centres = direct_cases.periodic_packing([length] * 3, 2.0, count, seed=2, min_gap=0.1)
     s = periodic_rpy.settling(centres, 1.0, length, phi)
     assert s["resistance"] < s["mobility"] < 1 - phi
+
+
+def test_settling_along_one_axis_averages_to_the_isotropic_mean():
+    # `axes` picks the directions of gravity: the three single-axis mobilities of a random
+    # packing average to the default (all three), and differ from each other (anisotropy of
+    # one packing), so the per-axis value is not the isotropic one by construction.
+    length, d = 12.0, 2.0
+    centres = direct_cases.periodic_packing([length] * 3, d, 8, seed=3)
+    phi = 8 * direct_cases.sphere_volume(d) / length ** 3
+    single = [periodic_rpy.settling(centres, d / 2, length, phi, ka_max=10.0, axes=[a])
+              for a in range(3)]
+    both = periodic_rpy.settling(centres, d / 2, length, phi, ka_max=10.0)
+    mean = sum(s["mobility"] for s in single) / 3
+    assert abs(mean - both["mobility"]) < 1e-12 * both["mobility"]
+    spread = max(s["mobility"] for s in single) - min(s["mobility"] for s in single)
+    assert spread > 1e-6 * both["mobility"]
