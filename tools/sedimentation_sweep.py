@@ -101,7 +101,9 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
     end = run_length * (n * h) ** 2 / nu
     if settling_radii:
         end = settling_radii * (d / 2) / v0
-    max_dt = end / 400 if scheme == "Euler" else min(end / 100, step_fraction * response_time(d, nu))
+    max_dt = end / 400
+    if scheme != "Euler":
+        max_dt = min(end / 100, step_fraction * response_time(d, nu))
     case = os.path.join(scratch, f"phi{phi:g}")
     shutil.rmtree(case, ignore_errors=True)
     # random sequential addition jams near phi = 0.38: keep the gaps small when dense
