@@ -60,6 +60,7 @@ sys.path.insert(0, HERE)
 import direct_cases  # noqa: E402
 import hindered_settling  # noqa: E402
 import periodic_rpy  # noqa: E402
+import vtk_checks  # noqa: E402
 
 # A liquid; the viscosity follows from the Reynolds number asked for
 RHO_F = 1000.0
@@ -146,12 +147,9 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
 
 
 def written_centres(case, count):
-    """The sphere centres of the case's time directories, in time order (the last `count`)."""
-    import meshio
-
-    times = sorted((d for d in os.listdir(case) if d.replace(".", "").replace("e-", "").isdigit()
-                    and d != "0"), key=float)
-    return [meshio.read(os.path.join(case, d, "particles.vtu")).points for d in times[-count:]]
+    """The sphere centres of the case's last `count` time directories, in time order."""
+    times = vtk_checks.time_directories(case)[-count:]
+    return [vtk_checks.read_particles(case, name)["positions"] for name, _ in times]
 
 
 def resolution(phi, cells_per_radius, gap_cells):
