@@ -63,6 +63,14 @@ pub struct PredictedVelocity<'a> {
     /// subtracts an increment that vanishes at steady state (compensating with the last
     /// increment there makes the step unstable).
     pub pressure: &'a [f64],
+    /// The incremental schemes (`EulerRKC`, `EulerCN`, `RK3CN`; empty with the others, and
+    /// on the calls that hand no mass source): the pressure `p` to which the coming
+    /// projection adds its increment `φ`, `∇²φ = (∇·u* − q)/τ`. A hook that sets `q` in a
+    /// cell whose faces it fixes all adds `τ∇²p` there (the projection's discrete
+    /// Laplacian), so that the new pressure is harmonic there as a full projection makes
+    /// it; else the increment leaves the Laplacian the cell had when it closed in `p` for
+    /// ever (moving spheres cover fluid cells), and the drag drifts with it.
+    pub incremental_pressure: &'a [f64],
     /// Velocity components, padded layout.
     pub velocity: &'a mut [Vec<f64>; 3],
     /// Mass source `q` per cell (1/s, unpadded), when enabled by
@@ -484,6 +492,7 @@ impl FluidSolver {
                 time: t0 + c_end * dt,
                 tau,
                 pressure: &self.p,
+                incremental_pressure: &[],
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
                 implicit: None,
@@ -573,6 +582,7 @@ impl FluidSolver {
                 time: t0 + c_end * dt,
                 tau,
                 pressure: &[],
+                incremental_pressure: &self.p,
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
                 implicit: Some(ImplicitStage {
@@ -674,6 +684,7 @@ impl FluidSolver {
                     time: t0 + stage.time * dt,
                     tau: dt,
                     pressure: &[],
+                    incremental_pressure: &[],
                     velocity: &mut self.u,
                     mass_source: None,
                     implicit: None,
@@ -690,6 +701,7 @@ impl FluidSolver {
                 time: t0 + dt,
                 tau: dt,
                 pressure: &[],
+                incremental_pressure: &self.p,
                 velocity: &mut self.u,
                 mass_source: Some(mass_source),
                 implicit: None,

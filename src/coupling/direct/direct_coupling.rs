@@ -291,6 +291,7 @@ impl DirectCoupling {
         let PredictedVelocity {
             velocity,
             pressure,
+            incremental_pressure,
             tau,
             mass_source,
             implicit,
@@ -305,8 +306,14 @@ impl DirectCoupling {
             self.implicit_forcing
                 .solve(&self.boundary, velocity, &mut implicit);
         }
-        self.boundary
-            .impose(velocity, components, pressure, tau, mass_source);
+        self.boundary.impose(
+            velocity,
+            components,
+            pressure,
+            tau,
+            mass_source,
+            incremental_pressure,
+        );
     }
 
     /// Cost and residual of the last constrained viscous solve (`RK3CN`).

@@ -144,8 +144,9 @@ pub struct ImmersedBoundary {
     /// is cleared at the next imposition).
     closed: Vec<ClosedCell>,
     previous_closed: Vec<usize>,
-    /// Scratch of [`Self::impose`]: the divergence of each closed cell.
-    closed_divergence: Vec<f64>,
+    /// Scratch of [`Self::impose`]: the mass source of each closed cell before its mean is
+    /// taken off.
+    closed_sources: Vec<f64>,
     /// Scratch of the closed-cell search: a mark per cell (0 outside the search) and the
     /// cells next to forced faces.
     cell_marks: Vec<u8>,
@@ -186,7 +187,7 @@ impl ImmersedBoundary {
             forcing: Default::default(),
             closed: Vec::new(),
             previous_closed: Vec::new(),
-            closed_divergence: Vec::new(),
+            closed_sources: Vec::new(),
             cell_marks: vec![0; grid.cell_count()],
             near_cells: Vec::new(),
             near_classes: Vec::new(),
@@ -536,6 +537,23 @@ impl ImmersedBoundary {
         self.near_cells = near;
     }
 
+    /// The seven-point Laplacian of the cell-centred `p` at a cell with six faces (the
+    /// projection's: its face gradients are those of the pressure compensation).
+    fn cell_laplacian(&self, p: &[f64], cell: usize) -> f64 {
+        let idx = self.cell_coords(cell);
+        (0..3)
+            .map(|c| {
+                let [low, high] = [0, 1].map(|side| {
+                    let next = self
+                        .neighbour_cell_at(cell, idx, c, side)
+                        .expect("a cell with six faces has six neighbours");
+                    p[next]
+                });
+                (high - 2.0 * p[cell] + low) / (self.grid.h[c] * self.grid.h[c])
+            })
+            .sum()
+    }
+
     fn forced(&self, c: usize, slot: usize) -> bool {
         self.labels[c][slot] != FLUID
     }
@@ -605,7 +623,9 @@ impl ImmersedBoundary {
     /// pressure `p` the hook sees is the one the projection subtracts; see the module docs).
     /// `tau = 0` or an empty `pressure` imposes the targets as they are. Only the `components`
     /// named are imposed. With a `mass_source`, every [`ClosedCell`] then gets the divergence
-    /// of the velocity (less their mean, so that the sources sum to zero), the others zero.
+    /// of the velocity plus `τ∇²` of the `incremental_pressure` (empty: none; see
+    /// [`PredictedVelocity`](crate::fluid::PredictedVelocity)), less their mean so that the
+    /// sources sum to zero; the other cells get zero.
     pub fn impose(
         &mut self,
         velocity: &mut [Vec<f64>; 3],
@@ -613,6 +633,7 @@ impl ImmersedBoundary {
         pressure: &[f64],
         tau: f64,
         mass_source: Option<&mut [f64]>,
+        incremental_pressure: &[f64],
     ) {
         // A component's faces in chunks, in parallel (the stages of `EulerRKC` hand one
         // component at a time). SAFETY of the shared component: each forced face is written
@@ -660,21 +681,25 @@ impl ImmersedBoundary {
                 .with_min_len(CELLS)
                 .for_each(|&cell| q.write(cell, 0.0));
             let velocity = &*velocity;
-            let (closed, grid) = (&self.closed, &self.grid);
-            self.closed_divergence.clear();
-            self.closed_divergence.par_extend(
-                closed
-                    .par_iter()
-                    .with_min_len(CELLS)
-                    .map(|cc| closed_divergence(grid, velocity, cc)),
-            );
-            let total = self.closed_divergence.iter().fold(0.0, |t, d| t + d);
-            let mean = total / closed.len().max(1) as f64;
-            closed
+            let mut sources = std::mem::take(&mut self.closed_sources);
+            sources.clear();
+            let this = &*self;
+            sources.par_extend(this.closed.par_iter().with_min_len(CELLS).map(|cc| {
+                let divergence = closed_divergence(&this.grid, velocity, cc);
+                if incremental_pressure.is_empty() {
+                    divergence
+                } else {
+                    divergence + tau * this.cell_laplacian(incremental_pressure, cc.cell)
+                }
+            }));
+            let total = sources.iter().fold(0.0, |t, d| t + d);
+            let mean = total / this.closed.len().max(1) as f64;
+            this.closed
                 .par_iter()
-                .zip(&self.closed_divergence)
+                .zip(&sources)
                 .with_min_len(CELLS)
-                .for_each(|(cc, div)| q.write(cc.cell, div - mean));
+                .for_each(|(cc, source)| q.write(cc.cell, source - mean));
+            self.closed_sources = sources;
         }
     }
 }
@@ -1383,7 +1408,7 @@ mod tests {
         let layout = PaddedLayout::new([16; 3]);
         let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![7.0; layout.len]);
         let p = vec![0.0; 16 * 16 * 16];
-        ib.impose(&mut u, [true; 3], &p, 0.0, None);
+        ib.impose(&mut u, [true; 3], &p, 0.0, None, &[]);
         for c in 0..3 {
             let w = sphere.velocity[c];
             for f in ib.interior_faces(c) {
@@ -1399,7 +1424,7 @@ mod tests {
         let p: Vec<f64> = (0..grid.cell_count())
             .map(|i| (i % 16) as f64 * 0.5)
             .collect();
-        ib.impose(&mut u, [true; 3], &p, 0.2, None);
+        ib.impose(&mut u, [true; 3], &p, 0.2, None, &[]);
         let f = ib
             .interior_faces(0)
             .iter()
