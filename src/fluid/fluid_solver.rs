@@ -137,6 +137,11 @@ pub struct FluidSolver {
     scalars: [f64; 2],
     /// Chebyshev stages of the last `EulerRKC` step.
     stages_taken: usize,
+    /// Multi-stage schemes only (empty otherwise): the stage pressures of the last step weighted by their
+    /// share of its pressure impulse (see [`Self::impulse_pressure`]), and the velocity
+    /// generation it belongs to.
+    impulse_pressure: Vec<f64>,
+    impulse_generation: Option<u64>,
     /// Bumped whenever the velocity may change.
     generation: u64,
     /// What the last [`Self::diagnostics`] found besides its report, and the generation of
@@ -192,6 +197,8 @@ impl FluidSolver {
             partials: vec![[0.0; 12]; layout.dims[2]],
             scalars: [0.0; 2],
             stages_taken: 0,
+            impulse_pressure: Vec::new(),
+            impulse_generation: None,
             generation: 0,
             reductions: None,
             grid,
@@ -239,6 +246,12 @@ impl FluidSolver {
         } else {
             self.implicit = None;
         }
+        self.impulse_generation = None;
+        if scheme.projections() > 1 {
+            self.impulse_pressure.resize(self.grid.cell_count(), 0.0);
+        } else {
+            self.impulse_pressure = Vec::new();
+        }
         if scheme.is_chebyshev() {
             if self.bc.has_outlet() {
                 return Err("EulerRKC does not support outlets; use RK3 or Euler".into());
@@ -285,7 +298,24 @@ impl FluidSolver {
     }
     /// Mutable pressure (e.g. to load a case's initial `p`, divided by ρ).
     pub fn pressure_mut(&mut self) -> &mut [f64] {
+        self.impulse_generation = None;
         &mut self.p
+    }
+
+    /// The pressure whose gradient, acting over the whole last step, gives the momentum the
+    /// pressure exchanged in it (what a force lagged by one step must see): with several
+    /// stages, `p̄ = Σ_s w_s p_s` ([`TimeScheme::stage_pressure_weight`]; `RK3CN`:
+    /// `w_s = 2α_s`, each stage's pressure acting over its own `τ_s = 2α_s Δt`). The last
+    /// stage's pressure alone holds little of the impulse the first stage gave when the
+    /// spheres' velocities changed; a force read from it loses the added mass, which
+    /// destabilises the explicit coupling of free spheres. The same as [`Self::pressure`]
+    /// at a steady state, for the one-stage schemes, and before the first step.
+    pub fn impulse_pressure(&self) -> &[f64] {
+        if self.impulse_generation == Some(self.generation) {
+            &self.impulse_pressure
+        } else {
+            &self.p
+        }
     }
 
     /// Allocates (once) zeroed per-face source arrays, m/s², added to the body force.
@@ -503,6 +533,7 @@ impl FluidSolver {
             divergence_rhs(&mut self.p, &self.u, &self.layout, h, &self.bc, tau);
             subtract_mass_source(&mut self.p, self.mass_source.as_deref(), tau);
             self.poisson.solve(&mut self.p);
+            self.accumulate_impulse_pressure(s);
             subtract_gradient(
                 &mut self.u,
                 &self.p,
@@ -600,6 +631,7 @@ impl FluidSolver {
             if let Some(implicit) = self.implicit.as_mut() {
                 implicit.increment = phi;
             }
+            self.accumulate_impulse_pressure(index);
         }
         self.finish_step(t0, dt)
     }
@@ -715,6 +747,25 @@ impl FluidSolver {
         }
         self.stages_taken = method.count;
         self.finish_step(t0, dt)
+    }
+
+    /// `p̄ ← p̄ + w_s p_s` after stage `s`'s projection (`p̄ = w_0 p_0` at the first), with
+    /// the weights of [`TimeScheme::stage_pressure_weight`]; nothing for the one-stage
+    /// schemes, whose `p̄` is `p`.
+    fn accumulate_impulse_pressure(&mut self, stage: usize) {
+        if self.impulse_pressure.is_empty() {
+            return;
+        }
+        let scheme = self.settings.scheme;
+        let weight = scheme.stage_pressure_weight(stage);
+        let first = stage == 0;
+        self.impulse_pressure
+            .par_iter_mut()
+            .zip(&self.p[..])
+            .for_each(|(mean, p)| *mean = if first { 0.0 } else { *mean } + weight * p);
+        if stage + 1 == scheme.projections() {
+            self.impulse_generation = Some(self.generation);
+        }
     }
 
     /// The body force of the settings plus the `meanVelocityForce` gradient, m/s².

@@ -126,6 +126,41 @@ impl TimeScheme {
         }
     }
 
+    /// Projections per step (one pressure each).
+    pub(crate) fn projections(&self) -> usize {
+        if self.is_semi_implicit() {
+            self.semi_implicit_stages().len()
+        } else if self.is_chebyshev() {
+            1
+        } else {
+            self.stages().len()
+        }
+    }
+
+    /// The share of stage `s`'s pressure in the step's pressure impulse on the velocity:
+    /// `u^{n+1}` holds `−Δt Σ_s w_s ∇p_s`, `Σ_s w_s = 1`. Semi-implicit schemes: `w_s = 2α_s`
+    /// (the stage's predictor and increment act over `τ_s = 2α_s Δt`). Explicit two-register
+    /// schemes, whose register carries `−Δt ∇p_s` into the later stages:
+    /// `w_s = Σ_{j≥s} b_j Π_{k=s+1..j} a_k` (RK3: 1/6, 3/10, 8/15). `EulerRKC`: one projection.
+    pub(crate) fn stage_pressure_weight(&self, s: usize) -> f64 {
+        if self.is_semi_implicit() {
+            return 2.0 * self.semi_implicit_stages()[s].2;
+        }
+        if self.is_chebyshev() {
+            return 1.0;
+        }
+        let stages = self.stages();
+        let mut weight = 0.0;
+        let mut carried = 1.0;
+        for (j, &(a, b, _)) in stages.iter().enumerate().skip(s) {
+            if j > s {
+                carried *= a;
+            }
+            weight += b * carried;
+        }
+        weight
+    }
+
     /// Stage coefficients `(a_s, b_s, c_s)`: `q ← a_s q + Δt F`, `u ← u + b_s q`, and `c_s`
     /// the fraction of the step reached at the end of the stage. For `RK3CN` the explicit
     /// part's stage times are those of RK3 (its coefficients are in `SMR_STAGES`).
@@ -209,22 +244,20 @@ mod tests {
         for scheme in [TimeScheme::Euler, TimeScheme::RK2, TimeScheme::RK3] {
             let st = scheme.stages();
             // weight of F_m in the final u: Σ_{s≥m} b_s Π_{r=m+1..s} a_r
-            let mut total = 0.0;
-            for m in 0..st.len() {
-                let mut w = 0.0;
-                let mut prod = 1.0;
-                for s in m..st.len() {
-                    if s > m {
-                        prod *= st[s].0;
-                    }
-                    w += st[s].1 * prod;
-                }
-                total += w;
-            }
+            let total: f64 = (0..st.len()).map(|m| scheme.stage_pressure_weight(m)).sum();
             assert!((total - 1.0).abs() < 1e-14, "{scheme:?}: {total}");
             assert_eq!(st.last().unwrap().2, 1.0);
             assert_eq!(TimeScheme::from_name(scheme.name()), Some(scheme));
         }
+        let rk3 = [0, 1, 2].map(|m| TimeScheme::RK3.stage_pressure_weight(m));
+        for (w, exact) in rk3.iter().zip([1.0 / 6.0, 3.0 / 10.0, 8.0 / 15.0]) {
+            assert!((w - exact).abs() < 1e-15, "RK3 pressure weights {rk3:?}");
+        }
+        let rk3cn: f64 = (0..3)
+            .map(|m| TimeScheme::RK3CN.stage_pressure_weight(m))
+            .sum();
+        assert!((rk3cn - 1.0).abs() < 1e-14);
+        assert_eq!(TimeScheme::EulerCN.stage_pressure_weight(0), 1.0);
         assert_eq!(TimeScheme::default(), TimeScheme::RK3);
         assert_eq!(TimeScheme::from_name("backward"), None);
     }

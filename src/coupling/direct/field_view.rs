@@ -30,14 +30,15 @@ pub fn periodic_directions(bc: &BoundaryConditions) -> [bool; 3] {
 }
 
 impl<'a> FieldView<'a> {
-    /// The current state of a solver.
+    /// The current state of a solver, with the pressure of the last step's impulse
+    /// ([`FluidSolver::impulse_pressure`]: the loads are lagged by one step).
     pub fn of(fluid: &'a FluidSolver) -> Self {
         FieldView {
             grid: fluid.grid(),
             layout: fluid.layout(),
             periodic: periodic_directions(fluid.boundary_conditions()),
             velocity: fluid.velocity(),
-            pressure: fluid.pressure(),
+            pressure: fluid.impulse_pressure(),
             nu: fluid.settings().nu,
         }
     }
