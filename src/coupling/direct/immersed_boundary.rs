@@ -37,6 +37,8 @@
 //! `RK3CN`'s incremental projection needs no compensation (its increment vanishes at steady
 //! state); there the forcing faces are constraint rows of the implicit viscous solve itself
 //! ([`super::ImplicitForcing`]), so that its steady state does not depend on `Δt` either.
+//! The incremental schemes (`p ← p + φ`) add `τ∇²pⁿ` to a closed cell's mass source, so that
+//! the pressure a moving sphere covers ends harmonic there, as a full projection leaves it.
 
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout, SharedSamples};
