@@ -265,43 +265,39 @@ fn settling_velocity_does_not_depend_on_the_semi_implicit_step() {
     }
 }
 
-/// `count` non-overlapping spheres of diameter `d` at seeded random places in a periodic cube
-/// of side `length` (gaps of at least a tenth of `d`).
-fn random_suspension(count: usize, length: f64, d: f64, seed: u64) -> Vec<([f64; 3], f64)> {
-    // splitmix64: a few lines, no dependency
-    let mut state = seed;
-    let mut uniform = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    };
-    let mut placed: Vec<[f64; 3]> = Vec::new();
-    while placed.len() < count {
-        let x = [0; 3].map(|_| uniform() * length);
-        let clear = placed.iter().all(|y| {
-            let r2: f64 = (0..3)
+/// `count` centres at seeded random places in a periodic cube of side `length`, no two
+/// closer than `reach` (periodic images too).
+fn random_centres(count: usize, length: f64, reach: f64, seed: u64) -> Vec<[f64; 3]> {
+    let mut rng = fsim::particles::SplitMix64::new(seed);
+    let mut centres: Vec<[f64; 3]> = Vec::new();
+    while centres.len() < count {
+        let x = [0; 3].map(|_| rng.next_f64() * length);
+        let clear = centres.iter().all(|y| {
+            let s: f64 = (0..3)
                 .map(|a| {
-                    let s = x[a] - y[a];
-                    let s = s - length * (s / length).round();
-                    s * s
+                    let t = x[a] - y[a];
+                    let t = t - length * (t / length).round();
+                    t * t
                 })
                 .sum();
-            r2 > (1.1 * d) * (1.1 * d)
+            s >= reach * reach
         });
         if clear {
-            placed.push(x);
+            centres.push(x);
         }
     }
-    placed.into_iter().map(|x| (x, d)).collect()
+    centres
 }
 
 /// Settling velocity of 8 spheres (r/h = 3, ρ_p/ρ_f = 2, φ = 0.07) after each of `steps`
 /// steps of `dt` with `scheme`.
 fn suspension_settling(scheme: TimeScheme, dt: f64, steps: usize) -> Vec<f64> {
     let (n, h) = (24, 1e-4);
-    let spheres = random_suspension(8, n as f64 * h, 6.0 * h, 7);
+    let d = 6.0 * h;
+    let spheres: Vec<_> = random_centres(8, n as f64 * h, 1.1 * d, 7)
+        .into_iter()
+        .map(|x| (x, d))
+        .collect();
     let mut s = Settler::new([n; 3], h, &spheres, 2000.0, 1000.0, 2.80143e-5, scheme);
     (0..steps)
         .map(|_| {
@@ -514,25 +510,7 @@ fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64,
         .replace("0.008", &format!("{l}"))
         .replace("0.016", &format!("{l}"));
     fs::write(&block, text).unwrap();
-    let mut rng = fsim::particles::SplitMix64::new(17);
-    let mut centres: Vec<[f64; 3]> = Vec::new();
-    let reach = d + 0.5 * h;
-    while centres.len() < count {
-        let x = [rng.next_f64() * l, rng.next_f64() * l, rng.next_f64() * l];
-        let clear = centres.iter().all(|y| {
-            let s: f64 = (0..3)
-                .map(|a| {
-                    let t = x[a] - y[a];
-                    let t = t - l * (t / l).round();
-                    t * t
-                })
-                .sum();
-            s >= reach * reach
-        });
-        if clear {
-            centres.push(x);
-        }
-    }
+    let centres = random_centres(count, l, d + 0.5 * h, 17);
     let positions = case.join("constant/kinematicCloudPositions");
     let head = {
         let t = fs::read_to_string(&positions).unwrap();
