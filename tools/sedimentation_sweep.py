@@ -41,6 +41,11 @@ phi = 0.02, N = 27). With several counts (`--particles 27 64`) each phi is run a
 v_m is extrapolated to N -> infinity linearly in N^{-1/3} (the form of that correction; Ladd,
 Phys. Fluids 9, 491 (1997) uses the same extrapolation), its error propagated from the
 runs' errors; the fit is then made on the extrapolated values.
+
+With several seeds (`--seed 1 2 3`) each phi and N is run on that many random packings and
+the packings' mean goes into the extrapolation, its error the packings' standard error (one
+packing's configuration is the largest scatter of a point, +-5 to 10 % at N = 27).
+`--combine a.csv b.csv` repeats the analysis on rows written before, without running.
 """
 import argparse
 import csv
@@ -185,6 +190,48 @@ def extrapolate(runs):
     return out
 
 
+def average_packings(runs):
+    """The mean of runs at one phi and N on different packings: v_m and the RPY values
+    averaged, the error the standard error over the packings (at least the mean of the
+    runs' own errors over sqrt(k)), phi the mean (the boxes round alike)."""
+    if len(runs) == 1:
+        return dict(runs[0])
+    k = len(runs)
+    v = np.array([r["v_m"] for r in runs])
+    own = np.mean([r["v_m_error"] for r in runs]) / math.sqrt(k)
+    out = dict(runs[0])
+    out.update(phi=float(np.mean([r["phi"] for r in runs])), v_m=float(v.mean()),
+               v_m_error=float(max(v.std(ddof=1) / math.sqrt(k), own)),
+               seed=" ".join(str(r["seed"]) for r in runs))
+    out["ratio"] = out["v_m"] / out["stokes"]
+    for key in ["rpy_ratio", "rpy_fixed_ratio"]:
+        out[key] = float(np.mean([r[key] for r in runs]))
+    return out
+
+
+def group_runs(runs):
+    """Runs grouped by (rounded phi, N) in first-seen order, each group averaged over its
+    packings; then by phi, the counts of one phi in ascending order."""
+    groups = {}
+    for r in runs:
+        groups.setdefault((round(float(r["phi"]), 2), int(r["particles"])), []).append(r)
+    by_phi = {}
+    for (phi, count), members in groups.items():
+        by_phi.setdefault(phi, []).append(average_packings(members))
+    return [sorted(rows, key=lambda r: r["particles"]) for rows in by_phi.values()]
+
+
+def read_rows(paths):
+    """Rows of sweep CSVs, numbers as floats (seed and scheme kept as written)."""
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                rows.append({k: (v if k in ("scheme", "seed") else float(v))
+                             for k, v in row.items() if v != ""})
+    return rows
+
+
 def fit(rows):
     """Weighted least squares of log v_m on log(1 - phi): returns (n, sigma_n, V0)."""
     x = np.array([math.log(1 - r["phi"]) for r in rows])
@@ -229,12 +276,18 @@ def main():
                     help="split the run into this many windows: the settling velocity of each, "
                          "and the RPY mobility of the spheres where each ends")
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--seed", type=int, nargs="+", default=[1],
+                    help="random packings: each phi and N is run on each, and averaged")
+    ap.add_argument("--combine", nargs="+",
+                    help="analyse the rows of these sweep CSVs instead of running")
     ap.add_argument("--csv", default="sedimentation_sweep.csv")
     ap.add_argument("--keep", help="keep the cases in this directory")
     ap.add_argument("--no-build", action="store_true")
     a = ap.parse_args()
 
+    if a.combine:
+        report(read_rows(a.combine))
+        return
     if not a.no_build:
         subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
@@ -243,15 +296,15 @@ def main():
     os.makedirs(scratch, exist_ok=True)
     runs = []
     try:
-        for phi in a.phi:
-            for count in a.particles:
+        for phi, count, seed in [(p, c, s) for p in a.phi for c in a.particles
+                                 for s in a.seed]:
                 r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
                             resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
-                            a.run_length, a.threads, a.seed, scheme=a.scheme,
+                            a.run_length, a.threads, seed, scheme=a.scheme,
                             step_fraction=a.step_fraction, settling_radii=a.settling_radii,
                             windows=a.windows)
                 runs.append(r)
-                print(f"phi {r['phi']:.4f}, N {count}: v_m = {r['v_m']:.4e} +- "
+                print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
                       f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
                       f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
                       f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
@@ -268,14 +321,26 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(runs[0].keys()))
         w.writeheader()
         w.writerows(runs)
-    if len(a.particles) > 1:
-        rows = [extrapolate(runs[i:i + len(a.particles)])
-                for i in range(0, len(runs), len(a.particles))]
+    report(runs)
+    print(f"wrote {a.csv}")
+
+
+def report(runs):
+    """Packings averaged, N extrapolated where there are several counts, and the fits."""
+    groups = group_runs(runs)
+    for group in groups:
+        for r in group:
+            if " " in str(r["seed"]):
+                print(f"phi {r['phi']:.4f}, N {int(r['particles'])}, packings {r['seed']}: "
+                      f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
+                      f"(RPY: {r['rpy_ratio']:.4f})")
+    if all(len(g) > 1 for g in groups):
+        rows = [extrapolate(g) for g in groups]
         for r in rows:
             print(f"phi {r['phi']:.4f}, N -> infinity: v_m/V_Stokes = {r['ratio']:.4f} +- "
                   f"{r['v_m_error'] / r['stokes']:.4f} (RPY: {r['rpy_ratio']:.4f})")
     else:
-        rows = runs
+        rows = [r for g in groups for r in g]
     if len(rows) >= 2:
         n, sn, v0 = fit(rows)
         n1, sn1 = fit_fixed_v0(rows)
@@ -294,7 +359,6 @@ def main():
         for r in rows:
             print(f"  phi {r['phi']:.4f}: fsim / hard-sphere reference = "
                   f"{r['ratio'] / hindered_settling.hard_spheres(r['phi']):.3f}")
-    print(f"wrote {a.csv}")
 
 
 if __name__ == "__main__":

@@ -73,3 +73,28 @@ def test_exponent_fit_recovers_richardson_zaki():
     assert abs(n - 4.8) < 1e-9 and abs(v0 - 0.9) < 1e-9
     n, v0, n1 = hindered_settling.exponent(phi, [(1 - p) ** 5.1 for p in phi])
     assert abs(n1 - 5.1) < 1e-9
+
+
+def test_packings_are_averaged_then_extrapolated_in_n():
+    # v_m = v_inf - A N^{-1/3} on every packing, offset by +-d per packing: the mean of the
+    # packings carries no offset, its error is the packings' standard error, and the
+    # extrapolation of the means recovers v_inf.
+    v_inf, slope, d, stokes = 0.5, 0.6, 0.02, 1.0
+    rows = []
+    for phi, box_phi in [(0.1, [0.1025, 0.0977]), (0.2, [0.1954, 0.2011])]:
+        for count, p in zip([27, 64], box_phi):
+            for seed, offset in [(1, d), (2, -d)]:
+                v = v_inf * (1 - phi) - slope * count ** (-1 / 3) + offset
+                rows.append(dict(phi=p, particles=count, v_m=v, v_m_error=1e-4, stokes=stokes,
+                                 ratio=v / stokes, rpy_ratio=v, rpy_fixed_ratio=v, seed=seed))
+    groups = sedimentation_sweep.group_runs(rows)
+    assert [[int(r["particles"]) for r in g] for g in groups] == [[27, 64], [27, 64]]
+    mean = groups[0][0]
+    assert abs(mean["v_m"] - (v_inf * 0.9 - slope / 3)) < 1e-12
+    # two packings at +-d: standard deviation d * sqrt(2), standard error d
+    assert abs(mean["v_m_error"] - d) < 1e-12
+    assert mean["seed"] == "1 2"
+    for g, phi in zip(groups, [0.1, 0.2]):
+        r = sedimentation_sweep.extrapolate(g)
+        assert abs(r["v_m"] - v_inf * (1 - phi)) < 1e-9
+        assert r["v_m_error"] > d  # the packings' scatter, amplified by the extrapolation
