@@ -26,6 +26,11 @@ use crate::particles::{Dem, DemSnapshot};
 use crate::time_control::TimeControl;
 use std::time::Instant;
 
+/// A Courant step below this fraction of the largest step taken means a velocity growing
+/// without bound: a flow that develops changes its speed by orders of magnitude less within a
+/// run (a diverging one collapses the step to 10⁻³⁰⁰ s before it overflows).
+const COLLAPSED_STEP: f64 = 1e-8;
+
 /// How each step's size is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StepSizing {
@@ -42,6 +47,9 @@ pub struct Simulation {
     pub sizing: StepSizing,
     /// The last step taken (controlDict's `deltaT` before the first).
     pub dt: f64,
+    /// The largest step taken in this run (or restored with its state), against which a
+    /// collapsing Courant step is judged ([`Self::next_time_step`]).
+    largest_dt: f64,
     pub model: CouplingModel,
     /// Fluid density, kg/m³ (the solver works with kinematic pressure p/ρ).
     pub rho: f64,
@@ -160,6 +168,7 @@ impl Simulation {
             ),
             sizing,
             dt: control.delta_t,
+            largest_dt: 0.0,
             model: case.coupling.model,
             rho: case.transport.rho,
             particles: None,
@@ -334,6 +343,7 @@ impl Simulation {
             control.write_interval,
         );
         self.dt = header.delta_t;
+        self.largest_dt = header.delta_t;
         Ok(state)
     }
 
@@ -394,7 +404,7 @@ impl Simulation {
                 } else {
                     self.dt
                 };
-                match self.drag {
+                let allowed = match self.drag {
                     // the drag law steps the fluid with its own predictor and bound
                     Some(_) => self
                         .fluid
@@ -402,10 +412,35 @@ impl Simulation {
                         .min(self.stability_bound()),
                     // adaptive_dt holds the fluid's own bound already (3 passes over the field)
                     None => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
+                };
+                if allowed < COLLAPSED_STEP * self.largest_dt {
+                    return Err(self.collapsed_step(allowed));
                 }
+                allowed
             }
         };
         Ok(self.time.step_size(allowed))
+    }
+
+    /// The error of a Courant step that has collapsed: the velocity grows without bound, and
+    /// without this the run would crawl on for thousands of vanishing steps until it is no
+    /// longer finite.
+    fn collapsed_step(&self, allowed: f64) -> FsimError {
+        FsimError::run(format!(
+            "the solution diverged at t = {} s (step {}): the step the Courant rule allows \
+             fell to {allowed:e} s, {:.1e} of the largest step taken ({:e} s); the velocity \
+             grows without bound{}",
+            self.time.time,
+            self.time.step,
+            allowed / self.largest_dt,
+            self.largest_dt,
+            if self.direct.is_some() && self.particles.is_some() {
+                " (with model direct: particles not much heavier than the fluid need the \
+                 virtual mass, virtualMass in constant/couplingProperties)"
+            } else {
+                ""
+            }
+        ))
     }
 
     /// The bound on `Δt` of the fluid's scheme (paper eq. 3 for Euler), or of the drag-law
@@ -426,6 +461,7 @@ impl Simulation {
     pub fn evolve_fluid(&mut self, dt: f64) -> Result<StepReport, FsimError> {
         let clock = Instant::now();
         self.dt = dt;
+        self.largest_dt = self.largest_dt.max(dt);
         self.phase_times.coupling = 0.0;
         let report = match (&mut self.drag, &mut self.direct, &self.particles) {
             (Some(drag), _, Some(p)) => {

@@ -169,6 +169,19 @@ fn added_mass_instability_stops_and_keeps_the_last_good_time() {
         stderr.contains("diverged"),
         "no divergence message in {stderr}"
     );
+    // The Courant step collapses as the velocity grows: the run stops there, within tens of
+    // steps of the onset, not 1,200 vanishing steps later when the velocity overflows.
+    assert!(
+        stderr.contains("the step the Courant rule allows fell to"),
+        "{stderr}"
+    );
+    let step: usize = stderr
+        .split("(step ")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no step in {stderr}"));
+    assert!(step < 200, "stopped at step {step}");
     let times: Vec<String> = listing(&case)
         .into_iter()
         .filter(|n| n.parse::<f64>().is_ok())
