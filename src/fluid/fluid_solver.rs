@@ -137,9 +137,9 @@ pub struct FluidSolver {
     scalars: [f64; 2],
     /// Chebyshev stages of the last `EulerRKC` step.
     stages_taken: usize,
-    /// Multi-stage schemes only (empty otherwise): the stage pressures of the last step weighted by their
-    /// share of its pressure impulse (see [`Self::impulse_pressure`]), and the velocity
-    /// generation it belongs to.
+    /// Multi-stage schemes only (empty otherwise): the stage pressures of the last step
+    /// weighted by their share of its pressure impulse (see [`Self::impulse_pressure`]), and
+    /// the velocity generation it belongs to.
     impulse_pressure: Vec<f64>,
     impulse_generation: Option<u64>,
     /// Bumped whenever the velocity may change.
