@@ -209,15 +209,23 @@ def average_packings(runs):
     return out
 
 
-def group_runs(runs):
-    """Runs grouped by (rounded phi, N) in first-seen order, each group averaged over its
-    packings; then by phi, the counts of one phi in ascending order."""
+def group_runs(runs, tolerance=0.08):
+    """Runs grouped by phi and N, each group averaged over its packings; then by phi, the
+    counts of one phi in ascending order. The box rounds to whole cells, so the runs of one
+    requested phi differ by a few percent (0.1025 and 0.0977 for 0.1 with 27 and 64
+    spheres): a run joins the first phi within `tolerance` (relative) of its own."""
+    phis = []
     groups = {}
     for r in runs:
-        groups.setdefault((round(float(r["phi"]), 2), int(r["particles"])), []).append(r)
+        phi = float(r["phi"])
+        key = next((i for i, p in enumerate(phis) if abs(phi / p - 1) <= tolerance), None)
+        if key is None:
+            key = len(phis)
+            phis.append(phi)
+        groups.setdefault((key, int(r["particles"])), []).append(r)
     by_phi = {}
-    for (phi, count), members in groups.items():
-        by_phi.setdefault(phi, []).append(average_packings(members))
+    for (key, count), members in groups.items():
+        by_phi.setdefault(key, []).append(average_packings(members))
     return [sorted(rows, key=lambda r: r["particles"]) for rows in by_phi.values()]
 
 
