@@ -199,15 +199,15 @@ def average_packings(runs):
     """The mean of runs at one phi and N on different packings: v_m and the RPY values
     averaged, the error the standard error over the packings (at least the mean of the
     runs' own errors over sqrt(k)), phi the mean (the boxes round alike)."""
-    if len(runs) == 1:
-        return dict(runs[0])
     k = len(runs)
+    if k == 1:
+        return dict(runs[0], packings=1)
     v = np.array([r["v_m"] for r in runs])
     own = np.mean([r["v_m_error"] for r in runs]) / math.sqrt(k)
     out = dict(runs[0])
     out.update(phi=float(np.mean([r["phi"] for r in runs])), v_m=float(v.mean()),
                v_m_error=float(max(v.std(ddof=1) / math.sqrt(k), own)),
-               seed=" ".join(str(r["seed"]) for r in runs))
+               seed=" ".join(str(r["seed"]) for r in runs), packings=k)
     out["ratio"] = out["v_m"] / out["stokes"]
     for key in ["rpy_ratio", "rpy_fixed_ratio"]:
         out[key] = float(np.mean([r[key] for r in runs]))
@@ -343,7 +343,7 @@ def report(runs):
     groups = group_runs(runs)
     for group in groups:
         for r in group:
-            if " " in str(r["seed"]):
+            if r["packings"] > 1:
                 print(f"phi {r['phi']:.4f}, N {int(r['particles'])}, packings {r['seed']}: "
                       f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
                       f"(RPY: {r['rpy_ratio']:.4f})")

@@ -93,7 +93,7 @@ def test_packings_are_averaged_then_extrapolated_in_n():
     assert abs(mean["v_m"] - (v_inf * 0.9 - slope / 3)) < 1e-12
     # two packings at +-d: standard deviation d * sqrt(2), standard error d
     assert abs(mean["v_m_error"] - d) < 1e-12
-    assert mean["seed"] == "1 2"
+    assert mean["seed"] == "1 2" and mean["packings"] == 2
     for g, phi in zip(groups, [0.1, 0.2]):
         r = sedimentation_sweep.extrapolate(g)
         assert abs(r["v_m"] - v_inf * (1 - phi)) < 1e-9
