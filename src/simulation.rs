@@ -386,9 +386,20 @@ impl Simulation {
                             format!("{} scheme ({bound})", scheme.name())
                         }
                     };
+                    // Past the first step the bound held before: the velocity has grown,
+                    // which is how a diverging run at a fixed step first shows.
+                    let grown = if self.time.step > 0 {
+                        format!(
+                            " (step {}; it held until now: the velocity has grown, the \
+                             solution may be diverging)",
+                            self.time.step
+                        )
+                    } else {
+                        String::new()
+                    };
                     return Err(FsimError::run(format!(
                         "deltaT = {dt:e} s exceeds the stability bound {bound:e} s of the \
-                         {scheme} at t = {} s; lower deltaT or set adjustTimeStep yes",
+                         {scheme} at t = {} s{grown}; lower deltaT or set adjustTimeStep yes",
                         self.time.time
                     )));
                 }

@@ -146,6 +146,7 @@ fn leaving_the_stability_region_stops_and_keeps_the_last_good_time() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("stability bound"), "{stderr}");
+    assert!(stderr.contains("may be diverging"), "{stderr}");
     let times: Vec<String> = listing(&case)
         .into_iter()
         .filter(|n| n.parse::<f64>().is_ok() && n != "0")
