@@ -190,8 +190,8 @@ def extrapolate(runs):
     # the RPY reference of the same configurations, extrapolated alike (unweighted)
     out["hard_sphere_ratio"] = hindered_settling.hard_spheres(out["phi"])
     for key in ["rpy_ratio", "rpy_fixed_ratio"]:
-        rpy = np.linalg.lstsq(A, np.array([r[key] for r in runs]), rcond=None)[0]
-        out[key] = float(rpy[0])
+        values = np.array([r.get(key, math.nan) for r in runs])  # older CSVs lack RPY
+        out[key] = float(np.linalg.lstsq(A, values, rcond=None)[0][0])
     return out
 
 
@@ -210,15 +210,17 @@ def average_packings(runs):
                seed=" ".join(str(r["seed"]) for r in runs), packings=k)
     out["ratio"] = out["v_m"] / out["stokes"]
     for key in ["rpy_ratio", "rpy_fixed_ratio"]:
-        out[key] = float(np.mean([r[key] for r in runs]))
+        out[key] = float(np.mean([r.get(key, math.nan) for r in runs]))
     return out
 
 
 def group_runs(runs, tolerance=0.08):
-    """Runs grouped by phi and N, each group averaged over its packings; then by phi, the
-    counts of one phi in ascending order. The box rounds to whole cells, so the runs of one
+    """Runs grouped by phi, r/h and N, each group averaged over its packings; then by phi
+    and r/h, the counts in ascending order. The box rounds to whole cells, so the runs of one
     requested phi differ by a few percent (0.1025 and 0.0977 for 0.1 with 27 and 64
-    spheres): a run joins the first phi within `tolerance` (relative) of its own."""
+    spheres): a run joins the first phi within `tolerance` (relative) of its own. Runs on
+    different grids are never averaged together: the sweep's sphere size, viscosity and
+    Stokes velocity change with r/h."""
     phis = []
     groups = {}
     for r in runs:
@@ -227,11 +229,29 @@ def group_runs(runs, tolerance=0.08):
         if key is None:
             key = len(phis)
             phis.append(phi)
-        groups.setdefault((key, int(r["particles"])), []).append(r)
+        grid = round(float(r.get("r_over_h", 0.0)), 6)
+        groups.setdefault((key, grid, int(r["particles"])), []).append(r)
     by_phi = {}
-    for (key, count), members in groups.items():
-        by_phi.setdefault(key, []).append(average_packings(members))
+    for (key, grid, count), members in groups.items():
+        by_phi.setdefault((key, grid), []).append(average_packings(members))
     return [sorted(rows, key=lambda r: r["particles"]) for rows in by_phi.values()]
+
+
+def finest_grid_per_phi(rows, tolerance=0.08):
+    """Of rows at one phi (within `tolerance`) on several grids, the one with the largest
+    r/h; the others are returned apart (reported, not fitted)."""
+    best, coarser = [], []
+    for r in rows:
+        same = next((i for i, b in enumerate(best)
+                     if abs(r["phi"] / b["phi"] - 1) <= tolerance), None)
+        if same is None:
+            best.append(r)
+        elif r.get("r_over_h", 0.0) > best[same].get("r_over_h", 0.0):
+            coarser.append(best[same])
+            best[same] = r
+        else:
+            coarser.append(r)
+    return best, coarser
 
 
 def read_rows(paths):
@@ -246,9 +266,12 @@ def read_rows(paths):
 
 
 def fit(rows):
-    """Weighted least squares of log v_m on log(1 - phi): returns (n, sigma_n, V0)."""
+    """Weighted least squares of log(v_m / V_Stokes) on log(1 - phi): returns
+    (n, sigma_n, V0 / V_Stokes). On v_m / V_Stokes, not v_m: the sweep's Stokes velocity
+    changes with r/h (the sphere's size in metres does), so rows on different grids share
+    only the ratio."""
     x = np.array([math.log(1 - r["phi"]) for r in rows])
-    y = np.array([math.log(r["v_m"]) for r in rows])
+    y = np.array([math.log(r["v_m"] / r["stokes"]) for r in rows])
     s = np.array([max(r["v_m_error"] / r["v_m"], 1e-3) for r in rows])
     w = 1 / s ** 2
     A = np.stack([np.ones_like(x), x], axis=1)
@@ -347,22 +370,26 @@ def report(runs):
                 print(f"phi {r['phi']:.4f}, N {int(r['particles'])}, packings {r['seed']}: "
                       f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
                       f"(RPY: {r['rpy_ratio']:.4f})")
-    if all(len(g) > 1 for g in groups):
-        rows = [extrapolate(g) for g in groups]
-        for r in rows:
-            print(f"phi {r['phi']:.4f}, N -> infinity: v_m/V_Stokes = {r['ratio']:.4f} +- "
-                  f"{r['v_m_error'] / r['stokes']:.4f} (RPY: {r['rpy_ratio']:.4f})")
-    else:
-        rows = [r for g in groups for r in g]
+    # N -> infinity where a phi and grid has several counts; else its one count
+    rows = [extrapolate(g) if len(g) > 1 else g[0] for g in groups]
+    rows, coarser = finest_grid_per_phi(rows)
+    for r in sorted(rows + coarser, key=lambda r: r["phi"]):
+        count = int(r["particles"]) if r["particles"] else "-> infinity"
+        print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):g}: "
+              f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
+              f"(RPY: {r.get('rpy_ratio', math.nan):.4f})"
+              + ("; not fitted, a finer grid at this phi is" if r in coarser else ""))
     if len(rows) >= 2:
         n, sn, v0 = fit(rows)
         n1, sn1 = fit_fixed_v0(rows)
-        print(f"Richardson-Zaki fit: n = {n:.2f} +- {sn:.2f} (V_0 = {v0:.4e} m/s, "
-              f"{v0 / rows[0]['stokes']:.3f} of Stokes); with V_0 = Stokes: n = {n1:.2f} +- {sn1:.2f}")
-        rpy_rows = [dict(r, v_m=r["rpy_ratio"] * r["stokes"], v_m_error=0.0) for r in rows]
-        n_rpy, sn_rpy, _ = fit(rpy_rows)
-        print(f"the same fit to the RPY reference of the same spheres: n = {n_rpy:.2f} +- "
-              f"{sn_rpy:.2f}")
+        print(f"Richardson-Zaki fit: n = {n:.2f} +- {sn:.2f} (V_0 = {v0:.3f} of Stokes); "
+              f"with V_0 = Stokes: n = {n1:.2f} +- {sn1:.2f}")
+        rpy_rows = [dict(r, v_m=r.get("rpy_ratio", math.nan) * r["stokes"], v_m_error=0.0)
+                    for r in rows]
+        if all(math.isfinite(r["v_m"]) for r in rpy_rows):
+            n_rpy, sn_rpy, _ = fit(rpy_rows)
+            print(f"the same fit to the RPY reference of the same spheres: n = {n_rpy:.2f} +- "
+                  f"{sn_rpy:.2f}")
         phis = [r["phi"] for r in rows]
         n_hs, v0_hs, n1_hs = hindered_settling.exponent(
             phis, [hindered_settling.hard_spheres(p) for p in phis])

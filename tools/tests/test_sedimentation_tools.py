@@ -34,10 +34,34 @@ def test_richardson_zaki_fit_recovers_exponent_and_uncertainty():
         rows.append(dict(phi=phi, v_m=vm, v_m_error=0.01 * vm, stokes=v0))
     fit_n, sigma, fit_v0 = sedimentation_sweep.fit(rows)
     assert abs(fit_n - n) < 3 * sigma and 0.05 < sigma < 0.5
-    assert abs(fit_v0 / v0 - 1) < 0.03
+    assert abs(fit_v0 - 1) < 0.03
     n1, s1 = sedimentation_sweep.fit_fixed_v0(rows)
     assert abs(n1 - n) < 3 * s1 + 0.05
     assert math.isfinite(s1)
+
+
+def test_fit_takes_rows_on_different_grids_by_their_ratio():
+    # The sweep's Stokes velocity grows with r/h (V_Stokes ~ d^(1/2) at a fixed Reynolds
+    # number): exact (1 - phi)^4.8 ratios on grids of r/h 3 ... 8.6 must give 4.8, which a fit
+    # of v_m in m/s does not (it gave 3.2 here).
+    rows = []
+    for phi, r_over_h in [(0.02, 3), (0.1, 3), (0.2, 4.6), (0.3, 8.6)]:
+        stokes = 1e-3 * math.sqrt(r_over_h / 3)
+        vm = 0.9 * stokes * (1 - phi) ** 4.8
+        rows.append(dict(phi=phi, v_m=vm, v_m_error=1e-3 * vm, stokes=stokes,
+                         r_over_h=r_over_h))
+    n, sigma, v0 = sedimentation_sweep.fit(rows)
+    assert abs(n - 4.8) < 1e-9 and abs(v0 - 0.9) < 1e-9
+
+
+def test_runs_on_different_grids_are_not_averaged_and_the_finest_is_fitted():
+    rows = [dict(phi=0.2, particles=27, v_m=v, v_m_error=1e-4, stokes=1.0, ratio=v,
+                 rpy_ratio=v, rpy_fixed_ratio=v, seed=seed, r_over_h=g)
+            for g, v, seed in [(3.0, 0.16, 1), (3.0, 0.17, 2), (5.0, 0.18, 1)]]
+    groups = sedimentation_sweep.group_runs(rows)
+    assert sorted((g[0]["r_over_h"], g[0]["packings"]) for g in groups) == [(3.0, 2), (5.0, 1)]
+    best, coarser = sedimentation_sweep.finest_grid_per_phi([g[0] for g in groups])
+    assert [r["r_over_h"] for r in best] == [5.0] and [r["r_over_h"] for r in coarser] == [3.0]
 
 
 def test_free_suspension_settles_as_the_rpy_mobility_of_the_same_spheres(fsim, tmp_path):
