@@ -1,6 +1,8 @@
 //! Helpers for tests that run `fsimFoam` on copies of the tutorials, and shared fluid set-ups.
 #![allow(dead_code)]
 
+pub mod settler;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
