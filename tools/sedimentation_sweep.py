@@ -238,15 +238,19 @@ def group_runs(runs, tolerance=0.08):
 
 
 def finest_grid_per_phi(rows, tolerance=0.08):
-    """Of rows at one phi (within `tolerance`) on several grids, the one with the largest
-    r/h; the others are returned apart (reported, not fitted)."""
+    """Of rows at one phi (within `tolerance`) on several grids, the one to fit: extrapolated
+    to N -> infinity before a single count (the box size moves v_m by 10-20 %, the grids
+    here by less), then the largest r/h. The others are returned apart (reported, not
+    fitted)."""
+    def rank(r):
+        return (r["particles"] == 0, r.get("r_over_h", 0.0))
     best, coarser = [], []
     for r in rows:
         same = next((i for i, b in enumerate(best)
                      if abs(r["phi"] / b["phi"] - 1) <= tolerance), None)
         if same is None:
             best.append(r)
-        elif r.get("r_over_h", 0.0) > best[same].get("r_over_h", 0.0):
+        elif rank(r) > rank(best[same]):
             coarser.append(best[same])
             best[same] = r
         else:
@@ -378,7 +382,7 @@ def report(runs):
         print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):g}: "
               f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
               f"(RPY: {r.get('rpy_ratio', math.nan):.4f})"
-              + ("; not fitted, a finer grid at this phi is" if r in coarser else ""))
+              + ("; not fitted (another row at this phi is)" if r in coarser else ""))
     if len(rows) >= 2:
         n, sn, v0 = fit(rows)
         n1, sn1 = fit_fixed_v0(rows)

@@ -54,7 +54,7 @@ def test_fit_takes_rows_on_different_grids_by_their_ratio():
     assert abs(n - 4.8) < 1e-9 and abs(v0 - 0.9) < 1e-9
 
 
-def test_runs_on_different_grids_are_not_averaged_and_the_finest_is_fitted():
+def test_runs_on_different_grids_are_not_averaged_and_the_best_row_is_fitted():
     rows = [dict(phi=0.2, particles=27, v_m=v, v_m_error=1e-4, stokes=1.0, ratio=v,
                  rpy_ratio=v, rpy_fixed_ratio=v, seed=seed, r_over_h=g)
             for g, v, seed in [(3.0, 0.16, 1), (3.0, 0.17, 2), (5.0, 0.18, 1)]]
@@ -62,6 +62,10 @@ def test_runs_on_different_grids_are_not_averaged_and_the_finest_is_fitted():
     assert sorted((g[0]["r_over_h"], g[0]["packings"]) for g in groups) == [(3.0, 2), (5.0, 1)]
     best, coarser = sedimentation_sweep.finest_grid_per_phi([g[0] for g in groups])
     assert [r["r_over_h"] for r in best] == [5.0] and [r["r_over_h"] for r in coarser] == [3.0]
+    # a row extrapolated in N (particles 0) goes before a single count on a finer grid
+    extrapolated = dict(groups[0][0], particles=0, r_over_h=3.0)
+    best, _ = sedimentation_sweep.finest_grid_per_phi([g[0] for g in groups] + [extrapolated])
+    assert [(r["particles"], r["r_over_h"]) for r in best] == [(0, 3.0)]
 
 
 def test_free_suspension_settles_as_the_rpy_mobility_of_the_same_spheres(fsim, tmp_path):
