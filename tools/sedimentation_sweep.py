@@ -19,9 +19,12 @@ Re = V_0 d / nu of `--reynolds` (below 0.2), the run length is `--run-length` L^
 about six e-foldings of the slowest box mode, so that the flow has settled), i.e. about
 (L/h)^2 steps of the Euler scheme at its viscous bound.
 
-The fit is the least-squares line log v_m = log V_0 + n log(1 - phi), weighted by the
-run-to-run scatter of each mean (the standard error of the time average, from block means);
-n is reported with its standard error, and also with V_0 held at the Stokes velocity.
+The fit is the least-squares line log(v_m/V_Stokes) = log(V_0/V_Stokes) + n log(1 - phi),
+weighted by the run-to-run scatter of each mean (the standard error of the time average,
+from block means); n is reported with its standard error, and also with V_0 held at the
+Stokes velocity. On the ratio, because the sphere's size in metres, and with it V_Stokes,
+changes with r/h. Runs on different grids are never averaged together; at a phi run on
+several, the fit takes the N -> infinity row first, then the finest grid.
 Results go to CSV (one row per phi and particle count) and to stdout.
 
 Each run is compared with the exact sedimentation coefficient of random hard-sphere
