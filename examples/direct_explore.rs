@@ -100,10 +100,7 @@ fn balance(scheme: TimeScheme, dt: f64, steps: usize) {
     let l3 = (CELLS as f64 * H).powi(3);
     for k in 0..steps {
         // held: the fluid steps around the sphere, which does not move
-        s.coupling.set_particles(s.dem.particles());
-        let coupling = &mut s.coupling;
-        s.fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        let loads = s.coupling.compute_loads(&s.fluid, s.rho).to_vec();
+        let loads = s.fluid_step(dt);
         if (k + 1) % (steps / 10).max(1) == 0 {
             println!(
                 "step {}: F/(rho b L^3) = {:.5}, <u> = {:.4e}",

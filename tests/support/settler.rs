@@ -93,19 +93,23 @@ impl Settler {
         }
     }
 
-    /// One coupled step (the order of `src/coupling/direct/particle_motion.rs`); returns the
-    /// stress-integral loads it handed to the particles.
-    pub fn step(&mut self, dt: f64) -> Vec<HydrodynamicLoad> {
-        self.coupling.set_particles(self.dem.particles());
-        let coupling = &mut self.coupling;
-        self.fluid
-            .step_with(dt, &mut |stage| coupling.impose(stage));
-        let loads = self.coupling.compute_loads(&self.fluid, self.rho).to_vec();
+    /// One coupled step (the order of `src/coupling/direct/particle_motion.rs`).
+    pub fn step(&mut self, dt: f64) {
+        let loads = self.fluid_step(dt);
         self.motion
             .set_loads(&mut self.dem, loads.iter().map(|l| (l.force, l.torque)), dt);
         self.dem.advance(dt);
         self.time += dt;
-        loads
+    }
+
+    /// The fluid's part of a step: no-slip on the spheres where they are, then the
+    /// stress-integral loads on them (the particles do not move).
+    pub fn fluid_step(&mut self, dt: f64) -> Vec<HydrodynamicLoad> {
+        self.coupling.set_particles(self.dem.particles());
+        let coupling = &mut self.coupling;
+        self.fluid
+            .step_with(dt, &mut |stage| coupling.impose(stage));
+        self.coupling.compute_loads(&self.fluid, self.rho).to_vec()
     }
 
     pub fn report(&mut self) -> SedimentationReport {
