@@ -217,21 +217,25 @@ def average_packings(runs):
     return out
 
 
-def group_runs(runs, tolerance=0.08):
-    """Runs grouped by phi, r/h and N, each group averaged over its packings; then by phi
-    and r/h, the counts in ascending order. The box rounds to whole cells, so the runs of one
-    requested phi differ by a few percent (0.1025 and 0.0977 for 0.1 with 27 and 64
-    spheres): a run joins the first phi within `tolerance` (relative) of its own. Runs on
-    different grids are never averaged together: the sweep's sphere size, viscosity and
-    Stokes velocity change with r/h."""
+def same_phi(rows, phi, tolerance=0.08):
+    """The index of the first of `rows` whose phi is within `tolerance` (relative) of `phi`,
+    or None. The box rounds to whole cells, so the runs of one requested phi differ by a
+    few percent (0.1025 and 0.0977 for 0.1 with 27 and 64 spheres)."""
+    return next((i for i, r in enumerate(rows) if abs(phi / r["phi"] - 1) <= tolerance), None)
+
+
+def group_runs(runs):
+    """Runs grouped by phi ([`same_phi`]), r/h and N, each group averaged over its packings;
+    then by phi and r/h, the counts in ascending order. Runs on different grids are never
+    averaged together: the sweep's sphere size, viscosity and Stokes velocity change with
+    r/h."""
     phis = []
     groups = {}
     for r in runs:
-        phi = float(r["phi"])
-        key = next((i for i, p in enumerate(phis) if abs(phi / p - 1) <= tolerance), None)
+        key = same_phi(phis, float(r["phi"]))
         if key is None:
             key = len(phis)
-            phis.append(phi)
+            phis.append(r)
         grid = round(float(r.get("r_over_h", 0.0)), 6)
         groups.setdefault((key, grid, int(r["particles"])), []).append(r)
     by_phi = {}
@@ -240,8 +244,8 @@ def group_runs(runs, tolerance=0.08):
     return [sorted(rows, key=lambda r: r["particles"]) for rows in by_phi.values()]
 
 
-def finest_grid_per_phi(rows, tolerance=0.08):
-    """Of rows at one phi (within `tolerance`) on several grids, the one to fit: extrapolated
+def finest_grid_per_phi(rows):
+    """Of rows at one phi ([`same_phi`]) on several grids, the one to fit: extrapolated
     to N -> infinity before a single count (the box size moves v_m by 10-20 %, the grids
     here by less), then the largest r/h. The others are returned apart (reported, not
     fitted)."""
@@ -249,8 +253,7 @@ def finest_grid_per_phi(rows, tolerance=0.08):
         return (r["particles"] == 0, r.get("r_over_h", 0.0))
     best, coarser = [], []
     for r in rows:
-        same = next((i for i, b in enumerate(best)
-                     if abs(r["phi"] / b["phi"] - 1) <= tolerance), None)
+        same = same_phi(best, r["phi"])
         if same is None:
             best.append(r)
         elif rank(r) > rank(best[same]):
@@ -341,22 +344,22 @@ def main():
     try:
         for phi, count, seed in [(p, c, s) for p in a.phi for c in a.particles
                                  for s in a.seed]:
-                r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
-                            resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
-                            a.run_length, a.threads, seed, scheme=a.scheme,
-                            step_fraction=a.step_fraction, settling_radii=a.settling_radii,
-                            windows=a.windows)
-                runs.append(r)
-                print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
-                      f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
-                      f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
-                      f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
-                      f"{r['wall_seconds']} s", flush=True)
-                if a.windows > 1:
-                    print("  by window: v_m/V_Stokes " + " ".join(
-                        f"{r[f'ratio_{w + 1}']:.4f}" for w in range(a.windows))
-                        + "; RPY along gravity " + " ".join(
-                        f"{r[f'rpy_y_{w}']:.4f}" for w in range(a.windows + 1)), flush=True)
+            r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
+                        resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
+                        a.run_length, a.threads, seed, scheme=a.scheme,
+                        step_fraction=a.step_fraction, settling_radii=a.settling_radii,
+                        windows=a.windows)
+            runs.append(r)
+            print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
+                  f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
+                  f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
+                  f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
+                  f"{r['wall_seconds']} s", flush=True)
+            if a.windows > 1:
+                print("  by window: v_m/V_Stokes " + " ".join(
+                    f"{r[f'ratio_{w + 1}']:.4f}" for w in range(a.windows))
+                    + "; RPY along gravity " + " ".join(
+                    f"{r[f'rpy_y_{w}']:.4f}" for w in range(a.windows + 1)), flush=True)
     finally:
         if not a.keep:
             shutil.rmtree(scratch, ignore_errors=True)
@@ -380,12 +383,13 @@ def report(runs):
     # N -> infinity where a phi and grid has several counts; else its one count
     rows = [extrapolate(g) if len(g) > 1 else g[0] for g in groups]
     rows, coarser = finest_grid_per_phi(rows)
-    for r in sorted(rows + coarser, key=lambda r: r["phi"]):
+    listed = [(r, True) for r in rows] + [(r, False) for r in coarser]
+    for r, fitted in sorted(listed, key=lambda pair: pair[0]["phi"]):
         count = int(r["particles"]) if r["particles"] else "-> infinity"
         print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):g}: "
               f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
               f"(RPY: {r.get('rpy_ratio', math.nan):.4f})"
-              + ("; not fitted (another row at this phi is)" if r in coarser else ""))
+              + ("" if fitted else "; not fitted (another row at this phi is)"))
     if len(rows) >= 2:
         n, sn, v0 = fit(rows)
         n1, sn1 = fit_fixed_v0(rows)
