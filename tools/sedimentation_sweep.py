@@ -49,6 +49,10 @@ With several seeds (`--seed 1 2 3`) each phi and N is run on that many random pa
 the packings' mean goes into the extrapolation, its error the packings' standard error (one
 packing's configuration is the largest scatter of a point, +-5 to 10 % at N = 27).
 `--combine a.csv b.csv` repeats the analysis on rows written before, without running.
+The box is whole cells, so without `--exact-phi` its phi moves with N by up to 3 % (0.292
+and 0.306 for 0.3 at r/h = 7 with 27 and 64 spheres), and the extrapolation in N amplifies
+that; `--exact-phi` resizes the spheres instead (r/h then moves by up to 3 %, and runs within
+3 % of one r/h count as one grid).
 
 `--scheme EulerRKC` is as exact as `Euler` for moving spheres (docs/direct_model.md, "Closed
 cells and the incremental pressure") and takes larger steps: on the phi = 0.1 case (27
@@ -101,12 +105,22 @@ def response_time(d, nu):
     return (RHO_P / RHO_F + 0.5) * d * d / (18 * nu)
 
 
+def box_cells(phi, count, cells_per_radius, exact_phi=False):
+    """The cubic box's cells per side for `count` spheres of `cells_per_radius` at `phi`
+    (whole cells, at least 2.3 diameters), and the spheres' r/h: as asked, so that phi
+    rounds with the box, or with `exact_phi` resized so that the box holds exactly phi."""
+    volume = count * 4 / 3 * math.pi * cells_per_radius ** 3 / phi
+    n = max(int(round(volume ** (1 / 3))), int(math.ceil(4.6 * cells_per_radius)))
+    if exact_phi:
+        cells_per_radius = (3 * phi * n ** 3 / (4 * math.pi * count)) ** (1 / 3)
+    return n, cells_per_radius
+
+
 def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed,
-            scheme="Euler", step_fraction=0.2, settling_radii=None, windows=1):
+            scheme="Euler", step_fraction=0.2, settling_radii=None, windows=1, exact_phi=False):
     h = 1e-4
+    n, cells_per_radius = box_cells(phi, count, cells_per_radius, exact_phi)
     d = 2 * cells_per_radius * h
-    volume = count * direct_cases.sphere_volume(d) / phi
-    n = max(int(round(volume ** (1 / 3) / h)), int(math.ceil(2.3 * d / h)))
     L = [n * h] * 3
     phi_actual = count * direct_cases.sphere_volume(d) / (n * h) ** 3
     # Re = V_0 d / nu with V_0 = (rho_p/rho_f - 1) g d^2 / (18 nu)
@@ -224,19 +238,32 @@ def same_phi(rows, phi, tolerance=0.08):
     return next((i for i, r in enumerate(rows) if abs(phi / r["phi"] - 1) <= tolerance), None)
 
 
+def same_grid(grids, r_over_h, tolerance=0.03):
+    """The index of the first of `grids` (r/h values) within `tolerance` (relative) of
+    `r_over_h`, or None. With `--exact-phi` the sphere's r/h moves by up to a few percent
+    with N around the one asked for."""
+    return next((i for i, g in enumerate(grids) if abs(r_over_h / g - 1) <= tolerance), None)
+
+
 def group_runs(runs):
-    """Runs grouped by phi ([`same_phi`]), r/h and N, each group averaged over its packings;
-    then by phi and r/h, the counts in ascending order. Runs on different grids are never
-    averaged together: the sweep's sphere size, viscosity and Stokes velocity change with
-    r/h."""
+    """Runs grouped by phi ([`same_phi`]), r/h ([`same_grid`]) and N, each group averaged
+    over its packings; then by phi and r/h, the counts in ascending order. Runs on different
+    grids are never averaged together: the sweep's sphere size, viscosity and Stokes
+    velocity change with r/h."""
     phis = []
+    grids = {}
     groups = {}
     for r in runs:
         key = same_phi(phis, float(r["phi"]))
         if key is None:
             key = len(phis)
             phis.append(r)
-        grid = round(float(r.get("r_over_h", 0.0)), 6)
+        known = grids.setdefault(key, [])
+        r_over_h = float(r.get("r_over_h", 0.0)) or 1.0
+        grid = same_grid(known, r_over_h)
+        if grid is None:
+            grid = len(known)
+            known.append(r_over_h)
         groups.setdefault((key, grid, int(r["particles"])), []).append(r)
     by_phi = {}
     for (key, grid, count), members in groups.items():
@@ -310,6 +337,10 @@ def main():
     ap.add_argument("--cells-per-radius", type=float, default=3.0)
     ap.add_argument("--gap-cells", type=float, default=0.0,
                     help="raise r/h so that the mean gap between neighbours spans this many cells")
+    ap.add_argument("--exact-phi", action="store_true",
+                    help="size the spheres so that every box holds exactly phi (its r/h then "
+                         "differs from --cells-per-radius by up to a few percent); without it "
+                         "the box rounds to whole cells and phi moves with N")
     ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
     ap.add_argument("--run-length", type=float, default=0.15, help="in units of L^2 / nu")
     ap.add_argument("--settling-radii", type=float,
@@ -348,7 +379,7 @@ def main():
                         resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
                         a.run_length, a.threads, seed, scheme=a.scheme,
                         step_fraction=a.step_fraction, settling_radii=a.settling_radii,
-                        windows=a.windows)
+                        windows=a.windows, exact_phi=a.exact_phi)
             runs.append(r)
             print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
                   f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
@@ -386,7 +417,7 @@ def report(runs):
     listed = [(r, True) for r in rows] + [(r, False) for r in coarser]
     for r, fitted in sorted(listed, key=lambda pair: pair[0]["phi"]):
         count = int(r["particles"]) if r["particles"] else "-> infinity"
-        print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):g}: "
+        print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):.3g}: "
               f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
               f"(RPY: {r.get('rpy_ratio', math.nan):.4f})"
               + ("" if fitted else "; not fitted (another row at this phi is)"))

@@ -126,3 +126,19 @@ def test_packings_are_averaged_then_extrapolated_in_n():
         r = sedimentation_sweep.extrapolate(g)
         assert abs(r["v_m"] - v_inf * (1 - phi)) < 1e-9
         assert r["v_m_error"] > d  # the packings' scatter, amplified by the extrapolation
+
+
+def test_exact_phi_resizes_the_spheres_and_keeps_the_runs_on_one_grid():
+    # whole-cell boxes: the runs of phi = 0.3 at r/h = 7 hold 0.292 (27 spheres) and 0.306 (64)
+    for count, cells in [(27, 51), (64, 67)]:
+        n, r_over_h = sedimentation_sweep.box_cells(0.3, count, 7.0)
+        assert (n, r_over_h) == (cells, 7.0)
+        n, r_over_h = sedimentation_sweep.box_cells(0.3, count, 7.0, exact_phi=True)
+        assert n == cells and abs(r_over_h / 7.0 - 1) < 0.03
+        phi = count * 4 / 3 * math.pi * r_over_h ** 3 / n ** 3
+        assert abs(phi - 0.3) < 1e-12
+    rows = [dict(phi=0.3, particles=count, v_m=0.1, v_m_error=1e-4, stokes=1.0, ratio=0.1,
+                 rpy_ratio=0.1, rpy_fixed_ratio=0.1, seed=1, r_over_h=g)
+            for count, g in [(27, 6.91), (64, 7.08), (27, 5.0)]]
+    groups = sedimentation_sweep.group_runs(rows)
+    assert sorted((len(g), g[0]["r_over_h"]) for g in groups) == [(1, 5.0), (2, 6.91)]
