@@ -35,8 +35,10 @@ Stokes, not the experiments' 4.65-5.1 (settled suspensions have another microstr
 
 Each run is also compared with the Rotne-Prager-Yamakawa mobility of the same spheres in the
 same periodic box (tools/periodic_rpy.py, far-field hydrodynamics without lubrication):
-`rpy_ratio` is its mean settling velocity over the Stokes velocity, `rpy_fixed_ratio` the
-fixed array's 1/F, and the Richardson-Zaki fit is repeated on the RPY values.
+`rpy_ratio` is the starting packing's mean settling velocity over the Stokes velocity,
+`rpy_fixed_ratio` its fixed array's 1/F; with `--windows`, `rpy_y_k` is the mobility along
+gravity of the configuration at the end of window k, and the report's "developed" value the
+mean over the second half's ends. The Richardson-Zaki fit is repeated on the RPY values.
 
 A periodic box of N spheres settles slower than an unbounded suspension: the periodic images
 add Hasimoto's lattice hindrance, of order 1.76 (phi/N)^{1/3} of the Stokes velocity (0.16 at
@@ -82,6 +84,9 @@ import vtk_checks  # noqa: E402
 # A liquid; the viscosity follows from the Reynolds number asked for
 RHO_F = 1000.0
 RHO_P = 2000.0
+# the RPY references a row carries: the starting packing's mobility and fixed-array 1/F,
+# and the developed configurations' mobility along gravity ([`developed_rpy`])
+RPY_KEYS = ["rpy_ratio", "rpy_fixed_ratio", "rpy_developed"]
 
 
 def read_monitor(case):
@@ -206,7 +211,7 @@ def extrapolate(runs):
                v_m_error=float(math.sqrt(cov[0, 0])), ratio=float(coef[0] / runs[-1]["stokes"]))
     # the RPY reference of the same configurations, extrapolated alike (unweighted)
     out["hard_sphere_ratio"] = hindered_settling.hard_spheres(out["phi"])
-    for key in ["rpy_ratio", "rpy_fixed_ratio"]:
+    for key in RPY_KEYS:
         values = np.array([r.get(key, math.nan) for r in runs])  # older CSVs lack RPY
         out[key] = float(np.linalg.lstsq(A, values, rcond=None)[0][0])
     return out
@@ -226,9 +231,19 @@ def average_packings(runs):
                v_m_error=float(max(v.std(ddof=1) / math.sqrt(k), own)),
                seed=" ".join(str(r["seed"]) for r in runs), packings=k)
     out["ratio"] = out["v_m"] / out["stokes"]
-    for key in ["rpy_ratio", "rpy_fixed_ratio"]:
+    for key in RPY_KEYS:
         out[key] = float(np.mean([r.get(key, math.nan) for r in runs]))
     return out
+
+
+def developed_rpy(row):
+    """The RPY mobility along gravity of the configurations a run reached at the ends of its
+    second-half windows (`rpy_y_k`, k > windows / 2), averaged: the reference for the
+    developed suspension, where `rpy_ratio` is that of the starting packing. NaN without
+    windows."""
+    ends = sorted(int(k[6:]) for k in row if k.startswith("rpy_y_"))
+    late = [row[f"rpy_y_{k}"] for k in ends if ends and k > ends[-1] / 2]
+    return float(np.mean(late)) if late else math.nan
 
 
 def same_phi(rows, phi, tolerance=0.08):
@@ -383,7 +398,7 @@ def main():
             runs.append(r)
             print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
                   f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
-                  f"(RPY, same spheres: {r['rpy_ratio']:.4f}), "
+                  f"(RPY, starting packing: {r['rpy_ratio']:.4f}), "
                   f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
                   f"{r['wall_seconds']} s", flush=True)
             if a.windows > 1:
@@ -404,13 +419,14 @@ def main():
 
 def report(runs):
     """Packings averaged, N extrapolated where there are several counts, and the fits."""
+    runs = [dict(r, rpy_developed=developed_rpy(r)) for r in runs]
     groups = group_runs(runs)
     for group in groups:
         for r in group:
             if r["packings"] > 1:
                 print(f"phi {r['phi']:.4f}, N {int(r['particles'])}, packings {r['seed']}: "
                       f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
-                      f"(RPY: {r['rpy_ratio']:.4f})")
+                      f"(RPY: {r['rpy_ratio']:.4f} start, {r['rpy_developed']:.4f} developed)")
     # N -> infinity where a phi and grid has several counts; else its one count
     rows = [extrapolate(g) if len(g) > 1 else g[0] for g in groups]
     rows, coarser = finest_grid_per_phi(rows)
@@ -419,19 +435,22 @@ def report(runs):
         count = int(r["particles"]) if r["particles"] else "-> infinity"
         print(f"phi {r['phi']:.4f}, N {count}, r/h {r.get('r_over_h', 0):.3g}: "
               f"v_m/V_Stokes = {r['ratio']:.4f} +- {r['v_m_error'] / r['stokes']:.4f} "
-              f"(RPY: {r.get('rpy_ratio', math.nan):.4f})"
+              f"(RPY: {r.get('rpy_ratio', math.nan):.4f} start, "
+              f"{r.get('rpy_developed', math.nan):.4f} developed)"
               + ("" if fitted else "; not fitted (another row at this phi is)"))
     if len(rows) >= 2:
         n, sn, v0 = fit(rows)
         n1, sn1 = fit_fixed_v0(rows)
         print(f"Richardson-Zaki fit: n = {n:.2f} +- {sn:.2f} (V_0 = {v0:.3f} of Stokes); "
               f"with V_0 = Stokes: n = {n1:.2f} +- {sn1:.2f}")
-        rpy_rows = [dict(r, v_m=r.get("rpy_ratio", math.nan) * r["stokes"], v_m_error=0.0)
-                    for r in rows]
-        if all(math.isfinite(r["v_m"]) for r in rpy_rows):
-            n_rpy, sn_rpy, _ = fit(rpy_rows)
-            print(f"the same fit to the RPY reference of the same spheres: n = {n_rpy:.2f} +- "
-                  f"{sn_rpy:.2f}")
+        for key, what in [("rpy_ratio", "starting packings"),
+                          ("rpy_developed", "developed configurations, along gravity")]:
+            rpy_rows = [dict(r, v_m=r.get(key, math.nan) * r["stokes"], v_m_error=0.0)
+                        for r in rows]
+            if all(math.isfinite(r["v_m"]) for r in rpy_rows):
+                n_rpy, sn_rpy, _ = fit(rpy_rows)
+                print(f"the same fit to the RPY mobility of the {what}: n = {n_rpy:.2f} +- "
+                      f"{sn_rpy:.2f} (V_0 free)")
         phis = [r["phi"] for r in rows]
         n_hs, v0_hs, n1_hs = hindered_settling.exponent(
             phis, [hindered_settling.hard_spheres(p) for p in phis])
