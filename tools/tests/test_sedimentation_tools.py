@@ -142,3 +142,9 @@ def test_exact_phi_resizes_the_spheres_and_keeps_the_runs_on_one_grid():
             for count, g in [(27, 6.91), (64, 7.08), (27, 5.0)]]
     groups = sedimentation_sweep.group_runs(rows)
     assert sorted((len(g), g[0]["r_over_h"]) for g in groups) == [(1, 5.0), (2, 6.91)]
+
+
+def test_developed_rpy_is_the_mean_over_the_second_half_window_ends():
+    row = {f"rpy_y_{k}": 0.1 * (k + 1) for k in range(6)}  # windows 5: ends 0..5
+    assert abs(sedimentation_sweep.developed_rpy(row) - 0.5) < 1e-12  # ends 3, 4, 5
+    assert math.isnan(sedimentation_sweep.developed_rpy({"rpy_ratio": 0.2}))
