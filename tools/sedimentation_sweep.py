@@ -114,10 +114,11 @@ def box_cells(phi, count, cells_per_radius, exact_phi=False):
     """The cubic box's cells per side for `count` spheres of `cells_per_radius` at `phi`
     (whole cells, at least 2.3 diameters), and the spheres' r/h: as asked, so that phi
     rounds with the box, or with `exact_phi` resized so that the box holds exactly phi."""
-    volume = count * 4 / 3 * math.pi * cells_per_radius ** 3 / phi
+    volume = count * direct_cases.sphere_volume(2 * cells_per_radius) / phi
     n = max(int(round(volume ** (1 / 3))), int(math.ceil(4.6 * cells_per_radius)))
     if exact_phi:
-        cells_per_radius = (3 * phi * n ** 3 / (4 * math.pi * count)) ** (1 / 3)
+        cells_per_radius *= (phi * n ** 3 / (count * direct_cases.sphere_volume(
+            2 * cells_per_radius))) ** (1 / 3)
     return n, cells_per_radius
 
 
@@ -242,7 +243,7 @@ def developed_rpy(row):
     developed suspension, where `rpy_ratio` is that of the starting packing. NaN without
     windows."""
     ends = sorted(int(k[6:]) for k in row if k.startswith("rpy_y_"))
-    late = [row[f"rpy_y_{k}"] for k in ends if ends and k > ends[-1] / 2]
+    late = [row[f"rpy_y_{k}"] for k in ends if k > ends[-1] / 2]
     return float(np.mean(late)) if late else math.nan
 
 
