@@ -349,7 +349,7 @@ direct
 BENCHMARK_COUPLING = LINEAR.replace("    interpolation   linear;\n", "    interpolation   linear;\n"
                                     + """    // the forced faces are rebuilt once a sphere has moved a quarter of a cell (between
     // builds they keep their geometry and take the spheres' motion): a pulled sphere's
-    // drag changes by +0.3 %, the benchmark's step costs a third less (README)
+    // drag changes by +0.3 %, the benchmark's step costs a third less (docs/direct_benchmark.md)
     rebuildDistance 0.25;
 """)
 
@@ -378,7 +378,7 @@ def benchmark(case, end_time=0.1, cells_per_radius=2.5, particles=500, scheme="E
     times the explicit Euler bound h^2/(6 nu) = 4.4 us, with 3 stages of a Laplacian each
     instead of EulerCN's 16 FFT solves. maxCo 0.8 rather than 0.5: the first-order step's
     error in the settling velocity at 5 ms is then about 0.7 % (0.4 % at 0.5), below the
-    spatial error of h = 0.4 r, for 1.5 times fewer steps (README, "benchmark")."""
+    spatial error of h = 0.4 r, for 1.5 times fewer steps (docs/direct_benchmark.md, "EulerRKC")."""
     r = 50e-6
     h = r / cells_per_radius
     cells = [int(round(24 * cells_per_radius)), int(round(72 * cells_per_radius)),
