@@ -5,21 +5,10 @@
 //! speed, below an isolated particle's terminal velocity.
 
 use fsim::case::Case;
+use fsim::coupling::drag::terminal_velocity;
 use fsim::simulation::Simulation;
 use std::f64::consts::PI;
 use std::path::Path;
-
-/// Terminal velocity of one sphere with the Schiller–Naumann drag
-/// `C_d = 24/Re (1 + 0.15 Re^0.687)`, by fixed-point iteration from Stokes' law.
-fn terminal_velocity(d: f64, rho_p: f64, rho_f: f64, mu: f64, g: f64) -> f64 {
-    let stokes = (rho_p - rho_f) * g * d * d / (18.0 * mu);
-    let mut v = stokes;
-    for _ in 0..200 {
-        let re = rho_f * v * d / mu;
-        v = stokes / (1.0 + 0.15 * re.powf(0.687));
-    }
-    v
-}
 
 #[test]
 fn benchmark_mixture_momentum_stays_zero_and_particles_settle_hindered() {

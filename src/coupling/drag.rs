@@ -13,7 +13,7 @@ pub use cell_point_interpolation::CellPointInterpolation;
 pub use chunked_scatter::{ChunkPartial, ChunkedScatter, PARTICLES_PER_CHUNK};
 pub use drag_closure::{
     beetstra, di_felice, ergun_wen_yu_drag, gidaspow, koch_hill, paper, plessis_masliyah_drag,
-    sphere_drag, tenneti, wen_yu_drag, Convention, DragClosure, DragInput,
+    sphere_drag, tenneti, terminal_velocity, wen_yu_drag, Convention, DragClosure, DragInput,
 };
 pub use drag_law_coupling::{interpolation_from_name, DragLawCoupling, ExchangeReport};
 pub use drag_law_settings::{DragLawSettings, Stencil};

@@ -192,6 +192,27 @@ fn ergun_drag_only(q: &DragInput) -> f64 {
     25.0 * PI * q.mu * q.d * phi / q.eps + 1.75 / 6.0 * PI * q.rho * q.slip * q.d * q.d
 }
 
+/// Terminal velocity (m/s) of one sphere of diameter `d` and density `rho_p` in an unbounded
+/// fluid of density `rho_f` and dynamic viscosity `mu` under gravity `g` (m/s²): the root
+/// of the force balance `|ρ_p − ρ_f| g π d³/6 = (C_d Re / 24) 3π μ d U` with Schiller–Naumann's
+/// `C_d Re` ([`cd_re_schiller_naumann`]), that is `U = V_Stokes · 24 / (C_d Re)(U)`. The
+/// right side falls as `U` grows, so the root is unique; bisection between 0 and Stokes'
+/// velocity finds it.
+pub fn terminal_velocity(d: f64, rho_p: f64, rho_f: f64, mu: f64, g: f64) -> f64 {
+    let stokes = (rho_p - rho_f).abs() * g * d * d / (18.0 * mu);
+    let excess = |u: f64| u * cd_re_schiller_naumann(rho_f * u * d / mu) / 24.0 - stokes;
+    let (mut lo, mut hi) = (0.0, stokes);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if excess(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// Schiller–Naumann `C_d Re = 24 (1 + 0.15 Re^0.687)` up to `Re = 1000`, `0.44 Re` beyond (as
 /// OpenFOAM's `WenYuDrag::CdRe`).
 fn cd_re_schiller_naumann(re: f64) -> f64 {
@@ -320,6 +341,33 @@ mod tests {
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * b.abs()
+    }
+
+    /// Stokes' law where Re is small; the force balance holds where it is not; a sphere
+    /// lighter than the fluid rises as fast as one as much heavier sinks.
+    #[test]
+    fn terminal_velocity_balances_weight_and_schiller_naumann_drag() {
+        let (rho_f, mu, g) = (1000.0, 1e-3, 9.81);
+        // d = 10 µm, Δρ = 1500: V_Stokes = 8.2e-5 m/s, Re = 8e-4
+        let stokes = 1500.0 * g * 1e-10 / (18.0 * mu);
+        let slow = terminal_velocity(1e-5, 2500.0, rho_f, mu, g);
+        assert!(close(slow, stokes, 2e-3), "{slow} against {stokes}");
+        // seeded random spheres up to Re of a few hundred
+        let mut rng = crate::particles::SplitMix64::new(11);
+        for _ in 0..20 {
+            let d = 1e-4 + 2e-3 * rng.next_f64();
+            let rho_p = 1100.0 + 800.0 * rng.next_f64();
+            let u = terminal_velocity(d, rho_p, rho_f, mu, g);
+            let re = rho_f * u * d / mu;
+            let weight = (rho_p - rho_f) * g * PI * d * d * d / 6.0;
+            let drag = cd_re_schiller_naumann(re) / 24.0 * 3.0 * PI * mu * d * u;
+            assert!(
+                close(drag, weight, 1e-12),
+                "d {d} rho_p {rho_p}: {drag} against {weight}"
+            );
+            let rising = terminal_velocity(d, 2.0 * rho_f - rho_p, rho_f, mu, g);
+            assert!(close(rising, u, 1e-12));
+        }
     }
 
     /// d = 1 mm, ρ = 1000, μ = 1e-3, |u − v| = 0.01 m/s: Re = 1000·0.01·1e-3/1e-3 = 10,
