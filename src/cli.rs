@@ -16,8 +16,8 @@ pub struct Options {
     #[arg(long = "case", value_name = "DIR", default_value = ".")]
     pub case: PathBuf,
 
-    /// Validate the case and print the plan (grid, patches, time steps, write times,
-    /// estimated memory and run time) without running
+    /// Validate the case and print the plan (grid, patches, time steps, write times, memory
+    /// and run time, from a few steps timed in memory) without writing anything
     #[arg(long = "dry-run")]
     pub dry_run: bool,
 

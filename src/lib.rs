@@ -12,6 +12,7 @@ pub mod grid;
 pub mod output;
 pub mod particles;
 pub mod run;
+pub mod run_plan;
 pub mod simulation;
 pub mod step_reporter;
 pub mod time_control;

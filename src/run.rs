@@ -20,10 +20,11 @@
 use crate::case::{Case, InternalField};
 use crate::cli::Options;
 use crate::error::FsimError;
+use crate::fluid::{FluidDiagnostics, StepReport};
 use crate::output::{
     write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
-use crate::simulation::{continues, Simulation, StepSizing};
+use crate::simulation::{continues, CloudReport, Simulation, StepSizing};
 use crate::step_reporter::StepReporter;
 use std::time::Instant;
 
@@ -75,8 +76,7 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
     }
     check_first_step(&mut sim)?;
     if options.dry_run {
-        print_plan(case, &mut sim, threads);
-        return Ok(());
+        return crate::run_plan::print_plan(case, &mut sim, threads);
     }
 
     let mut output = CaseOutput::open(
@@ -102,36 +102,58 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
 
     while sim.time.running() {
         let clock = Instant::now();
-        let dt = sim.next_time_step()?;
-        let (fluid, cloud, diagnostics) = if sim.drag.is_some() {
-            let cloud = sim.evolve_cloud(dt);
-            let fluid = sim.evolve_fluid(dt)?;
-            (fluid, cloud, sim.fluid_diagnostics())
-        } else {
-            let fluid = sim.evolve_fluid(dt)?;
-            sim.hydrodynamic_loads();
-            let (cloud, diagnostics) = sim.evolve_cloud_beside_diagnostics(dt);
-            (fluid, cloud, diagnostics)
-        };
-        let write_due = sim.time.advance(dt);
-        let health = sim.check_health(diagnostics)?;
-        sim.update_sedimentation();
+        let step = take_step(&mut sim)?;
         let name = output.time_name(sim.time.time);
         reporter.step(
             &name,
             &sim,
-            dt,
-            &fluid,
-            cloud.as_ref(),
-            &health,
+            step.dt,
+            &step.fluid,
+            step.cloud.as_ref(),
+            &step.health,
             clock.elapsed(),
         )?;
-        if write_due {
+        if step.write_due {
             write_time(&mut output, &mut sim)?;
         }
         reporter.end_step(sim.time.time, start, case.control.end_time)?;
     }
     reporter.finish()
+}
+
+/// What one step did, for the monitors.
+pub(crate) struct TakenStep {
+    dt: f64,
+    fluid: StepReport,
+    cloud: Option<CloudReport>,
+    health: FluidDiagnostics,
+    write_due: bool,
+}
+
+/// One time step, its phases in the model's order (module docs): the run's, and the
+/// timed steps of `-dry-run`.
+pub(crate) fn take_step(sim: &mut Simulation) -> Result<TakenStep, FsimError> {
+    let dt = sim.next_time_step()?;
+    let (fluid, cloud, diagnostics) = if sim.drag.is_some() {
+        let cloud = sim.evolve_cloud(dt);
+        let fluid = sim.evolve_fluid(dt)?;
+        (fluid, cloud, sim.fluid_diagnostics())
+    } else {
+        let fluid = sim.evolve_fluid(dt)?;
+        sim.hydrodynamic_loads();
+        let (cloud, diagnostics) = sim.evolve_cloud_beside_diagnostics(dt);
+        (fluid, cloud, diagnostics)
+    };
+    let write_due = sim.time.advance(dt);
+    let health = sim.check_health(diagnostics)?;
+    sim.update_sedimentation();
+    Ok(TakenStep {
+        dt,
+        fluid,
+        cloud,
+        health,
+        write_due,
+    })
 }
 
 /// A fixed `deltaT` above the scheme's bound for the initial field is bad input (exit 2),
@@ -208,79 +230,4 @@ fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
         grid: sim.grid().clone(),
         extra,
     }
-}
-
-/// `-dry-run`: what the run would do, and roughly what it would cost.
-fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) {
-    let grid = sim.grid().clone();
-    let cells = grid.cell_count();
-    println!("Case    : {}", case.dir.display());
-    println!("Plan    : {}", case.summary());
-    match &sim.drag {
-        Some(d) => println!(
-            "Scheme  : volume-averaged, {}, PCG pressure ({})",
-            d.fluid.predictor_name(),
-            d.describe()
-        ),
-        None => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),
-    }
-    if !sim.time.running() {
-        println!(
-            "Steps   : none: the run already reached endTime {} s (at t = {} s)",
-            case.control.end_time, sim.time.time
-        );
-        return;
-    }
-    let span = case.control.end_time - sim.time.time;
-    let dt = sim
-        .next_time_step()
-        .unwrap_or(sim.dt)
-        .max(f64::MIN_POSITIVE);
-    let bound = sim.stability_bound();
-    let steps = (span / dt).ceil().max(0.0);
-    println!(
-        "Steps   : about {steps} of {dt:e} s from t = {} to {} s (stability bound {bound:e} s{})",
-        sim.time.time,
-        case.control.end_time,
-        if case.control.adjust_time_step {
-            ", adjusted by maxCo as the flow develops"
-        } else {
-            ""
-        }
-    );
-    let writes = match case.control.write_control {
-        crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
-        _ => span / case.control.write_interval,
-    }
-    .floor();
-    println!(
-        "Writes  : about {writes} time directories (+ the start and the end), each about {:.1} MB",
-        cells as f64 * 2.0 * 4.0 * 8.0 / 1e6
-    );
-    let memory = sim.fluid.bytes_per_cell() * cells as f64;
-    println!("Memory  : about {:.1} MB for the fluid", memory / 1e6);
-    if let Some(p) = &sim.particles {
-        let n = p.dem.particles().len();
-        let bytes = p.dem.memory_bytes() as f64;
-        println!(
-            "Cloud   : {n} particles; pairModel {}, wallModel {}; {} collision sub-steps per \
-             step now; memory about {:.1} MB ({:.0} bytes per particle)",
-            p.pair_model,
-            p.wall_model,
-            p.dem.substep_count(dt),
-            bytes / 1e6,
-            bytes / n.max(1) as f64
-        );
-    }
-    // tools/bench (README, 128³): about 20 million cell-stages per second on one thread,
-    // 1.8 times that on two; each stage is one predictor and one projection.
-    let stage_rate = 20.0e6 * (threads as f64).powf(0.85);
-    let stages = sim.fluid.settings().scheme.stages().len() as f64;
-    let rate = stage_rate / stages;
-    println!(
-        "Run time: about {:.0} s for the fluid on {threads} thread(s) (at {:.0} million \
-         cell-steps/s)",
-        steps * cells as f64 / rate,
-        rate / 1e6
-    );
 }

@@ -20,7 +20,7 @@ pub use case_output::{
 pub use collection::{collection_path, rebuild_collection, write_collection, CollectionEntry};
 pub use fluid_vti::write_fluid_vti;
 pub use fluid_vtk::{write_fluid_vtk, CellData};
-pub use log::{cpu_time_seconds, Banner, Log};
+pub use log::{cpu_time_seconds, peak_resident_bytes, Banner, Log};
 pub use monitor::{format_value, Monitor};
 pub use output_error::OutputError;
 pub use particle_vtu::{write_particles_vtu, ParticleFields, PointData};

@@ -110,6 +110,7 @@ def run_fsim(binary, n, threads, steps, scratch, scheme):
     case = os.path.join(scratch, f"fsim_{n}_{threads}")
     shutil.rmtree(case, ignore_errors=True)
     end = cases.taylor_green(case, n, steps, DT, nu=NU, scheme=scheme)
+    plan = dry_run_plan(binary, case, threads)
     log = os.path.join(case, "log.fsimFoam")
     wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch, log=log)
     reported = re.findall(r"Peak memory = ([0-9.]+) MB", open(log).read())
@@ -178,6 +179,7 @@ def run_direct(binary, scratch, threads, end, cells_per_radius=2.5, particles=50
     else:
         direct_cases.benchmark(case, end_time=end, cells_per_radius=cells_per_radius,
                                particles=particles)
+    plan = dry_run_plan(binary, case, threads)
     log = os.path.join(case, "log.fsimFoam")
     wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch, log=log)
     reported = re.findall(r"Peak memory = ([0-9.]+) MB", open(log).read())
@@ -194,7 +196,20 @@ def run_direct(binary, scratch, threads, end, cells_per_radius=2.5, particles=50
     cells = int(np.prod([round(c * cells_per_radius) for c in (24, 72, 24)]))
     return dict(solver=f"direct r/h={cells_per_radius:g} n_p={particles}", threads=threads,
                 steps=len(data), loop=loop, wall=wall, rss=rss, cells=cells, end=end,
-                full_step=full_step, **phases)
+                full_step=full_step, plan=plan, **phases)
+
+
+def dry_run_plan(binary, case, threads):
+    """What `fsimFoam -dry-run` plans for the case (it times a few steps in memory): steps,
+    seconds of run time and the peak memory after its timed steps, to print beside what the
+    run then measures."""
+    out = subprocess.run([binary, "-case", case, "-threads", str(threads), "-dry-run"],
+                         capture_output=True, text=True)
+    number = lambda pattern: (  # noqa: E731
+        float(m.group(1)) if (m := re.search(pattern, out.stdout)) else float("nan"))
+    return dict(steps=number(r"Steps\s*: about ([0-9.e+]+)"),
+                seconds=number(r"Run time: about ([0-9.e+]+) s"),
+                peak_mb=number(r"peak after the timed steps ([0-9.]+) MB"))
 
 
 def direct_suite(binary, scratch, a):
@@ -215,6 +230,10 @@ def direct_suite(binary, scratch, a):
         print(f"{r['solver']:28} {r['threads']:>3} {r['end']:>8.1e} {r['steps']:>6} {r['cells']:>9} "
               f"{rate / 1e6:>13.2f} {r['loop']:>8.2f} {r['wall']:>8.2f} {r['rss'] / 1e6:>8.1f} "
               f"{share['fluid']:>5.1f}% {share['coupling']:>5.1f}% {share['particle']:>5.1f}%")
+        p = r["plan"]
+        print(f"{'':28} -dry-run planned {p['steps']:.0f} steps, about {p['seconds']:.0f} s "
+              f"({p['seconds'] / max(r['loop'], 1e-9):.2f} of the time loop), "
+              f"{p['peak_mb']:.1f} MB after its timed steps")
         if r["end"] == a.direct_end and a.direct_end < 0.1 and "r/h=2.5 n_p=500" in r["solver"]:
             per_step = r["loop"] / r["steps"]
             steps = a.direct_steps or 0.1 / r["full_step"]

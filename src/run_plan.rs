@@ -1,0 +1,232 @@
+//! `-dry-run`: what a run would do and what it would cost, without writing anything.
+//!
+//! The cost is measured, not modelled: the plan takes a few steps in memory exactly as the
+//! run would ([`take_step`]) and times them, because a rate per cell misses the coupling,
+//! the cloud and the machine (the fluid-only rate this replaced planned 18 s for the
+//! benchmark's 0.1 s, which took 317 s).
+
+use crate::case::Case;
+use crate::coupling::drag::terminal_velocity;
+use crate::error::FsimError;
+use crate::run::take_step;
+use crate::simulation::{PhaseTimes, Simulation};
+use std::time::Instant;
+
+/// How many steps `-dry-run` takes in memory to time the run, and the wall time (s) after
+/// which it takes no more (the first is always taken).
+const TIMED_STEPS: usize = 8;
+const TIMING_BUDGET: f64 = 10.0;
+
+/// The fluid speed a settling suspension reaches, in terminal velocities of its spheres,
+/// for the plan's Courant step. Measured (the largest speed from the monitor, `CoMax h/Δt`):
+/// 2.26 on average over the benchmark's 0.1 s (gas–solid: the gas streams up past nearly
+/// still spheres), 1.3 for eight random spheres of its kind (`tests/dry_run_plan.rs`),
+/// 0.5–0.8 in `tutorials/sedimentation` (a liquid, where the viscous bound sets the step
+/// anyway). 2 plans the benchmark within an eighth and errs long for calmer suspensions,
+/// which is the side a batch's time limits want.
+const SETTLING_SPEED: f64 = 2.0;
+
+/// Prints the plan of `case` (module docs), taking its first steps in `sim`.
+pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(), FsimError> {
+    let grid = sim.grid().clone();
+    let cells = grid.cell_count();
+    println!("Case    : {}", case.dir.display());
+    println!("Plan    : {}", case.summary());
+    match &sim.drag {
+        Some(d) => println!(
+            "Scheme  : volume-averaged, {}, PCG pressure ({})",
+            d.fluid.predictor_name(),
+            d.describe()
+        ),
+        None => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),
+    }
+    if !sim.time.running() {
+        println!(
+            "Steps   : none: the run already reached endTime {} s (at t = {} s)",
+            case.control.end_time, sim.time.time
+        );
+        return Ok(());
+    }
+    let start = sim.time.time;
+    let span = case.control.end_time - start;
+    // Timed first: an adaptive step has grown from deltaT by then (up to 1.2 times a step,
+    // as OpenFOAM's), and that step plans the run better than deltaT.
+    let timed = time_steps(sim)?;
+    let present = if sim.time.running() {
+        sim.next_time_step().unwrap_or(sim.dt)
+    } else {
+        sim.dt
+    }
+    .max(f64::MIN_POSITIVE);
+    let bound = sim.stability_bound();
+    let settling = settling_step(case, sim).filter(|s| s.dt < present);
+    let dt = settling.as_ref().map_or(present, |s| s.dt);
+    let steps = (span / dt).ceil().max(0.0);
+    let why = match &settling {
+        Some(s) => format!(
+            ": the Courant step at maxCo {} once the fluid moves at {SETTLING_SPEED} times the \
+             spheres' terminal velocity ({:.3e} m/s, Schiller–Naumann); {present:.3e} s after the timed \
+             steps, stability bound {bound:.3e} s",
+            case.control.max_co, s.terminal_velocity
+        ),
+        None => format!(
+            " (stability bound {bound:.3e} s{})",
+            if case.control.adjust_time_step {
+                ", adjusted by maxCo as the flow develops"
+            } else {
+                ""
+            }
+        ),
+    };
+    println!(
+        "Steps   : about {steps} of {dt:.3e} s from t = {start} to {} s{why}",
+        case.control.end_time
+    );
+    let writes = match case.control.write_control {
+        crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
+        _ => span / case.control.write_interval,
+    }
+    .floor();
+    println!(
+        "Writes  : about {writes} time directories (+ the start and the end), each about {:.1} MB",
+        cells as f64 * 2.0 * 4.0 * 8.0 / 1e6
+    );
+    if let Some(p) = &sim.particles {
+        let n = p.dem.particles().len();
+        let bytes = p.dem.memory_bytes() as f64;
+        println!(
+            "Cloud   : {n} particles; pairModel {}, wallModel {}; {} collision sub-steps per \
+             step now; memory about {:.1} MB ({:.0} bytes per particle)",
+            p.pair_model,
+            p.wall_model,
+            p.dem.substep_count(dt),
+            bytes / 1e6,
+            bytes / n.max(1) as f64
+        );
+    }
+    let count = timed.seconds.len();
+    let step = timed.representative();
+    let total: f64 = timed.seconds.iter().sum();
+    let share = |part: f64| 100.0 * part / total.max(f64::MIN_POSITIVE);
+    println!(
+        "Timed   : {count} step(s) taken in memory, nothing written: {:.1} ms a step{}; \
+         fluid {:.0} %, coupling {:.0} %, particles {:.0} %",
+        step * 1e3,
+        if count > 1 {
+            format!(
+                " (median after the first, which took {:.1} ms)",
+                timed.seconds[0] * 1e3
+            )
+        } else {
+            String::new()
+        },
+        share(timed.phases.fluid),
+        share(timed.phases.coupling),
+        share(timed.phases.particles)
+    );
+    let seconds = steps * step;
+    println!(
+        "Run time: about {} s on {threads} thread(s) ({steps} steps of {:.1} ms; steps \
+         from rest can cost more or less than the developed flow's)",
+        if seconds < 10.0 {
+            format!("{seconds:.1}")
+        } else {
+            format!("{seconds:.0}")
+        },
+        step * 1e3
+    );
+    let fluid = sim.fluid.bytes_per_cell() * cells as f64;
+    match crate::output::peak_resident_bytes() {
+        Some(peak) => println!(
+            "Memory  : about {:.1} MB for the fluid; the process's peak after the timed steps \
+             {:.1} MB (the run's writes add some: the benchmark planned 90.5 MB and its \
+             0.1 s peaked at 100.5)",
+            fluid / 1e6,
+            peak as f64 / 1e6
+        ),
+        None => println!("Memory  : about {:.1} MB for the fluid", fluid / 1e6),
+    }
+    Ok(())
+}
+
+/// The plan's step for a settling suspension ([`SETTLING_SPEED`]).
+struct SettlingStep {
+    dt: f64,
+    terminal_velocity: f64,
+}
+
+/// With `model direct`, free spheres, gravity and `adjustTimeStep`: the Courant step once
+/// the fluid moves at [`SETTLING_SPEED`] times the fastest sphere's terminal velocity
+/// (within `maxDeltaT`). The flow starts at rest, so the present step says nothing of it.
+fn settling_step(case: &Case, sim: &Simulation) -> Option<SettlingStep> {
+    let g = case.gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !case.control.adjust_time_step || sim.direct.is_none() || g == 0.0 {
+        return None;
+    }
+    let p = sim.particles.as_ref()?.dem.particles();
+    let (rho, mu) = (sim.rho, sim.rho * case.transport.nu);
+    let terminal = (0..p.diameter.len())
+        .filter(|&i| !p.fixed[i])
+        .map(|i| terminal_velocity(p.diameter[i], p.density[i], rho, mu, g))
+        .fold(0.0, f64::max);
+    if terminal <= 0.0 {
+        return None;
+    }
+    let h = sim.grid().h.iter().cloned().fold(f64::INFINITY, f64::min);
+    let courant = case.control.max_co * h / (SETTLING_SPEED * terminal);
+    Some(SettlingStep {
+        dt: courant.min(case.control.max_delta_t),
+        terminal_velocity: terminal,
+    })
+}
+
+/// The wall time of the steps `-dry-run` takes, and of their phases summed.
+struct TimedSteps {
+    seconds: Vec<f64>,
+    phases: PhaseTimes,
+}
+
+impl TimedSteps {
+    /// The median after the first step, which holds start-up work (the first build of the
+    /// forced faces, the first neighbour lists); the first when it is the only one.
+    fn representative(&self) -> f64 {
+        let mut later: Vec<f64> = self.seconds.iter().skip(1).cloned().collect();
+        if later.is_empty() {
+            return self.seconds.first().cloned().unwrap_or(0.0);
+        }
+        later.sort_by(f64::total_cmp);
+        let mid = later.len() / 2;
+        if later.len() % 2 == 1 {
+            later[mid]
+        } else {
+            0.5 * (later[mid - 1] + later[mid])
+        }
+    }
+}
+
+/// Takes up to [`TIMED_STEPS`] steps (within [`TIMING_BUDGET`] s, and not past `endTime`),
+/// as the run would. A step that fails fails the dry run as it would fail the run.
+fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
+    let mut timed = TimedSteps {
+        seconds: Vec::with_capacity(TIMED_STEPS),
+        phases: PhaseTimes::default(),
+    };
+    let clock = Instant::now();
+    while sim.time.running()
+        && timed.seconds.len() < TIMED_STEPS
+        && (timed.seconds.is_empty() || clock.elapsed().as_secs_f64() < TIMING_BUDGET)
+    {
+        let step = Instant::now();
+        take_step(sim).map_err(|e| {
+            FsimError::run(format!(
+                "dry run: step {} of the timed steps: {e}",
+                sim.time.step + 1
+            ))
+        })?;
+        timed.seconds.push(step.elapsed().as_secs_f64());
+        timed.phases.fluid += sim.phase_times.fluid;
+        timed.phases.coupling += sim.phase_times.coupling;
+        timed.phases.particles += sim.phase_times.particles;
+    }
+    Ok(timed)
+}
