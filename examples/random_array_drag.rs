@@ -1,7 +1,7 @@
 //! Steady Stokes flow through a random array of fixed spheres in a periodic cube: the mean
 //! drag per sphere against Koch & Hill's fit to lattice-Boltzmann data for random arrays,
 //! as CSV on stdout. A diagnostic of how the direct model resolves the gaps of a random
-//! configuration (the Richardson–Zaki sweeps of the README).
+//! configuration (the Richardson–Zaki sweeps, docs/richardson_zaki.md).
 //!
 //! `cargo run --release --example random_array_drag -- [phi,...] [r/h,...] [N] [seed]`
 //! (defaults: φ = 0.1, 0.2, 0.3; r/h = 3, 4.5, 6; 27 spheres; seed 1).

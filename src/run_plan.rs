@@ -12,10 +12,11 @@ use crate::run::take_step;
 use crate::simulation::{PhaseTimes, Simulation};
 use std::time::Instant;
 
-/// How many steps `-dry-run` takes in memory to time the run, and the wall time (s) after
-/// which it takes no more (the first is always taken).
+/// How many steps `-dry-run` takes in memory to time the run.
 const TIMED_STEPS: usize = 8;
-const TIMING_BUDGET: f64 = 10.0;
+
+/// The wall time after which `-dry-run` takes no more steps (the first is always taken).
+const TIMING_BUDGET_SECONDS: f64 = 10.0;
 
 /// The fluid speed a settling suspension reaches, in terminal velocities of its spheres,
 /// for the plan's Courant step. Measured (the largest speed from the monitor, `CoMax h/Δt`):
@@ -28,8 +29,7 @@ const SETTLING_SPEED: f64 = 2.0;
 
 /// Prints the plan of `case` (module docs), taking its first steps in `sim`.
 pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(), FsimError> {
-    let grid = sim.grid().clone();
-    let cells = grid.cell_count();
+    let cells = sim.grid().cell_count();
     println!("Case    : {}", case.dir.display());
     println!("Plan    : {}", case.summary());
     match &sim.drag {
@@ -48,35 +48,39 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         return Ok(());
     }
     let start = sim.time.time;
-    let span = case.control.end_time - start;
-    // Timed first: an adaptive step has grown from deltaT by then (up to 1.2 times a step,
-    // as OpenFOAM's), and that step plans the run better than deltaT.
     let timed = time_steps(sim)?;
-    let present = if sim.time.running() {
-        sim.next_time_step().unwrap_or(sim.dt)
+    let count = timed.seconds.len();
+    let (steps, dt, why) = if !sim.time.running() {
+        let dt = (case.control.end_time - start) / count as f64;
+        (count as f64, dt, ", all of them timed below".to_string())
     } else {
-        sim.dt
-    }
-    .max(f64::MIN_POSITIVE);
-    let bound = sim.stability_bound();
-    let settling = settling_step(case, sim).filter(|s| s.dt < present);
-    let dt = settling.as_ref().map_or(present, |s| s.dt);
-    let steps = (span / dt).ceil().max(0.0);
-    let why = match &settling {
-        Some(s) => format!(
-            ": the Courant step at maxCo {} once the fluid moves at {SETTLING_SPEED} times the \
-             spheres' terminal velocity ({:.3e} m/s, Schiller–Naumann); {present:.3e} s after the timed \
-             steps, stability bound {bound:.3e} s",
-            case.control.max_co, s.terminal_velocity
-        ),
-        None => format!(
-            " (stability bound {bound:.3e} s{})",
-            if case.control.adjust_time_step {
-                ", adjusted by maxCo as the flow develops"
-            } else {
-                ""
-            }
-        ),
+        // The run's next step fails here as it would in the run (a fixed step beyond the
+        // bound, a collapsing Courant step).
+        sim.next_time_step()
+            .map_err(|e| FsimError::run(format!("dry run: after the timed steps: {e}")))?;
+        // The step the flow allows, not the next one: that one still grows by at most 1.2
+        // times a step from deltaT, or lands on a write time.
+        let allowed = sim.allowed_time_step().max(f64::MIN_POSITIVE);
+        let bound = sim.stability_bound();
+        let settling = settling_step(case, sim).filter(|s| s.dt < allowed);
+        let dt = settling.as_ref().map_or(allowed, |s| s.dt);
+        let left = ((case.control.end_time - sim.time.time) / dt)
+            .ceil()
+            .max(0.0);
+        let why = match &settling {
+            Some(s) => format!(
+                ": the Courant step at maxCo {} once the fluid moves at {SETTLING_SPEED} times \
+                 the spheres' terminal velocity ({:.3e} m/s, Schiller–Naumann); the flow \
+                 allows {allowed:.3e} s after the timed steps, stability bound {bound:.3e} s",
+                case.control.max_co, s.terminal_velocity
+            ),
+            None if case.control.adjust_time_step => format!(
+                ", the step the flow allows after the timed steps (stability bound \
+                 {bound:.3e} s, adjusted by maxCo as the flow develops)"
+            ),
+            None => format!(" (deltaT; stability bound {bound:.3e} s)"),
+        };
+        (count as f64 + left, dt, why)
     };
     println!(
         "Steps   : about {steps} of {dt:.3e} s from t = {start} to {} s{why}",
@@ -84,7 +88,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     );
     let writes = match case.control.write_control {
         crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
-        _ => span / case.control.write_interval,
+        _ => (case.control.end_time - start) / case.control.write_interval,
     }
     .floor();
     println!(
@@ -104,7 +108,6 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
             bytes / n.max(1) as f64
         );
     }
-    let count = timed.seconds.len();
     let step = timed.representative();
     let total: f64 = timed.seconds.iter().sum();
     let share = |part: f64| 100.0 * part / total.max(f64::MIN_POSITIVE);
@@ -139,8 +142,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     match crate::output::peak_resident_bytes() {
         Some(peak) => println!(
             "Memory  : about {:.1} MB for the fluid; the process's peak after the timed steps \
-             {:.1} MB (the run's writes add some: the benchmark planned 90.5 MB and its \
-             0.1 s peaked at 100.5)",
+             {:.1} MB (the run's writes add some)",
             fluid / 1e6,
             peak as f64 / 1e6
         ),
@@ -204,7 +206,7 @@ impl TimedSteps {
     }
 }
 
-/// Takes up to [`TIMED_STEPS`] steps (within [`TIMING_BUDGET`] s, and not past `endTime`),
+/// Takes up to [`TIMED_STEPS`] steps (within [`TIMING_BUDGET_SECONDS`] s, and not past `endTime`),
 /// as the run would. A step that fails fails the dry run as it would fail the run.
 fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
     let mut timed = TimedSteps {
@@ -214,15 +216,11 @@ fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
     let clock = Instant::now();
     while sim.time.running()
         && timed.seconds.len() < TIMED_STEPS
-        && (timed.seconds.is_empty() || clock.elapsed().as_secs_f64() < TIMING_BUDGET)
+        && (timed.seconds.is_empty() || clock.elapsed().as_secs_f64() < TIMING_BUDGET_SECONDS)
     {
         let step = Instant::now();
-        take_step(sim).map_err(|e| {
-            FsimError::run(format!(
-                "dry run: step {} of the timed steps: {e}",
-                sim.time.step + 1
-            ))
-        })?;
+        let k = timed.seconds.len() + 1;
+        take_step(sim).map_err(|e| FsimError::run(format!("dry run: timed step {k}: {e}")))?;
         timed.seconds.push(step.elapsed().as_secs_f64());
         timed.phases.fluid += sim.phase_times.fluid;
         timed.phases.coupling += sim.phase_times.coupling;

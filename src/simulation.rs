@@ -433,6 +433,25 @@ impl Simulation {
         Ok(self.time.step_size(allowed))
     }
 
+    /// The step the flow allows now, without the adaptive rule's growth limit (1.2 times the
+    /// last step) and without landing on write times or `endTime`: the step a plan of the
+    /// whole run goes by (`-dry-run`), where [`Self::next_time_step`] is the one to take next.
+    pub fn allowed_time_step(&mut self) -> f64 {
+        match self.sizing {
+            StepSizing::Fixed(dt) => dt,
+            StepSizing::Adaptive {
+                max_co,
+                max_delta_t,
+            } => match self.drag {
+                Some(_) => self
+                    .fluid
+                    .courant_dt(max_delta_t, max_co, max_delta_t)
+                    .min(self.stability_bound()),
+                None => self.fluid.adaptive_dt(max_delta_t, max_co, max_delta_t),
+            },
+        }
+    }
+
     /// The error of a Courant step that has collapsed: the velocity grows without bound, and
     /// without this the run would crawl on for thousands of vanishing steps until it is no
     /// longer finite.

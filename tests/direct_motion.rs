@@ -344,9 +344,10 @@ fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64,
 /// 0.32 of the Stokes velocity at φ = 0.05 with N = 8), and so does a coarse grid with gaps
 /// of a few cells. Measured: n = 7.8, V_0 = 0.77 V_Stokes (v_m/V_Stokes 0.502, 0.209,
 /// 0.034): these small cells behave nearly as lattices. The band asserted, 4 ≤ n ≤ 9, is a
-/// regression band about that coarse figure, not the converged 4.6–5.1, which the sweeps in
-/// the README do not reach yet (random packings: n = 6.85 ± 0.28 with the finite-size
-/// extrapolation and gap-resolved grids; developed microstructure: 5.8 ± 0.7).
+/// regression band about that coarse figure, not the converged 4.6–5.1, which the sweeps
+/// (docs/richardson_zaki.md) do not reach (random packings: n = 6.85 ± 0.28 with the
+/// finite-size extrapolation and gap-resolved grids; developed microstructure and
+/// gap-resolved dense points: 5.99 ± 0.19).
 #[test]
 fn sedimentation_follows_richardson_zaki_coarsely() {
     let (h, d, rho_p, rho_f) = (1e-4, 6e-4, 2000.0, 1000.0);

@@ -110,7 +110,6 @@ def run_fsim(binary, n, threads, steps, scratch, scheme):
     case = os.path.join(scratch, f"fsim_{n}_{threads}")
     shutil.rmtree(case, ignore_errors=True)
     end = cases.taylor_green(case, n, steps, DT, nu=NU, scheme=scheme)
-    plan = dry_run_plan(binary, case, threads)
     log = os.path.join(case, "log.fsimFoam")
     wall, rss = run_measured([binary, "-case", case, "-threads", str(threads)], scratch, log=log)
     reported = re.findall(r"Peak memory = ([0-9.]+) MB", open(log).read())
@@ -205,6 +204,9 @@ def dry_run_plan(binary, case, threads):
     run then measures."""
     out = subprocess.run([binary, "-case", case, "-threads", str(threads), "-dry-run"],
                          capture_output=True, text=True)
+    if out.returncode != 0:
+        print(f"-dry-run of {case} failed ({out.returncode}): {out.stderr.strip()}",
+              file=sys.stderr)
     number = lambda pattern: (  # noqa: E731
         float(m.group(1)) if (m := re.search(pattern, out.stdout)) else float("nan"))
     return dict(steps=number(r"Steps\s*: about ([0-9.e+]+)"),

@@ -73,7 +73,7 @@ def test_free_suspension_settles_as_the_rpy_mobility_of_the_same_spheres(fsim, t
     # Rotne-Prager-Yamakawa mobility of the same configuration (tools/periodic_rpy.py), an
     # independent far-field solution. Measured: -3.6 %. Of that, -2.5 % is the coarse grid and
     # the Reynolds number: one sphere in the same box settles 2.5 % below Hasimoto's value at
-    # r/h = 3 and Re = 0.1 (README); the rest is what RPY leaves out (near-field
+    # r/h = 3 and Re = 0.1 (docs/richardson_zaki.md); the rest is what RPY leaves out (near-field
     # hydrodynamics, O(1 %) at this phi). A solver that moved the spheres as one body would
     # give the fixed array's 1/F instead, 10 % lower here.
     r = sedimentation_sweep.run_one(str(fsim), str(tmp_path), 0.1, 27, 3.0, 0.15, 0.15, 2, 1)
