@@ -104,14 +104,7 @@ fn narrow_gaps_warn_at_dry_run() {
     let s = Scratch::new("direct-gap");
     let case = broken(&s, "sedimentation", |c| {
         // two spheres (d = 1.5 mm, h = 0.25 mm) 0.1 mm = 0.4 h apart
-        let file = c.join("constant/kinematicCloudPositions");
-        let text = fs::read_to_string(&file).unwrap();
-        let head = &text[..text.find("\n(").unwrap()];
-        fs::write(
-            &file,
-            format!("{head}\n(\n(0.005 0.01 0.005)\n(0.0066 0.01 0.005)\n)\n"),
-        )
-        .unwrap();
+        set_positions(c, &[[0.005, 0.01, 0.005], [0.0066, 0.01, 0.005]]);
     });
     assert_dry_run_warns(&case, &["narrower than 2 cells", "0.40 h"]);
 }

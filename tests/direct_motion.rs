@@ -236,13 +236,7 @@ fn settling_suspension_keeps_zero_momentum() {
         .replace("0.008", "0.004")
         .replace("0.016", "0.004");
     fs::write(&block, text).unwrap();
-    let positions = case.join("constant/kinematicCloudPositions");
-    let head = {
-        let t = fs::read_to_string(&positions).unwrap();
-        t[..t.find("\n(").unwrap()].to_string()
-    };
-    let mut list = String::new();
-    for (k, x) in [
+    let centres = [
         [1.0, 1.0, 1.0],
         [3.0, 1.1, 1.0],
         [1.0, 3.0, 1.2],
@@ -252,13 +246,8 @@ fn settling_suspension_keeps_zero_momentum() {
         [1.2, 3.1, 3.0],
         [3.0, 2.9, 3.0],
     ]
-    .iter()
-    .enumerate()
-    {
-        let _ = k;
-        list += &format!("({} {} {})\n", x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3);
-    }
-    fs::write(&positions, format!("{head}\n(\n{list})\n")).unwrap();
+    .map(|x: [f64; 3]| x.map(|v| v * 1e-3));
+    set_positions(&case, &centres);
     set_entry(&case.join("system/controlDict"), "endTime", "0.015");
     set_entry(&case.join("system/controlDict"), "writeInterval", "0.015");
     let out = fsim(&case, &[]);
@@ -301,16 +290,7 @@ fn suspension_case(case: &Path, n: usize, h: f64, d: f64, count: usize, nu: f64,
         .replace("0.016", &format!("{l}"));
     fs::write(&block, text).unwrap();
     let centres = random_centres(count, l, d + 0.5 * h, 17);
-    let positions = case.join("constant/kinematicCloudPositions");
-    let head = {
-        let t = fs::read_to_string(&positions).unwrap();
-        t[..t.find("\n(").unwrap()].to_string()
-    };
-    let list: String = centres
-        .iter()
-        .map(|x| format!("({} {} {})\n", x[0], x[1], x[2]))
-        .collect();
-    fs::write(&positions, format!("{head}\n(\n{list})\n")).unwrap();
+    set_positions(case, &centres);
     let cloud = case.join("constant/kinematicCloudProperties");
     let text = fs::read_to_string(&cloud).unwrap();
     fs::write(

@@ -5,7 +5,7 @@ mod support;
 
 use std::fs;
 use std::path::Path;
-use support::{copy_tutorial, fsim, listing, set_entry, Scratch};
+use support::{copy_tutorial, fsim, listing, set_entry, set_positions, Scratch};
 
 /// The step count of the plan's `Steps   : about N of ...` line.
 fn planned_steps(plan: &str) -> f64 {
@@ -95,9 +95,6 @@ fn dry_run_plans_a_settling_gas_suspension_on_the_long_side() {
         text = text.replace(from, to);
     }
     fs::write(&block, text).unwrap();
-    let positions = case.join("constant/kinematicCloudPositions");
-    let text = fs::read_to_string(&positions).unwrap();
-    let head = &text[..text.find("\n(\n").unwrap()];
     // random, at least 1.1 d apart across the periodic box (seeded once, written out)
     let centres = [
         [2.49161e-4, 2.96715e-4, 3.18077e-4],
@@ -109,11 +106,7 @@ fn dry_run_plans_a_settling_gas_suspension_on_the_long_side() {
         [6.38417e-5, 3.18859e-4, 5.5507e-5],
         [3.48562e-4, 8.37826e-5, 8.61925e-5],
     ];
-    let list: String = centres
-        .iter()
-        .map(|c| format!("({:e} {:e} {:e})\n", c[0], c[1], c[2]))
-        .collect();
-    fs::write(&positions, format!("{head}\n(\n{list})\n")).unwrap();
+    set_positions(&case, &centres);
     let control = case.join("system/controlDict");
     set_entry(&control, "endTime", "0.008");
     set_entry(&control, "writeInterval", "0.008");

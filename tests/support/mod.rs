@@ -69,6 +69,19 @@ pub fn copy_tutorial(name: &str, dir: &Path, as_name: &str) -> PathBuf {
     case
 }
 
+/// Replaces the particle list of `constant/kinematicCloudPositions` in `case` with
+/// `centres` (m), keeping the file's header.
+pub fn set_positions(case: &Path, centres: &[[f64; 3]]) {
+    let file = case.join("constant/kinematicCloudPositions");
+    let text = fs::read_to_string(&file).unwrap();
+    let head = &text[..text.find("\n(").unwrap()];
+    let list: String = centres
+        .iter()
+        .map(|x| format!("({} {} {})\n", x[0], x[1], x[2]))
+        .collect();
+    fs::write(&file, format!("{head}\n(\n{list})\n")).unwrap();
+}
+
 /// Sets `keyword value;` in a dictionary file, replacing the entry or appending it.
 pub fn set_entry(file: &Path, keyword: &str, value: &str) {
     let text = fs::read_to_string(file).unwrap();
