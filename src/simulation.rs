@@ -415,15 +415,7 @@ impl Simulation {
                 } else {
                     self.dt
                 };
-                let allowed = match self.drag {
-                    // the drag law steps the fluid with its own predictor and bound
-                    Some(_) => self
-                        .fluid
-                        .courant_dt(previous, max_co, max_delta_t)
-                        .min(self.stability_bound()),
-                    // adaptive_dt holds the fluid's own bound already (3 passes over the field)
-                    None => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
-                };
+                let allowed = self.adaptive_step(previous, max_co, max_delta_t);
                 if allowed < COLLAPSED_STEP * self.largest_dt {
                     return Err(self.collapsed_step(allowed));
                 }
@@ -442,13 +434,22 @@ impl Simulation {
             StepSizing::Adaptive {
                 max_co,
                 max_delta_t,
-            } => match self.drag {
-                Some(_) => self
-                    .fluid
-                    .courant_dt(max_delta_t, max_co, max_delta_t)
-                    .min(self.stability_bound()),
-                None => self.fluid.adaptive_dt(max_delta_t, max_co, max_delta_t),
-            },
+                // after a step of maxDeltaT, the growth limit lies beyond maxDeltaT itself
+            } => self.adaptive_step(max_delta_t, max_co, max_delta_t),
+        }
+    }
+
+    /// The `maxCo` rule's step after a step of `previous` (at most 1.2 times it), within
+    /// `max_delta_t` and the scheme's stability bound.
+    fn adaptive_step(&mut self, previous: f64, max_co: f64, max_delta_t: f64) -> f64 {
+        match self.drag {
+            // the drag law steps the fluid with its own predictor and bound
+            Some(_) => self
+                .fluid
+                .courant_dt(previous, max_co, max_delta_t)
+                .min(self.stability_bound()),
+            // adaptive_dt holds the fluid's own bound already (3 passes over the field)
+            None => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
         }
     }
 
