@@ -431,10 +431,10 @@ impl Simulation {
     pub fn allowed_time_step(&mut self) -> f64 {
         match self.sizing {
             StepSizing::Fixed(dt) => dt,
+            // after a step of maxDeltaT, the growth limit lies beyond maxDeltaT itself
             StepSizing::Adaptive {
                 max_co,
                 max_delta_t,
-                // after a step of maxDeltaT, the growth limit lies beyond maxDeltaT itself
             } => self.adaptive_step(max_delta_t, max_co, max_delta_t),
         }
     }
