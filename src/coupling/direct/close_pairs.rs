@@ -37,8 +37,8 @@ impl ClosePairs {
         self.visit_spheres(&p.position, &p.diameter, domain, gap_limit, visit);
     }
 
-    /// [`Self::visit`] for spheres given by their centres and diameters (in the box, as
-    /// the particle model keeps them).
+    /// [`Self::visit`] for spheres given by their centres and diameters (inside the box
+    /// along its walled axes; along a periodic one any image will do).
     pub fn visit_spheres(
         &mut self,
         position: &[Vec3],
@@ -85,9 +85,14 @@ impl ClosePairs {
         self.head.resize(cells[0] * cells[1] * cells[2], NONE);
         self.next.clear();
         self.next.resize(n, NONE);
+        // A centre outside the box along a periodic axis (not yet wrapped) goes to the cell
+        // of its image; the gaps come from the centres as given, by the nearest image.
         let cell_of = |x: Vec3| -> [usize; 3] {
             std::array::from_fn(|a| {
-                let s = (x[a] - domain.lo[a]) / length[a];
+                let mut s = (x[a] - domain.lo[a]) / length[a];
+                if domain.periodic[a] {
+                    s -= s.floor();
+                }
                 ((s * cells[a] as f64).floor().max(0.0) as usize).min(cells[a] - 1)
             })
         };
@@ -194,6 +199,42 @@ mod tests {
                 assert_eq!((f.0, f.1), (s.0, s.1));
                 assert!((f.2 - s.2).abs() < 1e-15);
             }
+        }
+    }
+
+    /// Centres a box length or two outside a periodic box (as a caller that does not wrap
+    /// them hands them) give the same pairs and gaps as the wrapped ones.
+    #[test]
+    fn unwrapped_centres_find_the_same_pairs() {
+        let mut rng = SplitMix64::new(29);
+        let n = 300;
+        let diameter: Vec<f64> = (0..n).map(|_| 0.02 + 0.03 * rng.next_f64()).collect();
+        let wrapped: Vec<Vec3> = (0..n)
+            .map(|_| std::array::from_fn(|_| rng.next_f64()))
+            .collect();
+        let shifted: Vec<Vec3> = wrapped
+            .iter()
+            .map(|x| x.map(|v| v + (rng.next_f64() * 5.0).floor() - 2.0))
+            .collect();
+        let domain = PeriodicBox {
+            lo: [0.0; 3],
+            hi: [1.0; 3],
+            periodic: [true; 3],
+        };
+        let pairs = |x: &[Vec3]| {
+            let mut found = Vec::new();
+            ClosePairs::default().visit_spheres(x, &diameter, &domain, 0.02, |i, j, _, _, g| {
+                found.push((i, j, g))
+            });
+            found.sort_by_key(|a| (a.0, a.1));
+            found
+        };
+        let (a, b) = (pairs(&wrapped), pairs(&shifted));
+        assert!(a.len() > 20, "only {} pairs", a.len());
+        assert_eq!(a.len(), b.len());
+        for (p, q) in a.iter().zip(&b) {
+            assert_eq!((p.0, p.1), (q.0, q.1));
+            assert!((p.2 - q.2).abs() < 1e-12, "gap {} against {}", p.2, q.2);
         }
     }
 }
