@@ -50,6 +50,8 @@ pub struct Lubrication {
     /// Saturation gap over the pair's effective radius (`ζ_min / R_eff`).
     pub min_gap_ratio: f64,
     pairs: ClosePairs,
+    /// Scratch of [`Self::add_forces`]: each particle's inverse mass (0 when fixed).
+    inv_mass: Vec<f64>,
 }
 
 /// What the correction did in one call.
@@ -90,6 +92,7 @@ impl Lubrication {
             cutoff,
             min_gap_ratio: 1e-3,
             pairs: ClosePairs::default(),
+            inv_mass: Vec::new(),
         }
     }
 
@@ -115,9 +118,10 @@ impl Lubrication {
         if n == 0 || self.cutoff <= 0.0 {
             return report;
         }
-        let inv_mass: Vec<f64> = (0..n)
-            .map(|i| if p.fixed[i] { 0.0 } else { 1.0 / p.mass(i) })
-            .collect();
+        self.inv_mass.clear();
+        self.inv_mass
+            .extend((0..n).map(|i| if p.fixed[i] { 0.0 } else { 1.0 / p.mass(i) }));
+        let inv_mass = &self.inv_mass;
         let cutoff = self.cutoff;
         let (mu, min_ratio) = (self.mu, self.min_gap_ratio);
         self.pairs
