@@ -40,11 +40,15 @@ pub struct DirectCoupling {
     length: [f64; 3],
     periodic: [bool; 3],
     /// Scratch of [`Self::surface_offsets`]: the pair search, the spheres' centres,
-    /// diameters and nearest gaps.
+    /// diameters, nearest gaps and the offsets.
     pairs: ClosePairs,
     centres: Vec<[f64; 3]>,
     diameters: Vec<f64>,
     gaps: Vec<f64>,
+    offsets: Vec<f64>,
+    /// Scratch of [`Self::compute_loads`]: each sphere's load and shell momentum, in the
+    /// order of [`Self::spatial_order`].
+    sphere_results: Vec<(HydrodynamicLoad, ShellMomentum)>,
     /// The spheres and their ids, ordered by id (whatever order the caller hands them in:
     /// the DEM re-sorts its particles, and the forced faces name spheres by index).
     spheres: Vec<RigidSphere>,
@@ -91,6 +95,8 @@ impl DirectCoupling {
             centres: Vec::new(),
             diameters: Vec::new(),
             gaps: Vec::new(),
+            offsets: Vec::new(),
+            sphere_results: Vec::new(),
             spheres: Vec::new(),
             ids: Vec::new(),
             order: Vec::new(),
@@ -354,7 +360,8 @@ impl DirectCoupling {
         let time = fluid.time();
         let integral = self.settings.integral;
         let with_shell = integral.surface_offset > 0.0;
-        let offsets = self.surface_offsets();
+        self.surface_offsets();
+        let offsets = &self.offsets;
         let quadratures = &self.quadratures;
         // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
         // the tricubic ones, 64 samples a field, copying it cost as much as it saved
@@ -372,36 +379,34 @@ impl DirectCoupling {
         let spheres = &self.spheres;
         // In the order of the curve, so that a worker's next sphere mostly neighbours its
         // last one and finds part of its brick's samples still in the cache.
-        let results: Vec<(HydrodynamicLoad, ShellMomentum)> = self
-            .spatial_order
-            .par_iter()
-            .map(|&k| {
-                let (s, offset) = (&spheres[k], offsets[k]);
-                let (q, shell_rules) = &quadratures[&s.radius.to_bits()];
-                let integral = StressIntegral {
-                    surface_offset: offset,
-                    ..integral
-                };
-                let shell = with_shell.then_some(shell_rules);
-                if !use_brick {
-                    return sphere_load(&view, s, rho, body, &integral, q, shell);
-                }
-                // Each worker holds its own brick: the lock is never contended.
-                let worker = rayon::current_thread_index().unwrap_or(0) % bricks.len();
-                let mut brick = bricks[worker].lock().expect("no worker panics holding it");
-                let reach = integral.surface_radius(s.radius, h);
-                brick.gather(&view, s.centre, reach, integral.interpolation);
-                sphere_load(&*brick, s, rho, body, &integral, q, shell)
-            })
-            .collect();
+        let mut results = std::mem::take(&mut self.sphere_results);
+        results.clear();
+        results.par_extend(self.spatial_order.par_iter().map(|&k| {
+            let (s, offset) = (&spheres[k], offsets[k]);
+            let (q, shell_rules) = &quadratures[&s.radius.to_bits()];
+            let integral = StressIntegral {
+                surface_offset: offset,
+                ..integral
+            };
+            let shell = with_shell.then_some(shell_rules);
+            if !use_brick {
+                return sphere_load(&view, s, rho, body, &integral, q, shell);
+            }
+            // Each worker holds its own brick: the lock is never contended.
+            let worker = rayon::current_thread_index().unwrap_or(0) % bricks.len();
+            let mut brick = bricks[worker].lock().expect("no worker panics holding it");
+            let reach = integral.surface_radius(s.radius, h);
+            brick.gather(&view, s.centre, reach, integral.interpolation);
+            sphere_load(&*brick, s, rho, body, &integral, q, shell)
+        }));
         self.loads.clear();
         self.loads
             .resize(self.spheres.len(), HydrodynamicLoad::default());
-        for (&k, (mut load, shell)) in self.spatial_order.iter().zip(results) {
+        for (&k, &(mut load, shell)) in self.spatial_order.iter().zip(&results) {
             let id = self.ids[k];
             if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
-                if span > 0.0 && *offset == offsets[k] {
+                if span > 0.0 && *offset == self.offsets[k] {
                     for i in 0..3 {
                         load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
                         load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
@@ -409,10 +414,12 @@ impl DirectCoupling {
                 }
             }
             if with_shell {
-                self.previous_shell.insert(id, (time, offsets[k], shell));
+                self.previous_shell
+                    .insert(id, (time, self.offsets[k], shell));
             }
             self.loads[self.order[k]] = load;
         }
+        self.sphere_results = results;
         &self.loads
     }
 
@@ -442,11 +449,13 @@ impl DirectCoupling {
     /// so that the surface encloses neither the neighbour nor its forcing layer:
     /// `min(offset, max(1, gap/h − 1))`. Below a gap of two cells the integral sees the
     /// neighbour's forcing (the lubrication range, handled by the particle model).
-    pub fn surface_offsets(&mut self) -> Vec<f64> {
+    pub fn surface_offsets(&mut self) -> &[f64] {
         let h = self.h;
         let nominal = self.settings.integral.surface_offset;
+        self.offsets.clear();
         if nominal == 0.0 {
-            return vec![0.0; self.spheres.len()];
+            self.offsets.resize(self.spheres.len(), 0.0);
+            return &self.offsets;
         }
         let spheres = &self.spheres;
         // The sphere's own periodic image first.
@@ -483,10 +492,12 @@ impl DirectCoupling {
                 gaps[j] = gaps[j].min(dist - rj - ri);
             },
         );
-        self.gaps
-            .iter()
-            .map(|&gap| nominal.min((gap / h - 1.0).max(1.0)))
-            .collect()
+        self.offsets.extend(
+            self.gaps
+                .iter()
+                .map(|&gap| nominal.min((gap / h - 1.0).max(1.0))),
+        );
+        &self.offsets
     }
 
     /// Name of the restart array of [`Self::shell_state`].
@@ -648,7 +659,7 @@ mod tests {
                 nominal.min((gap / h - 1.0).max(1.0))
             })
             .collect();
-        let found = coupling.surface_offsets();
+        let found = coupling.surface_offsets().to_vec();
         assert_eq!(found, expected);
         let reduced = found.iter().filter(|&&o| o < nominal).count();
         assert!(
