@@ -49,6 +49,8 @@ pub struct DirectCoupling {
     /// Scratch of [`Self::compute_loads`]: each sphere's load and shell momentum, in the
     /// order of [`Self::spatial_order`].
     sphere_results: Vec<(HydrodynamicLoad, ShellMomentum)>,
+    /// Scratch of [`Self::set_particles`]: the DEM's particles as spheres.
+    particle_spheres: Vec<RigidSphere>,
     /// The spheres and their ids, ordered by id (whatever order the caller hands them in:
     /// the DEM re-sorts its particles, and the forced faces name spheres by index).
     spheres: Vec<RigidSphere>,
@@ -97,6 +99,7 @@ impl DirectCoupling {
             gaps: Vec::new(),
             offsets: Vec::new(),
             sphere_results: Vec::new(),
+            particle_spheres: Vec::new(),
             spheres: Vec::new(),
             ids: Vec::new(),
             order: Vec::new(),
@@ -292,15 +295,16 @@ impl DirectCoupling {
 
     /// The DEM's particles as spheres (same order), then as [`Self::set_spheres`].
     pub fn set_particles(&mut self, p: &ParticleState) {
-        let spheres: Vec<RigidSphere> = (0..p.len())
-            .map(|i| RigidSphere {
-                centre: p.position[i],
-                radius: 0.5 * p.diameter[i],
-                velocity: p.velocity[i],
-                angular_velocity: p.angular_velocity[i],
-            })
-            .collect();
+        let mut spheres = std::mem::take(&mut self.particle_spheres);
+        spheres.clear();
+        spheres.extend((0..p.len()).map(|i| RigidSphere {
+            centre: p.position[i],
+            radius: 0.5 * p.diameter[i],
+            velocity: p.velocity[i],
+            angular_velocity: p.angular_velocity[i],
+        }));
         self.set_spheres(&spheres, &p.id);
+        self.particle_spheres = spheres;
     }
 
     /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted

@@ -201,7 +201,9 @@ pub struct ParticleMotion {
     fluid_density: f64,
     gravity: Vec3,
     box_volume: f64,
+    /// Scratch of [`Self::set_loads`]: the particles' forces and torques.
     forces: Vec<Vec3>,
+    torques: Vec<Vec3>,
     last_lubrication: LubricationReport,
     virtual_mass: f64,
     /// Velocity and angular velocity of each particle (by id) at the start of the last step,
@@ -266,6 +268,7 @@ impl ParticleMotion {
             gravity,
             box_volume,
             forces: Vec::new(),
+            torques: Vec::new(),
             last_lubrication: LubricationReport::default(),
             virtual_mass: settings.virtual_mass,
             previous: HashMap::new(),
@@ -324,7 +327,9 @@ impl ParticleMotion {
                 min_gap_ratio: f64::INFINITY,
             },
         };
-        let mut torques = vec![[0.0; 3]; n];
+        let mut torques = std::mem::take(&mut self.torques);
+        torques.clear();
+        torques.resize(n, [0.0; 3]);
         for (i, (f, t)) in loads.take(n).enumerate() {
             for a in 0..3 {
                 self.forces[i][a] += f[a];
@@ -337,6 +342,7 @@ impl ParticleMotion {
         let (f_ext, t_ext) = dem.external_loads_mut();
         f_ext.copy_from_slice(&self.forces);
         t_ext.copy_from_slice(&torques);
+        self.torques = torques;
         self.last_lubrication
     }
 
