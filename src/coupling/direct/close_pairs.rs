@@ -34,26 +34,33 @@ impl ClosePairs {
         gap_limit: f64,
         visit: impl FnMut(usize, usize, Vec3, f64, f64),
     ) {
-        self.visit_spheres(&p.position, &p.diameter, domain, gap_limit, visit);
+        let (position, diameter) = (&p.position, &p.diameter);
+        self.visit_spheres(
+            p.len(),
+            |i| position[i],
+            |i| diameter[i],
+            domain,
+            gap_limit,
+            visit,
+        );
     }
 
-    /// [`Self::visit`] for spheres given by their centres and diameters (inside the box
+    /// [`Self::visit`] for `n` spheres given by their centres and diameters (inside the box
     /// along its walled axes; along a periodic one any image will do).
     pub fn visit_spheres(
         &mut self,
-        position: &[Vec3],
-        diameter: &[f64],
+        n: usize,
+        position: impl Fn(usize) -> Vec3,
+        diameter: impl Fn(usize) -> f64,
         domain: &PeriodicBox,
         gap_limit: f64,
         mut visit: impl FnMut(usize, usize, Vec3, f64, f64),
     ) {
-        let n = position.len();
-        assert_eq!(diameter.len(), n, "one diameter per centre");
         if n < 2 {
             return;
         }
         let length: Vec3 = std::array::from_fn(|a| domain.hi[a] - domain.lo[a]);
-        let r_max = diameter.iter().cloned().fold(0.0, f64::max) / 2.0;
+        let r_max = (0..n).map(&diameter).fold(0.0, f64::max) / 2.0;
         let reach = 2.0 * r_max + gap_limit.max(0.0);
         // Cells no narrower than the reach, and no more of them per axis than about
         // (2n)^(1/3): a few large spheres in a big box need no fine mesh of empty cells.
@@ -61,14 +68,14 @@ impl ClosePairs {
         let cells: [usize; 3] =
             std::array::from_fn(|a| ((length[a] / reach).floor() as usize).clamp(1, cap));
         let mut pair = |i: usize, j: usize| {
-            let mut d: Vec3 = std::array::from_fn(|a| position[j][a] - position[i][a]);
+            let mut d: Vec3 = std::array::from_fn(|a| position(j)[a] - position(i)[a]);
             for a in 0..3 {
                 if domain.periodic[a] {
                     d[a] -= length[a] * (d[a] / length[a]).round();
                 }
             }
             let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            let gap = dist - 0.5 * (diameter[i] + diameter[j]);
+            let gap = dist - 0.5 * (diameter(i) + diameter(j));
             if gap < gap_limit {
                 visit(i, j, d, dist, gap);
             }
@@ -98,12 +105,12 @@ impl ClosePairs {
         };
         let flat = |c: [usize; 3]| c[0] + cells[0] * (c[1] + cells[1] * c[2]);
         for i in (0..n).rev() {
-            let k = flat(cell_of(position[i]));
+            let k = flat(cell_of(position(i)));
             self.next[i] = self.head[k];
             self.head[k] = i;
         }
         for i in 0..n {
-            let home = cell_of(position[i]);
+            let home = cell_of(position(i));
             for off in NEIGHBOURS {
                 let Some(c) = neighbour(home, off, cells, domain.periodic) else {
                     continue;
@@ -223,9 +230,14 @@ mod tests {
         };
         let pairs = |x: &[Vec3]| {
             let mut found = Vec::new();
-            ClosePairs::default().visit_spheres(x, &diameter, &domain, 0.02, |i, j, _, _, g| {
-                found.push((i, j, g))
-            });
+            ClosePairs::default().visit_spheres(
+                n,
+                |i| x[i],
+                |i| diameter[i],
+                &domain,
+                0.02,
+                |i, j, _, _, g| found.push((i, j, g)),
+            );
             found.sort_by_key(|a| (a.0, a.1));
             found
         };

@@ -39,11 +39,9 @@ pub struct DirectCoupling {
     origin: [f64; 3],
     length: [f64; 3],
     periodic: [bool; 3],
-    /// Scratch of [`Self::surface_offsets`]: the pair search, the spheres' centres,
-    /// diameters, nearest gaps and the offsets.
+    /// Scratch of [`Self::surface_offsets`]: the pair search, the spheres' nearest gaps and
+    /// the offsets.
     pairs: ClosePairs,
-    centres: Vec<[f64; 3]>,
-    diameters: Vec<f64>,
     gaps: Vec<f64>,
     offsets: Vec<f64>,
     /// Scratch of [`Self::compute_loads`]: each sphere's load and shell momentum, in the
@@ -94,8 +92,6 @@ impl DirectCoupling {
             length: grid.length(),
             periodic: periodic_directions(fluid.boundary_conditions()),
             pairs: ClosePairs::default(),
-            centres: Vec::new(),
-            diameters: Vec::new(),
             gaps: Vec::new(),
             offsets: Vec::new(),
             sphere_results: Vec::new(),
@@ -410,7 +406,7 @@ impl DirectCoupling {
             let id = self.ids[k];
             if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
-                if span > 0.0 && *offset == self.offsets[k] {
+                if span > 0.0 && *offset == offsets[k] {
                     for i in 0..3 {
                         load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
                         load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
@@ -418,8 +414,7 @@ impl DirectCoupling {
                 }
             }
             if with_shell {
-                self.previous_shell
-                    .insert(id, (time, self.offsets[k], shell));
+                self.previous_shell.insert(id, (time, offsets[k], shell));
             }
             self.loads[self.order[k]] = load;
         }
@@ -474,11 +469,6 @@ impl DirectCoupling {
         // matter, found with linked cells (all pairs cost 2 % of the benchmark's step at
         // 500 spheres, and grow as their square).
         let reach = (nominal + 1.0) * h;
-        self.centres.clear();
-        self.centres.extend(spheres.iter().map(|s| s.centre));
-        self.diameters.clear();
-        self.diameters
-            .extend(spheres.iter().map(|s| 2.0 * s.radius));
         let domain = PeriodicBox {
             lo: self.origin,
             hi: std::array::from_fn(|d| self.origin[d] + self.length[d]),
@@ -486,11 +476,14 @@ impl DirectCoupling {
         };
         let gaps = &mut self.gaps;
         self.pairs.visit_spheres(
-            &self.centres,
-            &self.diameters,
+            spheres.len(),
+            |i| spheres[i].centre,
+            |i| 2.0 * spheres[i].radius,
             &domain,
             reach + h,
             |i, j, _, dist, _| {
+                // each sphere's own radius subtracted first, as its gap to every neighbour
+                // always was: the same offsets bit for bit
                 let (ri, rj) = (spheres[i].radius, spheres[j].radius);
                 gaps[i] = gaps[i].min(dist - ri - rj);
                 gaps[j] = gaps[j].min(dist - rj - ri);
