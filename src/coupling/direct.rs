@@ -21,11 +21,14 @@
 #![allow(clippy::needless_range_loop)]
 
 mod close_pairs;
+mod component_update;
 mod direct_coupling;
 mod direct_settings;
+mod face_lattice;
 mod field_brick;
 mod field_sampler;
 mod field_view;
+mod forced_face;
 mod gmres;
 mod immersed_boundary;
 mod implicit_forcing;
@@ -45,8 +48,9 @@ pub use direct_settings::DirectSettings;
 pub use field_brick::FieldBrick;
 pub use field_sampler::{FieldSampler, Interpolation};
 pub use field_view::{periodic_directions, FieldView};
+pub use forced_face::{ClosedCell, ForcingFace, InteriorFace};
 pub use gmres::{gmres, GmresReport, GmresWorkspace};
-pub use immersed_boundary::{ClosedCell, ForcingFace, ImmersedBoundary, InteriorFace};
+pub use immersed_boundary::ImmersedBoundary;
 pub use implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
