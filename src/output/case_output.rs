@@ -42,14 +42,20 @@ const COLLECTION_PARTS: [&str; 2] = [FLUID_VTI_FILE_NAME, PARTICLE_FILE_NAME];
 /// Writes the fluid twice into time directory `dir`: `fluid.vtk` (legacy, for meshio) and
 /// `fluid.vti` (XML, for ParaView's `.pvd` reader); pyvista reads either. No single format
 /// serves all three readers without a much larger file (see [`super::write_fluid_vti`]).
+/// The two files are written at once, on two of rayon's workers: each streams its fields
+/// (a computed field is computed once per file), and one after the other the second core
+/// waited for the whole write.
 pub fn write_fluid(
     dir: &Path,
     grid: &Grid,
     title: &str,
     fields: &[CellData],
 ) -> Result<(), OutputError> {
-    write_fluid_vtk(&dir.join(FLUID_VTK_FILE_NAME), grid, title, fields)?;
-    write_fluid_vti(&dir.join(FLUID_VTI_FILE_NAME), grid, fields)
+    let (legacy, xml) = rayon::join(
+        || write_fluid_vtk(&dir.join(FLUID_VTK_FILE_NAME), grid, title, fields),
+        || write_fluid_vti(&dir.join(FLUID_VTI_FILE_NAME), grid, fields),
+    );
+    legacy.and(xml)
 }
 
 /// Writer of a case's time directories and collection file.

@@ -29,8 +29,9 @@ pub enum CellData<'a> {
     Vector(&'a str, &'a [[f64; 3]]),
     /// A vector field of `len` cells computed cell by cell as it is written (the solver's
     /// cell-centred velocity, so that a write holds no copy of the field: at 648,000 cells
-    /// that copy was the run's peak memory).
-    ComputedVector(&'a str, usize, &'a dyn Fn(usize) -> [f64; 3]),
+    /// that copy was the run's peak memory). `Sync`: the two files of a time directory are
+    /// written at once ([`super::write_fluid`]).
+    ComputedVector(&'a str, usize, &'a (dyn Fn(usize) -> [f64; 3] + Sync)),
 }
 
 impl std::fmt::Debug for CellData<'_> {
