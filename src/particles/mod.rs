@@ -46,9 +46,12 @@
 
 mod cell_grid;
 mod contact_model;
+mod contact_work;
 mod dem;
+mod dem_config;
 mod dem_error;
 mod domain_box;
+mod motion;
 mod neighbour_list;
 mod particle_state;
 mod random_packing;
@@ -56,7 +59,8 @@ mod snapshot_arrays;
 mod vec3;
 
 pub use contact_model::{PairModel, TangentialRule, WallModel};
-pub use dem::{sphere_volume, Dem, DemConfig, DemSnapshot};
+pub use dem::{sphere_volume, Dem, DemSnapshot};
+pub use dem_config::DemConfig;
 pub use dem_error::DemError;
 pub use domain_box::{DomainBox, FaceCondition};
 pub use neighbour_list::ContactHistory;
