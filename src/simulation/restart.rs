@@ -1,0 +1,90 @@
+//! The restart state of a run: written at each time directory, read back when a case
+//! continues (`startFrom latestTime`) so that the continuation is bit-identical.
+
+use super::{Particles, Simulation};
+use crate::case::Cloud;
+use crate::coupling::direct::{DirectCoupling, ParticleMotion};
+use crate::error::FsimError;
+use crate::fluid::FluidSolver;
+use crate::output::{RestartHeader, RestartState};
+use crate::particles::{Dem, DemSnapshot};
+use crate::time_control::TimeControl;
+
+impl Simulation {
+    pub(super) fn restore(
+        &mut self,
+        time_dir: &std::path::Path,
+        write_control: crate::case::WriteControl,
+        control: &crate::case::ControlDict,
+    ) -> Result<RestartState, FsimError> {
+        let path = time_dir.join(crate::output::RESTART_FILE_NAME);
+        let state = RestartState::read(&path).map_err(|e| FsimError::input(e.to_string()))?;
+        for name in FluidSolver::RESTART_NAMES {
+            let data = state.array(name).ok_or_else(|| {
+                FsimError::input(format!("{}: no array '{name}'", path.display()))
+            })?;
+            self.fluid
+                .restore_array(name, data)
+                .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+        }
+        let header = &state.header;
+        self.time = TimeControl::new(
+            header.time,
+            header.step,
+            control.end_time,
+            write_control,
+            control.write_interval,
+        );
+        self.dt = header.delta_t;
+        self.largest_dt = header.delta_t;
+        Ok(state)
+    }
+
+    /// Writes the restart state (every array a bit-identical continuation needs).
+    pub fn write_restart(&mut self, path: &std::path::Path) -> Result<(), FsimError> {
+        let header = RestartHeader::new(self.time.time, self.time.step, self.dt);
+        let cloud = self
+            .particles
+            .as_ref()
+            .map(|p| p.dem.snapshot().to_arrays())
+            .unwrap_or_default();
+        let shell = self.direct.as_ref().map(|d| d.shell_state());
+        let build = self.direct.as_ref().map(|d| d.build_state());
+        let motion = self.motion.as_ref().map(|m| m.restart_state());
+        let mut arrays = self.fluid.restart_arrays();
+        arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
+        if let Some(shell) = &shell {
+            arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
+        }
+        if let Some(build) = &build {
+            arrays.push((DirectCoupling::BUILD_RESTART_NAME, build.as_slice()));
+        }
+        if let Some(motion) = &motion {
+            arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));
+        }
+        header
+            .write(path, &arrays)
+            .map_err(|e| FsimError::run(e.to_string()))
+    }
+}
+
+/// The engine continued from the DEM arrays of a restart state (same config and box, from the
+/// case).
+pub(super) fn restore_particles(
+    cloud: Cloud,
+    state: &RestartState,
+    time_dir: &std::path::Path,
+) -> Result<Particles, FsimError> {
+    let path = time_dir.join(crate::output::RESTART_FILE_NAME);
+    let snapshot = DemSnapshot::from_arrays(|name| state.array(name))
+        .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+    let dem = Dem::restore(cloud.config, cloud.domain, &snapshot)
+        .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
+    Ok(Particles {
+        dem,
+        pair_model: cloud.pair_model_name,
+        wall_model: cloud.wall_model_name,
+        substeps: 0,
+        notes: cloud.warnings,
+    })
+}
