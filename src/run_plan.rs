@@ -1,7 +1,7 @@
 //! `-dry-run`: what a run would do and what it would cost, without writing anything.
 //!
 //! The cost is measured, not modelled: the plan takes a few steps in memory exactly as the
-//! run would ([`take_step`]) and times them, because a rate per cell misses the coupling,
+//! run would (`take_step`) and times them, because a rate per cell misses the coupling,
 //! the cloud and the machine (the fluid-only rate this replaced planned 18 s for the
 //! benchmark's 0.1 s, which took 317 s).
 

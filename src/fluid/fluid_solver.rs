@@ -290,7 +290,7 @@ impl FluidSolver {
 
     /// The pressure whose gradient, acting over the whole last step, gives the momentum the
     /// pressure exchanged in it (what a force lagged by one step must see): with several
-    /// stages, `p̄ = Σ_s w_s p_s` ([`TimeScheme::stage_pressure_weight`]; `RK3CN`:
+    /// stages, `p̄ = Σ_s w_s p_s` (`TimeScheme::stage_pressure_weight`; `RK3CN`:
     /// `w_s = 2α_s`, each stage's pressure acting over its own `τ_s = 2α_s Δt`). The last
     /// stage's pressure alone holds little of the impulse the first stage gave when the
     /// spheres' velocities changed; a force read from it loses the added mass, which

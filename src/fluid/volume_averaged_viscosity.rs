@@ -98,7 +98,7 @@ fn apply_row(
     }
 }
 
-/// What the last [`ViscousSolve::solve`] did, summed over components.
+/// What the last `ViscousSolve::solve` did, summed over components.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ViscousReport {
     /// Conjugate-gradient iterations over the three components.

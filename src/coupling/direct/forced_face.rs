@@ -35,7 +35,7 @@ pub struct ForcingFace {
     /// Rigid velocity (this component) where the line crosses the surface, m/s.
     pub wall: f64,
     /// The sphere the line crosses and the line's direction from the face, packed by
-    /// [`ForcingLine`] (fills the padding: the face stays 64 bytes).
+    /// `ForcingLine` (fills the padding: the face stays 64 bytes).
     pub line: u32,
 }
 

@@ -195,7 +195,7 @@ fn ergun_drag_only(q: &DragInput) -> f64 {
 /// Terminal velocity (m/s) of one sphere of diameter `d` and density `rho_p` in an unbounded
 /// fluid of density `rho_f` and dynamic viscosity `mu` under gravity `g` (m/s²): the root
 /// of the force balance `|ρ_p − ρ_f| g π d³/6 = (C_d Re / 24) 3π μ d U` with Schiller–Naumann's
-/// `C_d Re` ([`cd_re_schiller_naumann`]), that is `U = V_Stokes · 24 / (C_d Re)(U)`. The
+/// `C_d Re` (`cd_re_schiller_naumann`), that is `U = V_Stokes · 24 / (C_d Re)(U)`. The
 /// right side falls as `U` grows, so the root is unique; bisection between 0 and Stokes'
 /// velocity finds it.
 pub fn terminal_velocity(d: f64, rho_p: f64, rho_f: f64, mu: f64, g: f64) -> f64 {

@@ -150,7 +150,7 @@ impl DragLawCoupling {
         Ok(coupling)
     }
 
-    /// Imposes the mean pressure gradient `G` of [`mean_pressure_gradient`] (the settings'
+    /// Imposes the mean pressure gradient `G` of `mean_pressure_gradient` (the settings'
     /// gravity taken as the physical one) and returns it: zero unless every face is periodic
     /// and gravity is non-zero. Case runs call it; a caller that drives a periodic box through
     /// the fluid's gravity (a porous-media flow, a study holding the weight itself) does not.

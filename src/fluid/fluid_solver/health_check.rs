@@ -202,7 +202,7 @@ impl FluidSolver {
     }
 
     /// The scheme's stability bound on `Δt` for the current velocity (paper eq. 3 for Euler;
-    /// see [`TimeScheme::stability_bound`]).
+    /// see [`TimeScheme::stability_bound`](crate::fluid::TimeScheme::stability_bound)).
     pub fn stability_bound(&self) -> f64 {
         self.settings.scheme.stability_bound(
             self.settings.nu,

@@ -25,7 +25,7 @@ impl FluidSolver {
     /// Advances by `dt`, calling `hook` on each stage's predicted velocity before it is
     /// projected.
     ///
-    /// Per stage `s` (coefficients `a_s, b_s` of [`TimeScheme::stages`]):
+    /// Per stage `s` (coefficients `a_s, b_s` of [`TimeScheme::stages`](crate::fluid::TimeScheme::stages)):
     /// 1. `q ← a_s q + Δt F(u)` (advection, diffusion, body force, sources);
     /// 2. `u* = u + b_s q`, then the hook, then zero-gradient outlet faces;
     /// 3. `∇²p = ∇·u* / τ` with `τ = b_s Δt`, solved exactly;
