@@ -135,7 +135,10 @@ impl PatchInteraction {
         })
     }
 
-    /// `(e, mu)` of the rebound rule for a patch, `None` when no rule applies.
+    /// `(e, mu)` of the rebound rule for a patch, `None` when no rule applies. Under
+    /// `localInteraction` the first entry whose name or regular expression matches the whole
+    /// patch name applies, as in OpenFOAM (`patchInteractionDataList::applyToPatch` returns
+    /// the first group that holds the patch).
     fn rebound(&self, patch: &str, kind: PatchType) -> Result<Option<(f64, f64)>, CaseError> {
         match self {
             PatchInteraction::None => Ok(None),
@@ -152,7 +155,7 @@ impl PatchInteraction {
                 }
             }
             PatchInteraction::Local(rules) => {
-                for (name, d) in rules.iter().rev() {
+                for (name, d) in rules {
                     let matches = name == patch
                         || regex::Regex::new(&format!("^(?:{name})$"))
                             .map(|r| r.is_match(patch))
@@ -190,4 +193,83 @@ fn rebound_coefficients(d: &Dict) -> Result<(f64, f64), CaseError> {
             "in [0, 1]",
         )?,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn interaction(text: &str) -> PatchInteraction {
+        let d = Dict::parse(text, "cloud").unwrap_or_else(|e| panic!("{}", e.message));
+        PatchInteraction::read(&d).unwrap_or_else(|e| panic!("{}", e.message))
+    }
+
+    #[test]
+    fn local_rules_match_names_and_regexes_and_the_first_match_wins() {
+        let local = interaction(
+            r#"
+            patchInteractionModel localInteraction;
+            localInteractionCoeffs
+            {
+                patches
+                (
+                    "(front|back)" { type rebound; e 0.9; mu 0.1; }
+                    back           { type rebound; e 0.5; }
+                    "side.*"       { type rebound; }
+                );
+            }
+            "#,
+        );
+        let rule = |patch: &str| local.rebound(patch, PatchType::Patch).unwrap();
+        assert_eq!(rule("front"), Some((0.9, 0.1)));
+        // both of the first two rules match `back`: the first applies (OpenFOAM's order)
+        assert_eq!(rule("back"), Some((0.9, 0.1)));
+        // OpenFOAM's defaults, e 1 and mu 0
+        assert_eq!(rule("sideLeft"), Some((1.0, 0.0)));
+        // a regex matches the whole name only
+        assert_eq!(rule("frontWall"), None);
+        assert_eq!(rule("top"), None);
+    }
+
+    #[test]
+    fn a_rule_other_than_rebound_or_out_of_range_is_an_error_at_its_value() {
+        let local = interaction(
+            "patchInteractionModel localInteraction;\n\
+             localInteractionCoeffs { patches ( top { type stick; } \
+             bottom { type rebound; e 1.5; } ); }\n",
+        );
+        let e = local.rebound("top", PatchType::Wall).unwrap_err();
+        assert!(
+            e.message.contains("'stick' on patch 'top'") && e.message.contains("use rebound"),
+            "{}",
+            e.message
+        );
+        assert_eq!((e.line, e.col), (2, 47), "{}", e.message);
+        let e = local.rebound("bottom", PatchType::Wall).unwrap_err();
+        assert!(e.message.contains("in [0, 1]"), "{}", e.message);
+    }
+
+    #[test]
+    fn the_standard_interaction_applies_to_walls_only() {
+        let standard = interaction(
+            "patchInteractionModel standardWallInteraction;\n\
+             standardWallInteractionCoeffs { type rebound; e 0.8; mu 0.2; }\n",
+        );
+        assert_eq!(
+            standard.rebound("walls", PatchType::Wall).unwrap(),
+            Some((0.8, 0.2))
+        );
+        assert_eq!(standard.rebound("inlet", PatchType::Patch).unwrap(), None);
+        let escape = interaction(
+            "patchInteractionModel standardWallInteraction;\n\
+             standardWallInteractionCoeffs { type escape; }\n",
+        );
+        let e = escape.rebound("walls", PatchType::Wall).unwrap_err();
+        assert!(e.message.contains("'escape'"), "{}", e.message);
+        assert_eq!(e.line, 2, "{}", e.message);
+        // a non-wall patch is not the standard interaction's, whatever its rule
+        assert_eq!(escape.rebound("inlet", PatchType::Symmetry).unwrap(), None);
+        let none = interaction("patchInteractionModel none;\n");
+        assert_eq!(none.rebound("walls", PatchType::Wall).unwrap(), None);
+    }
 }
