@@ -564,6 +564,7 @@ mod tests {
         assert!((s.courant_rate() - 10.0).abs() < 1e-12);
         assert!((s.adaptive_dt(0.01, 0.5, 1.0) - 0.012).abs() < 1e-15); // grow by 20 %
         assert!((s.adaptive_dt(0.1, 0.5, 1.0) - 0.05).abs() < 1e-15); // shrink to maxCo
+        assert!((s.adaptive_dt(0.04, 0.5, 1.0) - 0.045).abs() < 1e-15); // f = 1.25: 1 + 0.1 f
         assert!((s.adaptive_dt(0.01, 0.5, 0.011) - 0.011).abs() < 1e-15); // maxDeltaT
         let mut viscous = uniform_flow(1.0);
         let bound = viscous.stability_bound();
