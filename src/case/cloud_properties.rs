@@ -354,7 +354,7 @@ impl Cloud {
         };
 
         // ----- faces -----
-        let domain = domain_box(case, sub, wall_model != WallModel::None)?;
+        let domain = domain_box(case, sub, wall_model != WallModel::None, &mut warnings)?;
 
         // ----- injection -----
         let mut particles = ParticleState::default();

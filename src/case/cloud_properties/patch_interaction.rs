@@ -2,7 +2,7 @@
 //! and the `patchInteractionModel` (`rebound` only).
 
 use super::{scalar_in, value_loc};
-use crate::case::block_mesh::{BoxFace, PatchType};
+use crate::case::block_mesh::{BoxFace, Patch, PatchType};
 use crate::case::case::Case;
 use crate::case::control_dict::{at_value, choice};
 use crate::case::dictionary::Dict;
@@ -17,12 +17,16 @@ pub(super) fn domain_box(
     case: &Case,
     sub: &Dict,
     soft_walls: bool,
+    warnings: &mut Vec<String>,
 ) -> Result<DomainBox, CaseError> {
     let g = &case.mesh.grid;
     let length = g.length();
     let lo = g.origin;
     let hi = [lo[0] + length[0], lo[1] + length[1], lo[2] + length[2]];
     let interaction = PatchInteraction::read(sub)?;
+    if let PatchInteraction::Local(rules) = &interaction {
+        check_local_rules(rules, &case.mesh.patches, sub, warnings)?;
+    }
     let mut faces = [FaceCondition::Periodic; 6];
     for face in BoxFace::ALL {
         let patch = case.mesh.patch_on(face);
@@ -65,8 +69,80 @@ enum PatchInteraction {
     None,
     /// `standardWallInteraction`: one rule for every wall patch.
     Standard(Option<(f64, f64)>, Location, String),
-    /// `localInteraction`: `(patch name or regex, rule, where)`.
-    Local(Vec<(String, Dict)>),
+    /// `localInteraction`: its `patches` entries in order.
+    Local(Vec<LocalRule>),
+}
+
+/// One entry of `localInteraction`'s `patches`: the patches it names and its rule.
+struct LocalRule {
+    names: PatchNames,
+    rule: Dict,
+}
+
+/// How an entry names its patches, as OpenFOAM reads a `wordRe`: an unquoted word is the
+/// name itself, a quoted string a regular expression that must match the whole name.
+enum PatchNames {
+    Literal(String),
+    Pattern(String, regex::Regex),
+}
+
+impl PatchNames {
+    fn matches(&self, patch: &str) -> bool {
+        match self {
+            PatchNames::Literal(name) => name == patch,
+            PatchNames::Pattern(_, re) => re.is_match(patch),
+        }
+    }
+
+    fn as_str(&self) -> &str {
+        match self {
+            PatchNames::Literal(name) | PatchNames::Pattern(name, _) => name,
+        }
+    }
+}
+
+/// OpenFOAM's checks of `localInteraction` (`patchInteractionDataList`): every patch that is
+/// neither cyclic nor empty must be named by some entry (an error listing those that are
+/// not), and an entry that names no patch is a warning.
+fn check_local_rules(
+    rules: &[LocalRule],
+    patches: &[Patch],
+    sub: &Dict,
+    warnings: &mut Vec<String>,
+) -> Result<(), CaseError> {
+    for r in rules {
+        if !patches.iter().any(|p| r.names.matches(&p.name)) {
+            warnings.push(format!(
+                "{}: localInteraction: no patch matches '{}' (patches: {})",
+                sub.file(),
+                r.names.as_str(),
+                patches
+                    .iter()
+                    .map(|p| p.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+    }
+    let unnamed: Vec<String> = patches
+        .iter()
+        .filter(|p| !matches!(p.kind, PatchType::Cyclic | PatchType::Empty))
+        .filter(|p| !rules.iter().any(|r| r.names.matches(&p.name)))
+        .map(|p| format!("'{}' ({})", p.name, p.kind.name()))
+        .collect();
+    if unnamed.is_empty() {
+        return Ok(());
+    }
+    let coeffs = sub.get_dict("localInteractionCoeffs")?;
+    Err(at_value(
+        coeffs,
+        "patches",
+        format!(
+            "localInteraction must name every patch that is neither cyclic nor empty, as in \
+             OpenFOAM; no entry for {}",
+            unnamed.join(", ")
+        ),
+    ))
 }
 
 impl PatchInteraction {
@@ -109,9 +185,29 @@ impl PatchInteraction {
                 for pair in list.chunks(2) {
                     match pair {
                         [name, body] => {
-                            let n = match &name.value {
-                                Value::Word(w) | Value::Str(w) => w.clone(),
-                                _ => String::new(),
+                            let names = match &name.value {
+                                Value::Word(w) => PatchNames::Literal(w.clone()),
+                                Value::Str(s) => {
+                                    let re =
+                                        regex::Regex::new(&format!("^(?:{s})$")).map_err(|e| {
+                                            CaseError::at(
+                                                &name.loc,
+                                                format!(
+                                                    "'{s}' is not a valid regular expression \
+                                                     for patch names: {}",
+                                                    last_line(&e.to_string())
+                                                ),
+                                            )
+                                        })?;
+                                    PatchNames::Pattern(s.clone(), re)
+                                }
+                                _ => {
+                                    return Err(CaseError::at(
+                                        &name.loc,
+                                        "expected a patch name (a word, or a quoted regular \
+                                         expression)",
+                                    ))
+                                }
                             };
                             let Some(d) = body.as_dict() else {
                                 return Err(CaseError::at(
@@ -119,7 +215,10 @@ impl PatchInteraction {
                                     "expected a dictionary { type …; } after the patch name",
                                 ));
                             };
-                            rules.push((n, d.clone()));
+                            rules.push(LocalRule {
+                                names,
+                                rule: d.clone(),
+                            });
                         }
                         [alone] => {
                             return Err(CaseError::at(
@@ -155,12 +254,8 @@ impl PatchInteraction {
                 }
             }
             PatchInteraction::Local(rules) => {
-                for (name, d) in rules {
-                    let matches = name == patch
-                        || regex::Regex::new(&format!("^(?:{name})$"))
-                            .map(|r| r.is_match(patch))
-                            .unwrap_or(false);
-                    if matches {
+                for LocalRule { names, rule: d } in rules {
+                    if names.matches(patch) {
                         let t = d.get_word("type")?;
                         if t != "rebound" {
                             return Err(at_value(
@@ -179,6 +274,11 @@ impl PatchInteraction {
             }
         }
     }
+}
+
+/// The last line of a message: the regex crate's errors draw the pattern above it.
+fn last_line(message: &str) -> &str {
+    message.lines().last().unwrap_or(message).trim()
 }
 
 /// `e` and `mu` of a rebound rule (OpenFOAM's defaults 1 and 0).
@@ -229,6 +329,89 @@ mod tests {
         // a regex matches the whole name only
         assert_eq!(rule("frontWall"), None);
         assert_eq!(rule("top"), None);
+    }
+
+    #[test]
+    fn an_unquoted_name_is_literal_and_a_bad_expression_is_an_error_at_it() {
+        // OpenFOAM's wordRe: a word is the name itself, only a quoted string is an expression
+        let local = interaction(
+            "patchInteractionModel localInteraction;\n\
+             localInteractionCoeffs { patches ( side.* { type rebound; e 0.5; } ); }\n",
+        );
+        assert_eq!(local.rebound("sideLeft", PatchType::Wall).unwrap(), None);
+        assert_eq!(
+            local.rebound("side.*", PatchType::Wall).unwrap(),
+            Some((0.5, 0.0))
+        );
+        let d = Dict::parse(
+            "patchInteractionModel localInteraction;\n\
+             localInteractionCoeffs { patches ( top { type rebound; } \"(front|back\" \
+             { type rebound; } ); }\n",
+            "cloud",
+        )
+        .unwrap();
+        let e = PatchInteraction::read(&d).err().expect("an unclosed group");
+        assert!(
+            e.message
+                .contains("'(front|back' is not a valid regular expression")
+                && e.message.contains("unclosed group"),
+            "{}",
+            e.message
+        );
+        assert_eq!((e.line, e.col), (2, 58), "{}", e.message);
+    }
+
+    fn patch(name: &str, kind: PatchType) -> Patch {
+        let file = std::sync::Arc::new(crate::case::source::SourceFile::from_text(
+            "blockMeshDict".into(),
+            "blockMeshDict".into(),
+            String::new(),
+        ));
+        Patch {
+            name: name.to_string(),
+            kind,
+            faces: Vec::new(),
+            neighbour: None,
+            loc: Location::new(&file, 0),
+        }
+    }
+
+    #[test]
+    fn every_patch_but_cyclic_and_empty_ones_needs_an_entry() {
+        let text = "patchInteractionModel localInteraction;\n\
+                    localInteractionCoeffs { patches ( top { type rebound; } \
+                    \"(in|out)let\" { type rebound; } lid { type rebound; } ); }\n";
+        let d = Dict::parse(text, "cloud").unwrap();
+        let PatchInteraction::Local(rules) = PatchInteraction::read(&d).unwrap() else {
+            panic!("localInteraction");
+        };
+        let mut patches = vec![
+            patch("top", PatchType::Wall),
+            patch("inlet", PatchType::Patch),
+            patch("outlet", PatchType::Patch),
+            patch("sides", PatchType::Cyclic),
+            patch("frontAndBack", PatchType::Empty),
+        ];
+        let mut warnings = Vec::new();
+        check_local_rules(&rules, &patches, &d, &mut warnings).unwrap();
+        // `lid` names no patch: a warning, as OpenFOAM's "Cannot find any patch names"
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(
+            warnings[0].contains("no patch matches 'lid'"),
+            "{}",
+            warnings[0]
+        );
+        patches.push(patch("bottom", PatchType::Wall));
+        patches.push(patch("mirror", PatchType::Symmetry));
+        let e = check_local_rules(&rules, &patches, &d, &mut warnings).unwrap_err();
+        assert!(
+            e.message
+                .contains("no entry for 'bottom' (wall), 'mirror' (symmetry)"),
+            "{}",
+            e.message
+        );
+        // at the list's opening parenthesis
+        assert_eq!((e.line, e.col), (2, 34), "{}", e.message);
     }
 
     #[test]
