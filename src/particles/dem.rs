@@ -23,17 +23,20 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use super::contact_model::{linear_contact_time, ContactLaw, PairModel, WallModel};
+use super::contact_model::ContactLaw;
 use super::contact_work::{evaluate_chunk, ContactContext, ContactWork};
 use super::dem_config::{
     validate_config, validate_domain, validate_particles, validate_walls, DemConfig,
 };
 use super::dem_error::DemError;
-use super::domain_box::{minimum_image, DomainBox, FaceCondition};
+use super::domain_box::{minimum_image, DomainBox};
 use super::motion::{Gather, Motion, Moving};
-use super::neighbour_list::{wall_distance, wall_mask, ContactHistory, NeighbourList, CHUNK};
+use super::neighbour_list::{wall_mask, ContactHistory, NeighbourList, CHUNK};
 use super::particle_state::ParticleState;
-use super::vec3::{dot, scale, Vec3};
+use super::vec3::{dot, Vec3};
+
+mod collision_step;
+mod monitors;
 
 /// Every array needed to continue a run bit for bit: particles in their current order (with
 /// the last contact forces, which the next half-kick uses), the positions at the last list
@@ -338,117 +341,7 @@ impl Dem {
         }
     }
 
-    // ----- time stepping -----
-
-    /// The collision sub-step limit.
-    ///
-    /// Hertzian models follow OpenFOAM's `PairSpringSliderDashpot::nSubCycles` and
-    /// `WallSpringSliderDashpot::nSubCycles`:
-    /// `Δt_c = 5.429675 R (ρ_max / (E* √U))^{2/5} / collisionResolutionSteps`
-    /// (`5.429675 = π^{7/5} (5/4)^{2/5}`), with `R = d_min/4` and
-    /// `U = 2 max_i(|v_i| + |ω_i| d_i/2)` for pairs, `R = d_min/2` and `U = max_i(…)` for walls.
-    /// The linear model uses its exact contact time `t_c = √((π² + a²) M / k_n)` for the lightest
-    /// pair (`M = m_min/2`; wall: `M = m_min`) divided by `collision_resolution_steps`.
-    pub fn collision_time_step(&self) -> f64 {
-        let p = &self.particles;
-        if p.is_empty() {
-            return f64::INFINITY;
-        }
-        let mut d_min = f64::INFINITY;
-        let mut rho_max: f64 = 0.0;
-        let mut u_max: f64 = 0.0;
-        let mut m_min = f64::INFINITY;
-        for i in 0..p.len() {
-            let d = p.diameter[i];
-            d_min = d_min.min(d);
-            rho_max = rho_max.max(p.density[i]);
-            u_max = u_max.max(norm3(p.velocity[i]) + norm3(p.angular_velocity[i]) * d / 2.0);
-            m_min = m_min.min(p.mass(i));
-        }
-        const VSMALL: f64 = 1.0e-300;
-        let hertz = |e_star: f64, r: f64, u: f64, steps: f64| {
-            5.429675 * r * (rho_max / (e_star * u.sqrt() + VSMALL)).powf(0.4) / steps
-        };
-        let mut dt = f64::INFINITY;
-        match (&self.config.pair_model, &self.pair_law) {
-            _ if !self.config.pair_collisions => {}
-            (
-                PairModel::SpringSliderDashpot {
-                    collision_resolution_steps,
-                    ..
-                },
-                ContactLaw::Hertz { e_star, .. },
-            ) => {
-                dt = dt.min(hertz(
-                    *e_star,
-                    d_min / 4.0,
-                    2.0 * u_max,
-                    *collision_resolution_steps,
-                ));
-            }
-            (
-                PairModel::LinearSpringDashpot {
-                    kn,
-                    restitution,
-                    collision_resolution_steps,
-                    ..
-                },
-                _,
-            ) => {
-                dt = dt.min(
-                    linear_contact_time(*kn, *restitution, 0.5 * m_min)
-                        / collision_resolution_steps,
-                );
-            }
-            _ => unreachable!("law built from the model"),
-        }
-        if self.domain.faces.contains(&FaceCondition::Wall) {
-            match (&self.config.wall_model, &self.wall_law) {
-                (
-                    WallModel::SpringSliderDashpot {
-                        collision_resolution_steps,
-                        ..
-                    },
-                    Some(ContactLaw::Hertz { e_star, .. }),
-                ) => {
-                    dt = dt.min(hertz(
-                        *e_star,
-                        d_min / 2.0,
-                        u_max,
-                        *collision_resolution_steps,
-                    ));
-                }
-                (
-                    WallModel::LinearSpringDashpot {
-                        kn,
-                        restitution,
-                        collision_resolution_steps,
-                        ..
-                    },
-                    _,
-                ) => {
-                    dt = dt.min(
-                        linear_contact_time(*kn, *restitution, m_min) / collision_resolution_steps,
-                    );
-                }
-                _ => {}
-            }
-        }
-        if let Some(h) = self.config.max_substep {
-            dt = dt.min(h);
-        }
-        dt
-    }
-
-    /// Number of collision sub-steps for an outer (fluid) step: `ceil(Δt / Δt_c)`, at least 1.
-    pub fn substep_count(&self, dt_outer: f64) -> usize {
-        let n = (dt_outer / self.collision_time_step()).ceil();
-        if n.is_finite() && n >= 1.0 {
-            n as usize
-        } else {
-            1
-        }
-    }
+    // ----- time stepping (the collision sub-step: dem/collision_step.rs) -----
 
     /// Advances by one outer step `dt_outer` in equal sub-steps (external loads held fixed);
     /// returns the number of sub-steps taken.
@@ -711,101 +604,6 @@ impl Dem {
             })
             .reduce(|| false, |a, b| a | b)
     }
-
-    // ----- monitors -----
-
-    /// Kinetic energy `(Σ ½ m v², Σ ½ I ω²)`, translational and rotational, J.
-    pub fn kinetic_energy(&self) -> (f64, f64) {
-        let p = &self.particles;
-        (0..p.len())
-            .into_par_iter()
-            .with_min_len(CHUNK)
-            .map(|i| {
-                let (m, inertia) = (p.mass(i), p.moment_of_inertia(i));
-                (
-                    0.5 * m * dot(p.velocity[i], p.velocity[i]),
-                    0.5 * inertia * dot(p.angular_velocity[i], p.angular_velocity[i]),
-                )
-            })
-            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
-    }
-
-    /// Potential energy of gravity with buoyancy, `−Σ m (1 − ρ_f/ρ_p) g·x`, J (meaningless
-    /// along a periodic axis).
-    pub fn potential_energy(&self) -> f64 {
-        let p = &self.particles;
-        let g = self.config.gravity;
-        let rho_f = self.config.fluid_density;
-        (0..p.len())
-            .filter(|&i| !p.fixed[i])
-            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * dot(g, p.position[i]))
-            .sum()
-    }
-
-    /// Mean velocity of the free particles, m/s.
-    pub fn mean_velocity(&self) -> Vec3 {
-        let p = &self.particles;
-        let mut s = [0.0; 3];
-        let mut count = 0usize;
-        for i in 0..p.len() {
-            if !p.fixed[i] {
-                for a in 0..3 {
-                    s[a] += p.velocity[i][a];
-                }
-                count += 1;
-            }
-        }
-        if count == 0 {
-            [0.0; 3]
-        } else {
-            scale(s, 1.0 / count as f64)
-        }
-    }
-
-    /// Largest overlap over the diameter: `δ / min(d_i, d_j)` for pairs, `δ / d` at walls.
-    pub fn max_overlap_ratio(&self) -> f64 {
-        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
-        let x = &self.particles.position;
-        let lists = &self.lists;
-        let radius = &self.radius;
-        let domain = &self.domain;
-        let periodic = inv_l != [0.0; 3];
-        (0..self.particles.len())
-            .into_par_iter()
-            .with_min_len(CHUNK)
-            .map(|i| {
-                let mut worst: f64 = 0.0;
-                for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
-                    let j = lists.partner[k] as usize;
-                    let mut d = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
-                    if periodic {
-                        d = minimum_image(d, length, inv_l);
-                    }
-                    // Most listed pairs are apart (overlap ≤ 0 cannot raise `worst` ≥ 0):
-                    // the square root only for those in contact.
-                    let reach = radius[i] + radius[j];
-                    let dist2 = dot(d, d);
-                    if dist2 >= reach * reach {
-                        continue;
-                    }
-                    let overlap = radius[i] + radius[j] - dist2.sqrt();
-                    worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
-                }
-                for f in 0..6 {
-                    if domain.faces[f] == FaceCondition::Wall {
-                        worst = worst
-                            .max((radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]));
-                    }
-                }
-                worst
-            })
-            .reduce(|| 0.0, f64::max)
-    }
-}
-
-#[inline(always)]
-fn norm3(a: Vec3) -> f64 {
-    dot(a, a).sqrt()
 }
 
 /// Volume of a sphere of diameter `d`.
@@ -816,9 +614,10 @@ pub fn sphere_volume(d: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::particles::contact_model::TangentialRule;
+    use crate::particles::contact_model::{PairModel, TangentialRule, WallModel};
+    use crate::particles::domain_box::FaceCondition;
     use crate::particles::random_packing::random_packing;
-    use crate::particles::vec3::{cross, norm};
+    use crate::particles::vec3::{cross, norm, scale};
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)

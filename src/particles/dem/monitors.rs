@@ -1,0 +1,99 @@
+//! What the DEM reports about its particles between steps: energies, the mean velocity and
+//! the worst overlap.
+
+use rayon::prelude::*;
+
+use super::Dem;
+use crate::particles::domain_box::{minimum_image, FaceCondition};
+use crate::particles::neighbour_list::{wall_distance, CHUNK};
+use crate::particles::vec3::{dot, scale, Vec3};
+
+impl Dem {
+    /// Kinetic energy `(Σ ½ m v², Σ ½ I ω²)`, translational and rotational, J.
+    pub fn kinetic_energy(&self) -> (f64, f64) {
+        let p = &self.particles;
+        (0..p.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let (m, inertia) = (p.mass(i), p.moment_of_inertia(i));
+                (
+                    0.5 * m * dot(p.velocity[i], p.velocity[i]),
+                    0.5 * inertia * dot(p.angular_velocity[i], p.angular_velocity[i]),
+                )
+            })
+            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// Potential energy of gravity with buoyancy, `−Σ m (1 − ρ_f/ρ_p) g·x`, J (meaningless
+    /// along a periodic axis).
+    pub fn potential_energy(&self) -> f64 {
+        let p = &self.particles;
+        let g = self.config.gravity;
+        let rho_f = self.config.fluid_density;
+        (0..p.len())
+            .filter(|&i| !p.fixed[i])
+            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * dot(g, p.position[i]))
+            .sum()
+    }
+
+    /// Mean velocity of the free particles, m/s.
+    pub fn mean_velocity(&self) -> Vec3 {
+        let p = &self.particles;
+        let mut s = [0.0; 3];
+        let mut count = 0usize;
+        for i in 0..p.len() {
+            if !p.fixed[i] {
+                for a in 0..3 {
+                    s[a] += p.velocity[i][a];
+                }
+                count += 1;
+            }
+        }
+        if count == 0 {
+            [0.0; 3]
+        } else {
+            scale(s, 1.0 / count as f64)
+        }
+    }
+
+    /// Largest overlap over the diameter: `δ / min(d_i, d_j)` for pairs, `δ / d` at walls.
+    pub fn max_overlap_ratio(&self) -> f64 {
+        let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
+        let x = &self.particles.position;
+        let lists = &self.lists;
+        let radius = &self.radius;
+        let domain = &self.domain;
+        let periodic = inv_l != [0.0; 3];
+        (0..self.particles.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|i| {
+                let mut worst: f64 = 0.0;
+                for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
+                    let j = lists.partner[k] as usize;
+                    let mut d = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    if periodic {
+                        d = minimum_image(d, length, inv_l);
+                    }
+                    // Most listed pairs are apart (overlap ≤ 0 cannot raise `worst` ≥ 0):
+                    // the square root only for those in contact.
+                    let reach = radius[i] + radius[j];
+                    let dist2 = dot(d, d);
+                    if dist2 >= reach * reach {
+                        continue;
+                    }
+                    let overlap = radius[i] + radius[j] - dist2.sqrt();
+                    worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
+                }
+                for f in 0..6 {
+                    if domain.faces[f] == FaceCondition::Wall {
+                        worst = worst
+                            .max((radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]));
+                    }
+                }
+                worst
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+}
