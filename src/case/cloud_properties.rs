@@ -48,8 +48,9 @@ use super::case::Case;
 use super::control_dict::{at_value, choice};
 use super::coupling::CouplingModel;
 use super::dictionary::Dict;
-use super::drag_law_options::{DragLawOptions, ParticleForces};
+use super::drag_law_options::DragLawOptions;
 use super::error::CaseError;
+use super::particle_forces::ParticleForces;
 use super::source::Location;
 use crate::particles::{
     random_packing_sizes, sphere_volume, DemConfig, DemError, DomainBox, PairModel, ParticleState,

@@ -26,9 +26,9 @@
 //!   integrates with its own scheme).
 //! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
 //!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
-//! * `subModels.particleForces`: exactly one drag closure ([`DragClosure`], by the names of
-//!   [`DragClosure::NAMES`]: OpenFOAM's four and fsim's own), `gravity`, and
-//!   `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
+//! * `subModels.particleForces` (read by [`super::particle_forces`]): exactly one drag
+//!   closure ([`DragClosure`], by the names of [`DragClosure::NAMES`]: OpenFOAM's four and
+//!   fsim's own), `gravity`, and `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
 //!   `m (ρ_c/ρ_p) DU_c/Dt`, the fluid's material acceleration at the particle, which fsim's
 //!   DPMFoam form does not compute. Other OpenFOAM forces are refused; an unknown name is an
 //!   error with a spelling hint.
@@ -39,8 +39,9 @@
 //! runs with DPMFoam's choices or with the paper's.
 
 use super::control_dict::{at_value, choice};
-use super::dictionary::{Dict, Entry};
+use super::dictionary::Dict;
 use super::error::CaseError;
+use super::particle_forces::ParticleForces;
 use super::transport::Transport;
 use crate::coupling::drag::{DragClosure, DragLawSettings, Stencil};
 use crate::fluid::VolumeAveragedForm;
@@ -524,7 +525,7 @@ fn particle_integration(solution: &Dict) -> Result<ParticleIntegration, CaseErro
 }
 
 /// `U.<phase>`, or `U` without a phase.
-fn velocity_name(phase: &str) -> String {
+pub(crate) fn velocity_name(phase: &str) -> String {
     if phase.is_empty() {
         "U".to_string()
     } else {
@@ -539,178 +540,6 @@ pub(crate) fn fraction_name(phase: &str) -> String {
     } else {
         format!("alpha.{phase}")
     }
-}
-
-/// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
-const REFUSED_FORCES: [(&str, &str); 8] = [
-    ("nonSphereDrag", "the drag of non-spherical particles"),
-    ("distortedSphereDrag", "the drag of distorting droplets"),
-    ("virtualMass", "the added-mass force"),
-    ("SaffmanMeiLiftForce", "a lift force"),
-    ("TomiyamaLiftForce", "a lift force"),
-    ("paramagnetic", "a magnetic force"),
-    ("nonInertialFrame", "the forces of a non-inertial frame"),
-    ("SRF", "the forces of a rotating frame"),
-];
-
-/// The forces of `particleForces`, checked.
-pub(crate) struct ParticleForces {
-    pub drag: Option<DragClosure>,
-    pub gravity: bool,
-    pub pressure_gradient: bool,
-    /// Every force listed, in file order.
-    pub names: Vec<String>,
-}
-
-impl ParticleForces {
-    /// Reads and checks `subModels.particleForces`: an unknown force, a force fsim cannot
-    /// compute or a second drag closure is an error at its keyword.
-    pub(crate) fn read(sub: &Dict, phase: &str) -> Result<ParticleForces, CaseError> {
-        let mut forces = ParticleForces {
-            drag: None,
-            gravity: false,
-            pressure_gradient: false,
-            names: Vec::new(),
-        };
-        let Some(list) = sub.opt_dict("particleForces")? else {
-            return Ok(forces);
-        };
-        let mut drag_at: Option<&Entry> = None;
-        for e in list.entries() {
-            let name = e.keyword();
-            e.mark_used();
-            forces.names.push(name.to_string());
-            if let Ok(model) = DragClosure::from_name(name, "particleForces") {
-                if let Some(first) = drag_at {
-                    let (line, _) = first.key_loc.line_col();
-                    return Err(CaseError::at(
-                        &e.key_loc,
-                        format!(
-                            "a second drag model '{name}' (the first, '{}', is on line {line}): \
-                             DPMFoam would add both forces; fsim takes one drag closure",
-                            first.keyword()
-                        ),
-                    ));
-                }
-                drag_at = Some(e);
-                if let Some(coeffs) = e.as_dict() {
-                    if model != DragClosure::SphereDrag {
-                        fraction_field(coeffs, "alphac", phase, is_openfoam(model))?;
-                    }
-                }
-                forces.drag = Some(model);
-            } else if name == "gravity" {
-                forces.gravity = true;
-            } else if name == "pressureGradient" {
-                if let Some(coeffs) = e.as_dict() {
-                    let velocity = velocity_name(phase);
-                    if let Some(u) = coeffs.opt_word("U")? {
-                        if u != velocity {
-                            return Err(at_value(
-                                coeffs,
-                                "U",
-                                format!(
-                                    "pressureGradient U '{u}': expected the continuous phase's \
-                                     velocity {velocity}"
-                                ),
-                            ));
-                        }
-                    }
-                }
-                forces.pressure_gradient = true;
-            } else if let Some((_, why)) = REFUSED_FORCES.iter().find(|(n, _)| *n == name) {
-                return Err(CaseError::at(
-                    &e.key_loc,
-                    format!("particle force '{name}' is not supported by fsim ({why})"),
-                ));
-            } else {
-                let others = ["gravity", "pressureGradient"];
-                let known = DragClosure::NAMES.iter().chain(&others);
-                let nearest = known
-                    .map(|k| {
-                        (
-                            edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
-                            *k,
-                        )
-                    })
-                    .min()
-                    .filter(|(d, _)| *d <= 3)
-                    .map(|(_, k)| k);
-                let drag_like = name.to_ascii_lowercase().contains("drag")
-                    || nearest.is_some_and(|k| !others.contains(&k));
-                let what = if drag_like {
-                    "unknown drag model"
-                } else {
-                    "unknown particle force"
-                };
-                let hint = nearest.map_or(String::new(), |k| format!(" (did you mean '{k}'?)"));
-                return Err(CaseError::at(
-                    &e.key_loc,
-                    format!(
-                        "{what} '{name}' in particleForces{hint}: expected a drag model ({}), \
-                         gravity or pressureGradient",
-                        DragClosure::NAMES.join(", ")
-                    ),
-                ));
-            }
-        }
-        Ok(forces)
-    }
-}
-
-/// Levenshtein distance (insertions, deletions, substitutions), for spelling hints.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != *cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
-/// Whether OpenFOAM v1912 knows the closure (the others are fsim's names: a case using them
-/// no longer runs under DPMFoam, and their `alphac` is optional).
-fn is_openfoam(closure: DragClosure) -> bool {
-    matches!(
-        closure,
-        DragClosure::SphereDrag
-            | DragClosure::WenYu
-            | DragClosure::ErgunWenYu
-            | DragClosure::PlessisMasliyah
-    )
-}
-
-/// A fraction-field name (`alphac alpha.air;`) that must be the continuous phase's;
-/// `required` when OpenFOAM requires the keyword.
-fn fraction_field(d: &Dict, keyword: &str, phase: &str, required: bool) -> Result<(), CaseError> {
-    let expected = fraction_name(phase);
-    let name = if required {
-        d.get_word(keyword)?
-    } else {
-        match d.opt_word(keyword)? {
-            Some(n) => n,
-            None => return Ok(()),
-        }
-    };
-    if name != expected {
-        return Err(at_value(
-            d,
-            keyword,
-            format!(
-                "'{keyword}' names the field '{name}': expected the continuous phase's fluid \
-                 fraction {expected}"
-            ),
-        ));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -843,8 +672,6 @@ subModels
             ),
             "{e}"
         );
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
-        assert_eq!(edit_distance("", "abc"), 3);
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "gravty;"));
         assert!(
             e.message.starts_with(

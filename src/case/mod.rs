@@ -23,6 +23,7 @@ pub mod fraction_field;
 pub mod fv_options;
 mod packed;
 pub mod parser;
+pub mod particle_forces;
 pub mod pressure_solver;
 pub mod source;
 pub mod transport;
