@@ -47,7 +47,7 @@ fn main() {
     // state, committed (fsync of every file, rename) and listed in the collection.
     let case = dir.join("case");
     std::fs::create_dir_all(&case).unwrap();
-    let mut output = CaseOutput::open(&case, 6, 0).unwrap();
+    let mut output = CaseOutput::open(&case, 6, 0, 0.0).unwrap();
     let mut best = f64::INFINITY;
     for step in 1..=3 {
         let start = Instant::now();

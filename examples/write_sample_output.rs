@@ -30,7 +30,7 @@ fn main() -> Result<(), OutputError> {
     std::fs::create_dir_all(&case_dir)
         .map_err(|e| OutputError::io(&case_dir, "cannot create case directory", e))?;
     let grid = Grid::new([16, 12, 8], [0.0625, 0.05, 0.1], [-0.5, 0.2, 1.0]);
-    let mut output = CaseOutput::open(&case_dir, 6, 0)?;
+    let mut output = CaseOutput::open(&case_dir, 6, 0, 0.0)?;
     let mut log = Log::stdout();
     let log_err = |e| OutputError::io(std::path::Path::new("<stdout>"), "cannot write log", e);
     log.banner(&Banner {

@@ -83,6 +83,7 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         &case.dir,
         case.control.time_precision,
         case.control.purge_write,
+        sim.time.time,
     )
     .map_err(output_error)?;
     let start_name = output.time_name(sim.time.time);

@@ -21,7 +21,7 @@ use crate::fluid::{FluidDiagnostics, FluidSettings, FluidSolver, StepReport};
 use crate::grid::Grid;
 use crate::output::{ParticleFields, TimeEntry};
 use crate::particles::Dem;
-use crate::time_control::TimeControl;
+use crate::time_control::{TimeControl, WriteControl};
 use std::time::Instant;
 
 mod case_settings;
@@ -156,7 +156,13 @@ impl Simulation {
         } else {
             StepSizing::Fixed(control.delta_t)
         };
-        let write_control = control.write_control;
+        // OpenFOAM fits the step to the write times only within its adjustable step
+        // (`Time::adjustDeltaT`, reached through setDeltaT.H): with a fixed step,
+        // adjustableRunTime writes as runTime does
+        let write_control = match control.write_control {
+            WriteControl::AdjustableRunTime if !control.adjust_time_step => WriteControl::RunTime,
+            w => w,
+        };
 
         let mut sim = Simulation {
             fluid,

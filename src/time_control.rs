@@ -1,11 +1,15 @@
 //! When to step and when to write, as `system/controlDict` says.
 //!
-//! `writeControl timeStep` writes every `writeInterval` steps (counted from time 0, so a
-//! continued run keeps the same write times); `runTime` writes at the first
-//! step that reaches each multiple of `writeInterval` (the step size is not changed);
+//! `writeControl timeStep` writes every `writeInterval` steps; `runTime` writes at the step
+//! that ends nearest each multiple of `writeInterval`, the first whose time plus half its size
+//! reaches it (OpenFOAM's `Time::operator++`; the step size is not changed);
 //! `adjustableRunTime` shortens the step that would pass a write time so that it lands on it,
-//! as OpenFOAM does with `adjustTimeStep yes`. The run ends at `endTime` (to rounding), and
-//! the final time is always written so that a run can be continued from it.
+//! as OpenFOAM does with `adjustTimeStep yes` (without it, the caller gives `runTime`: OpenFOAM
+//! adjusts the step to write times only within its adjustable step). Steps and write times are
+//! counted from time 0, not from the run's start, so that a continued run writes where an
+//! uninterrupted one does (OpenFOAM.com counts from the start time, openfoam.org since 2020
+//! from the case's begin time). The run ends at `endTime` (to rounding), and the final time is
+//! always written so that a run can be continued from it.
 
 pub use crate::case::WriteControl;
 
@@ -92,8 +96,13 @@ impl TimeControl {
                 self.step.is_multiple_of(every)
             }
             WriteControl::RunTime | WriteControl::AdjustableRunTime => {
+                // runTime: the step nearest the write time; adjustableRunTime lands on it
+                let reach = match self.write_control {
+                    WriteControl::RunTime => 0.5 * dt,
+                    _ => 0.0,
+                };
                 let mut hit = false;
-                while self.time >= self.next_write_time() - TIME_EPS * self.write_interval {
+                while self.time + reach >= self.next_write_time() - TIME_EPS * self.write_interval {
                     self.write_index += 1;
                     hit = true;
                 }
@@ -144,13 +153,23 @@ mod tests {
     }
 
     #[test]
-    fn run_time_control_writes_at_the_first_step_past_each_interval() {
+    fn run_time_control_writes_at_the_step_nearest_each_interval() {
         let tc = TimeControl::new(0.0, 0, 1.0, WriteControl::RunTime, 0.3);
         let (_, writes) = run(tc, 0.1);
         // 0.3, 0.6, 0.9 reached (to rounding) at steps 3, 6, 9; then the end.
         assert_eq!(writes.len(), 4);
         assert!((writes[0] - 0.3).abs() < 1e-12);
         assert!((writes.last().unwrap() - 1.0).abs() < 1e-12);
+        // A step that does not divide the interval: OpenFOAM writes when
+        // label((t + Δt/2)/interval) grows: at 0.009 (nearer 0.01 than 0.012 is), at 0.021
+        // (0.018 + Δt/2 falls short of 0.02) and at the end, 0.03.
+        let tc = TimeControl::new(0.0, 0, 0.03, WriteControl::RunTime, 0.01);
+        let (_, writes) = run(tc, 0.003);
+        let expect = [0.009, 0.021, 0.03];
+        assert_eq!(writes.len(), expect.len(), "{writes:?}");
+        for (w, e) in writes.iter().zip(expect) {
+            assert!((w - e).abs() < 1e-12, "{writes:?}");
+        }
     }
 
     #[test]

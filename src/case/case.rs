@@ -14,6 +14,7 @@ use super::fraction_field::check_fraction_field;
 use super::fv_options::{read_fv_options, MeanVelocityForce};
 use super::transport::Transport;
 use super::turbulence::{check_laminar, turbulence_file};
+use crate::output::RESTART_FILE_NAME;
 
 /// A validated case directory.
 #[derive(Clone, Debug)]
@@ -74,7 +75,7 @@ impl Case {
         };
 
         let control_dict = read("system/controlDict")?;
-        let control = ControlDict::from_dict(&control_dict, &mut warnings)?;
+        let mut control = ControlDict::from_dict(&control_dict, &mut warnings)?;
         // Function objects are for a later stage; they are kept, not reported.
         if let Some(f) = control_dict.lookup("functions").and_then(|e| e.as_dict()) {
             f.mark_all_used();
@@ -100,7 +101,24 @@ impl Case {
 
         let time = match time {
             Some(t) => t.to_string(),
-            None => Case::initial_time_dir(dir, &control, &transport.velocity_name()),
+            None => {
+                let name = Case::initial_time_dir(dir, &control, &transport.velocity_name())?;
+                if dir.join(&name).join("lagrangian").is_dir() {
+                    return Err(CaseError::plain(format!(
+                        "{name}/lagrangian: the start time holds an OpenFOAM cloud's state, \
+                         which fsim does not read (it would inject the particles afresh); \
+                         start from a time without it"
+                    )));
+                }
+                // OpenFOAM starts `firstTime` and `latestTime` at their directory's time (a
+                // restart's own time replaces it when the solver restores one)
+                if control.start_from != StartFrom::StartTime {
+                    if let Ok(t) = name.parse::<f64>() {
+                        control.start_time = t;
+                    }
+                }
+                name
+            }
         };
         let (fields, field_dicts) =
             Fields::read(dir, &time, &transport.velocity_name(), &mesh, &mut warnings)?;
@@ -123,10 +141,11 @@ impl Case {
         let system_options = optional("system/fvOptions")?;
         let constant_options = optional("constant/fvOptions")?;
         if system_options.is_some() && constant_options.is_some() {
+            // OpenFOAM's fv::options looks in constant/ first
             warnings
-                .push("constant/fvOptions: ignored, system/fvOptions is read instead".to_string());
+                .push("system/fvOptions: ignored, constant/fvOptions is read instead".to_string());
         }
-        if let Some(opts) = system_options.or(constant_options) {
+        if let Some(opts) = constant_options.or(system_options) {
             mean_velocity_forces = read_fv_options(&opts, &transport.velocity_name())?;
             read_dicts.push(opts);
         }
@@ -176,28 +195,55 @@ impl Case {
         })
     }
 
-    /// The time directory whose fields start the run: `startTime`'s name for
-    /// `startFrom startTime`; otherwise the earliest time directory holding the velocity file
-    /// (`0` normally; restart state is restored separately by the solver).
-    pub fn initial_time_dir(dir: &Path, control: &ControlDict, velocity: &str) -> String {
+    /// The time directory whose fields start the run, as OpenFOAM's `startFrom` chooses it:
+    /// `startTime`'s name; for `firstTime` the earliest time directory holding the velocity
+    /// file; for `latestTime` the latest time directory, or, when that holds fsim's restart
+    /// state and no velocity file (a directory fsim wrote), the earliest holding the velocity
+    /// file (its boundary conditions; the solver restores the state). A latest directory with
+    /// neither is an error: starting elsewhere would overwrite it.
+    pub fn initial_time_dir(
+        dir: &Path,
+        control: &ControlDict,
+        velocity: &str,
+    ) -> Result<String, CaseError> {
         if control.start_from == StartFrom::StartTime {
-            return time_name(control.start_time, control.time_precision);
+            return Ok(time_name(control.start_time, control.time_precision));
         }
         let mut times: Vec<(f64, String)> = std::fs::read_dir(dir)
             .into_iter()
             .flatten()
             .flatten()
+            .filter(|e| e.path().is_dir())
             .filter_map(|e| {
                 let name = e.file_name().to_string_lossy().into_owned();
                 let t: f64 = name.parse().ok()?;
-                exists(&e.path().join(velocity)).then_some((t, name))
+                Some((t, name))
             })
             .collect();
         times.sort_by(|a, b| a.0.total_cmp(&b.0));
-        times
-            .into_iter()
-            .next()
-            .map_or_else(|| "0".to_string(), |(_, name)| name)
+        let holds_velocity = |name: &str| exists(&dir.join(name).join(velocity));
+        let earliest_with_velocity = || {
+            times
+                .iter()
+                .find(|(_, name)| holds_velocity(name))
+                .map_or_else(|| "0".to_string(), |(_, name)| name.clone())
+        };
+        if control.start_from == StartFrom::FirstTime {
+            return Ok(earliest_with_velocity());
+        }
+        match times.last() {
+            None => Ok("0".to_string()),
+            Some((_, name)) if holds_velocity(name) => Ok(name.clone()),
+            Some((_, name)) if dir.join(name).join(RESTART_FILE_NAME).exists() => {
+                Ok(earliest_with_velocity())
+            }
+            Some((_, name)) => Err(CaseError::plain(format!(
+                "startFrom latestTime: the latest time directory '{name}' holds neither \
+                 {velocity} nor fsim's {RESTART_FILE_NAME}, so the run cannot start from it \
+                 (and would overwrite it from an earlier time); give it those fields, remove \
+                 it, or set startFrom startTime"
+            ))),
+        }
     }
 
     /// One line for `-dry-run`: grid, patches, fluid, time and coupling.

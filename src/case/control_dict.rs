@@ -94,7 +94,8 @@ impl ControlDict {
             d,
             "startFrom",
             &["startTime", "latestTime", "firstTime"],
-            Some(0),
+            // OpenFOAM's default (Time::setControls)
+            Some(1),
         )? {
             0 => StartFrom::StartTime,
             1 => StartFrom::LatestTime,
@@ -250,7 +251,8 @@ mod tests {
         .unwrap();
         let mut notes = Vec::new();
         let c = ControlDict::from_dict(&d, &mut notes).unwrap();
-        assert_eq!(c.start_from, StartFrom::StartTime);
+        // OpenFOAM's default start (Time::setControls)
+        assert_eq!(c.start_from, StartFrom::LatestTime);
         assert_eq!(c.write_control, WriteControl::RunTime);
         assert_eq!(c.time_precision, 6);
         assert_eq!(c.max_co, 1.0);

@@ -4,7 +4,7 @@
 //! ```no_run
 //! # use fsim::output::*; use fsim::grid::Grid; use std::path::Path;
 //! # fn run(grid: &Grid, u: &[[f64; 3]], p: &[f64]) -> Result<(), OutputError> {
-//! let mut output = CaseOutput::open(Path::new("cavity"), 6, 0)?;
+//! let mut output = CaseOutput::open(Path::new("cavity"), 6, 0, 0.0)?;
 //! let dir = output.begin(0.1)?;
 //! write_fluid(dir.path(), grid, "fsim t = 0.1", &[
 //!     CellData::Vector("U", u),
@@ -24,6 +24,7 @@ use super::time_directory::{
 };
 use super::time_name::time_name;
 use crate::grid::Grid;
+use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
 /// The fluid as legacy VTK in each time directory: the file meshio reads.
@@ -67,6 +68,11 @@ pub struct CaseOutput {
     collection: PathBuf,
     /// Time and name of the last committed write, to keep names distinct.
     last_written: Option<(f64, String)>,
+    /// The directories this run wrote, oldest first: what `purgeWrite` may delete.
+    written: VecDeque<String>,
+    /// The start time's directory: it holds the initial conditions or the state the run
+    /// continues from, and is never purged, though the run adds its files to it.
+    start_name: String,
     /// Time of the directory begun and not yet committed.
     pending: Option<f64>,
 }
@@ -78,11 +84,13 @@ impl CaseOutput {
     /// Prepares the case for writing: removes directories left by an interrupted write, and
     /// rebuilds the collection file from the time directories already there, so a continued
     /// run's collection holds the whole series. `time_precision` and `purge_write` are those
-    /// of `system/controlDict` (`purge_write == 0`: keep everything).
+    /// of `system/controlDict` (`purge_write == 0`: keep everything); `start_time` is the
+    /// run's, whose directory `purgeWrite` never deletes.
     pub fn open(
         case_dir: &Path,
         time_precision: usize,
         purge_write: usize,
+        start_time: f64,
     ) -> Result<Self, OutputError> {
         remove_partial_time_directories(case_dir)?;
         let output = CaseOutput {
@@ -91,6 +99,8 @@ impl CaseOutput {
             purge_write,
             collection: collection_path(case_dir)?,
             last_written: None,
+            written: VecDeque::new(),
+            start_name: time_name(start_time, time_precision),
             pending: None,
         };
         output.refresh_collection()?;
@@ -132,10 +142,13 @@ impl CaseOutput {
     pub fn commit(&mut self, dir: TimeDirectory) -> Result<PathBuf, OutputError> {
         let name = dir.name().to_string();
         let path = dir.commit()?;
+        if name != self.start_name && self.written.back() != Some(&name) {
+            self.written.push_back(name.clone());
+        }
         if let Some(t) = self.pending.take() {
             self.last_written = Some((t, name));
         }
-        purge_write(&self.case_dir, self.purge_write)?;
+        purge_write(&self.case_dir, &mut self.written, self.purge_write)?;
         self.refresh_collection()?;
         Ok(path)
     }
@@ -176,7 +189,7 @@ mod tests {
         let case = ScratchDir::new("case-output");
         fs::create_dir_all(case.path().join("0")).unwrap();
         fs::create_dir_all(case.path().join(".0.4.partial")).unwrap();
-        let mut output = CaseOutput::open(case.path(), 6, 3).unwrap();
+        let mut output = CaseOutput::open(case.path(), 6, 3, 0.0).unwrap();
         assert!(!case.path().join(".0.4.partial").exists());
         for step in 1..=5 {
             write(&mut output, 0.1 * step as f64, step % 2 == 1);
@@ -206,7 +219,7 @@ mod tests {
             fs::canonicalize(case.path()).unwrap().file_name().unwrap().to_str().unwrap()
         )))
         .unwrap();
-        let mut output = CaseOutput::open(case.path(), 6, 0).unwrap();
+        let mut output = CaseOutput::open(case.path(), 6, 0, 0.5).unwrap();
         write(&mut output, 0.6, false);
         let xml = fs::read_to_string(output.collection_path()).unwrap();
         assert_eq!(xml.matches("<DataSet ").count(), 6);

@@ -11,6 +11,7 @@
 //! and each new file replaces its namesake by a rename, which is atomic per file.
 
 use super::output_error::OutputError;
+use std::collections::VecDeque;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -186,29 +187,34 @@ pub fn remove_partial_time_directories(case_dir: &Path) -> Result<Vec<PathBuf>, 
     Ok(removed)
 }
 
-/// controlDict `purgeWrite N`: keeps the newest `keep` time directories and deletes the older
-/// ones; `keep == 0` disables purging, as in OpenFOAM. The initial-conditions directory `0`
-/// (any name whose value is zero) is never deleted and does not count among the `keep`.
-/// Each victim is first renamed to a hidden `.<time>.purge` so that a crash mid-delete cannot
-/// leave a half-empty directory that looks like a time. Returns the names deleted.
-pub fn purge_write(case_dir: &Path, keep: usize) -> Result<Vec<String>, OutputError> {
-    if keep == 0 {
-        return Ok(Vec::new());
-    }
-    let times: Vec<TimeEntry> = list_time_directories(case_dir)?
-        .into_iter()
-        .filter(|t| t.value != 0.0)
-        .collect();
-    let excess = times.len().saturating_sub(keep);
+/// controlDict `purgeWrite N`, as OpenFOAM's `Time::writeObject` applies it: of the time
+/// directories this run wrote, oldest first in `written`, the oldest are deleted until `keep`
+/// remain; `keep == 0` disables purging. Directories the run did not write (the initial
+/// conditions, an earlier run's times) are never touched: the caller leaves them out of
+/// `written`. Each victim is first renamed to a hidden `.<time>.purge` so that a crash
+/// mid-delete cannot leave a half-empty directory that looks like a time. Returns the names
+/// deleted.
+pub fn purge_write(
+    case_dir: &Path,
+    written: &mut VecDeque<String>,
+    keep: usize,
+) -> Result<Vec<String>, OutputError> {
     let mut deleted = Vec::new();
-    for victim in &times[..excess] {
-        let path = case_dir.join(&victim.name);
-        let doomed = case_dir.join(format!(".{}{PURGE_SUFFIX}", victim.name));
+    if keep == 0 {
+        return Ok(deleted);
+    }
+    while written.len() > keep {
+        let victim = written.pop_front().expect("more than keep >= 1");
+        let path = case_dir.join(&victim);
+        if !path.is_dir() {
+            continue;
+        }
+        let doomed = case_dir.join(format!(".{victim}{PURGE_SUFFIX}"));
         fs::rename(&path, &doomed)
             .map_err(|e| OutputError::io(&path, "cannot purge time directory", e))?;
         fs::remove_dir_all(&doomed)
             .map_err(|e| OutputError::io(&doomed, "cannot purge time directory", e))?;
-        deleted.push(victim.name.clone());
+        deleted.push(victim);
     }
     Ok(deleted)
 }
@@ -351,28 +357,39 @@ mod tests {
     }
 
     #[test]
-    fn purge_write_keeps_the_newest_and_the_initial_directory() {
+    fn purge_write_deletes_only_the_oldest_of_what_the_run_wrote() {
         let case = ScratchDir::new("purge");
         for name in ["0", "0.1", "0.2", "0.3", "0.4", "0.5"] {
             write_time(case.path(), name, name);
         }
+        // this run started from 0.2 and wrote 0.3, 0.4 and 0.5
+        let mut written: VecDeque<String> = ["0.3", "0.4", "0.5"].map(String::from).into();
         assert!(
-            purge_write(case.path(), 0).unwrap().is_empty(),
+            purge_write(case.path(), &mut written, 0)
+                .unwrap()
+                .is_empty(),
             "0 disables"
         );
-        let deleted = purge_write(case.path(), 2).unwrap();
-        assert_eq!(deleted, ["0.1", "0.2", "0.3"]);
+        let deleted = purge_write(case.path(), &mut written, 2).unwrap();
+        assert_eq!(deleted, ["0.3"]);
+        assert_eq!(written, ["0.4", "0.5"]);
         let names: Vec<_> = list_time_directories(case.path())
             .unwrap()
             .into_iter()
             .map(|t| t.name)
             .collect();
-        assert_eq!(names, ["0", "0.4", "0.5"]);
+        // the initial conditions and the earlier run's times stay
+        assert_eq!(names, ["0", "0.1", "0.2", "0.4", "0.5"]);
         assert_eq!(
             read_dir_paths(case.path()).unwrap().len(),
-            3,
+            5,
             "no hidden leftovers"
         );
+        // a listed directory already gone (removed by hand) is skipped
+        fs::remove_dir_all(case.path().join("0.4")).unwrap();
+        written.push_back("0.6".into());
+        write_time(case.path(), "0.6", "0.6");
+        assert!(purge_write(case.path(), &mut written, 1).unwrap() == ["0.5"]);
     }
 
     #[test]
