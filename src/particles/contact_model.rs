@@ -39,8 +39,9 @@ pub enum TangentialRule {
     #[default]
     CappedSpring,
     /// OpenFOAM's `pairSpringSliderDashpot` rule: on sliding the force is `−μ|F_n| û_t` and the
-    /// spring is reset to zero, so the mean friction depends on the step size. Its wall model
-    /// keeps no history at all (`ξ = u_t Δt` each step). Choose it to match DPMFoam.
+    /// spring is reset to zero, so the mean friction depends on the step size. The wall model
+    /// keeps its spring over the contact as the pair model does (`WallSpringSliderDashpot`
+    /// finds the contact's `WallCollisionRecord` again each step). Choose it to match DPMFoam.
     DpmFoamReset,
 }
 
@@ -239,18 +240,6 @@ impl ContactLaw {
                 mu,
             }),
         }
-    }
-
-    /// True when the tangential spring must be remembered between steps.
-    pub(crate) fn keeps_history(&self, wall: bool) -> bool {
-        !(wall
-            && matches!(
-                self,
-                ContactLaw::Hertz {
-                    rule: TangentialRule::DpmFoamReset,
-                    ..
-                }
-            ))
     }
 
     /// Force on body A at one contact, and its tangential part.

@@ -22,7 +22,6 @@ pub(super) struct ContactContext<'a> {
     pub(super) length: Vec3,
     pub(super) inv_l: Vec3,
     pub(super) wall_law: Option<ContactLaw>,
-    pub(super) wall_history: bool,
     pub(super) dt: f64,
 }
 
@@ -130,9 +129,6 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
                     wk.wforce[mm] = [0.0; 3];
                     wk.wtorque[mm] = [0.0; 3];
                     continue;
-                }
-                if !c.wall_history {
-                    wk.whist[mm] = [0.0; 3];
                 }
                 let nrm = wall_normal(f);
                 let u_n = dot(vi, nrm);

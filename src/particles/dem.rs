@@ -469,7 +469,6 @@ impl Dem {
             length: self.domain.length(),
             inv_l: self.domain.inverse_periodic_length(),
             wall_law,
-            wall_history: wall_law.map(|l| l.keeps_history(true)).unwrap_or(false),
             dt,
         };
         let block = lists.block.max(1);
@@ -769,8 +768,10 @@ mod tests {
 
     /// OpenFOAM v1912 `WallSpringSliderDashpot::evaluateWall`, by hand:
     /// 1/E* = (1−ν_p²)/E_p + (1−ν_w²)/E_w, k_N = 4/3 √r E*, G* = 1/(2((2+ν_p−ν_p²)/E_p + (2+ν_w−ν_w²)/E_w)),
-    /// η_N = α √(m k_N) δ^{1/4}, U_slip = U − (U·n)n + ω × (−r n), ξ = U_slip Δt (no history),
-    /// k_T = 8 √(r δ) G*, slide test and torque as for pairs.
+    /// η_N = α √(m k_N) δ^{1/4}, U_slip = U − (U·n)n + ω × (−r n), ξ += U_slip Δt (the spring
+    /// kept from step to step in the contact's `WallCollisionRecord`, zeroed when it slides),
+    /// k_T = 8 √(r δ) G*, slide test and torque as for pairs. Two evaluations of the same
+    /// contact: the second sees the first's spring.
     #[test]
     fn wall_force_matches_dpmfoam_formulas() {
         let (ep, np, ew, nw, alpha, b, mu) =
@@ -801,7 +802,6 @@ mod tests {
                 p,
             )
             .unwrap();
-            dem.compute_contact_forces(dt);
             let r = d / 2.0;
             let m = 2500.0 * PI * d.powi(3) / 6.0;
             let e_star = 1.0 / ((1.0 - np * np) / ep + (1.0 - nw * nw) / ew);
@@ -812,30 +812,48 @@ mod tests {
             let fn_mag = kn * delta.powf(b) - eta_n * dot(v, n);
             let c = cross(w, scale(n, -r));
             let slip = [v[0] + c[0], v[1] + c[1], 0.0];
-            let xi = scale(slip, dt);
             let kt = 8.0 * (r * delta).sqrt() * g_star;
-            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
-                scale(slip, -mu * fn_mag.abs() / norm(slip))
-            } else {
-                [
-                    -kt * xi[0] - eta_n * slip[0],
-                    -kt * xi[1] - eta_n * slip[1],
-                    0.0,
-                ]
-            };
-            let f = [f_t[0], f_t[1], fn_mag];
-            let t = cross(scale(n, -r), f_t);
-            let (fo, to) = (
-                dem.particles.contact_force[0],
-                dem.particles.contact_torque[0],
-            );
-            for k in 0..3 {
-                assert!((fo[k] - f[k]).abs() < 1e-12 * norm(f), "{fo:?} vs {f:?}");
-                assert!(
-                    (to[k] - t[k]).abs() < 1e-12 * norm(f) * r,
-                    "{to:?} vs {t:?}"
+            let mut xi = [0.0; 3];
+            let mut slid = Vec::new();
+            for _ in 0..2 {
+                dem.compute_contact_forces(dt);
+                xi = [xi[0] + slip[0] * dt, xi[1] + slip[1] * dt, 0.0];
+                let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+                    xi = [0.0; 3];
+                    slid.push(true);
+                    scale(slip, -mu * fn_mag.abs() / norm(slip))
+                } else {
+                    slid.push(false);
+                    [
+                        -kt * xi[0] - eta_n * slip[0],
+                        -kt * xi[1] - eta_n * slip[1],
+                        0.0,
+                    ]
+                };
+                let f = [f_t[0], f_t[1], fn_mag];
+                let t = cross(scale(n, -r), f_t);
+                let (fo, to) = (
+                    dem.particles.contact_force[0],
+                    dem.particles.contact_torque[0],
                 );
+                for k in 0..3 {
+                    assert!((fo[k] - f[k]).abs() < 1e-12 * norm(f), "{fo:?} vs {f:?}");
+                    assert!(
+                        (to[k] - t[k]).abs() < 1e-12 * norm(f) * r,
+                        "{to:?} vs {t:?}"
+                    );
+                }
             }
+            // the first contact sticks, its spring doubled at the second evaluation; the
+            // second slides at once
+            assert_eq!(
+                slid,
+                if dt == 1e-6 {
+                    [false, false]
+                } else {
+                    [true, true]
+                }
+            );
         }
     }
 
