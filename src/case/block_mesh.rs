@@ -131,6 +131,9 @@ pub struct Patch {
     pub faces: Vec<BoxFace>,
     /// For a cyclic patch: the patch on the opposite faces (itself when it covers both).
     pub neighbour: Option<String>,
+    /// The patch groups it belongs to, as OpenFOAM has them: its `inGroups`, then its type's
+    /// own group (every type but `patch`: `wall`, `cyclic`, `empty`, `symmetry`, …).
+    pub groups: Vec<String>,
     /// Where the patch is defined.
     pub loc: Location,
 }
@@ -142,6 +145,40 @@ pub struct BlockMesh {
     pub patches: Vec<Patch>,
     /// For each face in [`BoxFace::ALL`] order, the index of its patch in `patches`.
     pub face_patch: [usize; 6],
+}
+
+/// `inGroups (a b);` (also `List<word> 2(a b)`): the groups a patch is put in.
+fn in_groups(pd: &Dict) -> Result<Vec<String>, CaseError> {
+    if pd.lookup("inGroups").is_none() {
+        return Ok(Vec::new());
+    }
+    let tokens = pd.get_tokens("inGroups")?;
+    let list = tokens.last().and_then(|t| t.as_list()).ok_or_else(|| {
+        at_value(
+            pd,
+            "inGroups",
+            "expected a list of group names, as (wall)".to_string(),
+        )
+    })?;
+    list.iter()
+        .map(|item| {
+            item.as_word().map(str::to_string).ok_or_else(|| {
+                CaseError::at(
+                    &item.loc,
+                    format!("expected a group name, found {}", item.describe()),
+                )
+            })
+        })
+        .collect()
+}
+
+/// A patch's groups: those it was put in, then its type's own (OpenFOAM's `polyPatch` adds
+/// the type to `inGroups` for every type but `patch`).
+pub(crate) fn groups_of(kind: PatchType, mut groups: Vec<String>) -> Vec<String> {
+    if kind != PatchType::Patch && !groups.iter().any(|g| g == kind.name()) {
+        groups.push(kind.name().to_string());
+    }
+    groups
 }
 
 impl BlockMesh {
@@ -162,6 +199,33 @@ impl BlockMesh {
 
     /// Reads and validates the dictionary.
     pub fn from_dict(d: &Dict) -> Result<BlockMesh, CaseError> {
+        // settings that move or rescale OpenFOAM's points: ignoring them would build
+        // another box
+        for (keyword, what) in [
+            ("prescale", "a scaling before the transform"),
+            ("transform", "a rotation or translation of the points"),
+            ("units", "the vertices' unit"),
+        ] {
+            if d.contains(keyword) {
+                return Err(at_value(
+                    d,
+                    keyword,
+                    format!(
+                        "'{keyword}' ({what}) is not supported by fsim: give the vertices \
+                         in place, scaled by 'scale' or 'convertToMeters' only"
+                    ),
+                ));
+            }
+        }
+        if d.contains("boundary") && d.contains("patches") {
+            return Err(at_value(
+                d,
+                "patches",
+                "both 'boundary' and the old 'patches': OpenFOAM reads 'patches' and ignores \
+                 'boundary'; keep one"
+                    .to_string(),
+            ));
+        }
         let scale = match (d.opt_scalar("scale")?, d.opt_scalar("convertToMeters")?) {
             (Some(s), _) => ("scale", s),
             (None, Some(s)) => ("convertToMeters", s),
@@ -733,8 +797,8 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
             } else {
                 None
             };
-            // Group membership and transform settings do not change fsim's patches.
-            for quiet in ["inGroups", "transform", "matchTolerance"] {
+            // Transform settings do not change fsim's patches.
+            for quiet in ["transform", "matchTolerance"] {
                 pd.lookup(quiet);
             }
             let p = Patch {
@@ -742,6 +806,7 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
                 kind,
                 faces: Vec::new(),
                 neighbour,
+                groups: groups_of(kind, in_groups(pd)?),
                 loc: name_item.loc.clone(),
             };
             assign(&mut patches, &mut owner, p, quads.iter().collect())?;
@@ -774,6 +839,7 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
                 faces: Vec::new(),
                 // The old form has no neighbour keyword: a cyclic patch holds both faces.
                 neighbour: (kind == PatchType::Cyclic).then(|| name.to_string()),
+                groups: groups_of(kind, Vec::new()),
                 loc: name_item.loc.clone(),
             };
             assign(&mut patches, &mut owner, p, quads.iter().collect())?;
@@ -806,6 +872,7 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
             kind,
             faces: Vec::new(),
             neighbour: None,
+            groups: groups_of(kind, Vec::new()),
             loc,
         };
         for face in BoxFace::ALL {
@@ -850,6 +917,44 @@ mod tests {
         assert_eq!(m.patch_on(BoxFace::ZMax).kind, PatchType::Empty);
         assert!(m.is_periodic(0));
         assert!(!m.is_periodic(1));
+    }
+
+    #[test]
+    fn patches_join_their_in_groups_and_their_types_group() {
+        let m = mesh(
+            "boundary ( lid { type patch; inGroups (movingWalls wall); faces ((3 7 6 2)); }\n\
+             floor { type wall; inGroups List<word> 1(fixed); faces ((0 1 5 4)); }\n\
+             sides { type symmetry; faces ((0 4 7 3) (1 2 6 5)); } );",
+        )
+        .unwrap();
+        let groups = |name: &str| m.patches[m.patch_index(name).unwrap()].groups.clone();
+        assert_eq!(groups("lid"), ["movingWalls", "wall"]);
+        assert_eq!(groups("floor"), ["fixed", "wall"]);
+        assert_eq!(groups("sides"), ["symmetry"]);
+        assert_eq!(groups("defaultFaces"), ["empty"]);
+        let e =
+            mesh("boundary ( lid { type patch; inGroups (3); faces ((3 7 6 2)); } );").unwrap_err();
+        assert!(e.message.contains("expected a group name"), "{}", e.message);
+    }
+
+    #[test]
+    fn point_transforms_and_both_patch_lists_are_refused() {
+        for (extra, words) in [
+            ("prescale 0.001;", "'prescale' (a scaling before the transform)"),
+            (
+                "transform { type translation; translation (1 0 0); }",
+                "'transform' (a rotation or translation of the points)",
+            ),
+            ("units mm;", "'units' (the vertices' unit)"),
+            (
+                "boundary ( w { type wall; faces ((0 1 5 4)); } );\npatches ( wall w2 ((3 7 6 2)) );",
+                "OpenFOAM reads 'patches' and ignores 'boundary'",
+            ),
+        ] {
+            let e = mesh(extra).unwrap_err();
+            assert!(e.message.contains(words), "{extra}: {}", e.message);
+            assert!(e.line >= 4, "{extra}: at the keyword's value, line {}", e.line);
+        }
     }
 
     #[test]

@@ -379,13 +379,9 @@ fn patch_value<T>(
     })
 }
 
-/// The group a patch belongs to by its type, as OpenFOAM names patch groups.
-fn group_of(patch: &Patch) -> Option<&'static str> {
-    (patch.kind != PatchType::Patch).then(|| patch.kind.name())
-}
-
-/// The `boundaryField` dictionary of each patch: exact name first, then the patch's group
-/// (`wall`, `cyclic`, `empty`, …), then the quoted patterns, last first (OpenFOAM's order).
+/// The `boundaryField` dictionary of each patch: exact name first, then the patch's groups
+/// (its `inGroups` and its type's: `wall`, `cyclic`, `empty`, …), then the quoted patterns,
+/// last first (OpenFOAM's order).
 /// A keyword naming no patch is an error; a pattern or group that matches none is noted.
 /// `None` stands for a constraint patch (cyclic, empty, symmetry) left to
 /// `#includeEtc "caseDicts/setConstraintTypes"`, which gives each its own type.
@@ -403,13 +399,14 @@ pub(crate) fn conditions<'a>(
     let mut matched = vec![false; entries.len()];
     let mut out = Vec::with_capacity(mesh.patches.len());
     for patch in &mesh.patches {
-        let exact = entries.iter().rposition(|e| e.keyword() == patch.name);
+        // a quoted key is a pattern even when it spells a name (OpenFOAM's `isLiteral`)
+        let exact = entries
+            .iter()
+            .rposition(|e| !e.key.is_pattern() && e.keyword() == patch.name);
         let group = || {
-            group_of(patch).and_then(|g| {
-                entries
-                    .iter()
-                    .rposition(|e| !e.key.is_pattern() && e.keyword() == g)
-            })
+            entries
+                .iter()
+                .rposition(|e| !e.key.is_pattern() && patch.groups.iter().any(|g| g == e.keyword()))
         };
         let pattern = || {
             entries
@@ -452,7 +449,11 @@ pub(crate) fn conditions<'a>(
             continue;
         }
         e.mark_used();
-        let is_group = PatchType::NAMES.contains(&e.keyword()) && e.keyword() != "patch";
+        let is_group = (PatchType::NAMES.contains(&e.keyword()) && e.keyword() != "patch")
+            || mesh
+                .patches
+                .iter()
+                .any(|p| p.groups.iter().any(|g| g == e.keyword()));
         if e.key.is_pattern() || is_group {
             let (line, col) = e.key_loc.line_col();
             warnings.push(format!(
@@ -635,6 +636,48 @@ pub(crate) fn quiet_bookkeeping(d: &Dict) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// OpenFOAM's order (`GeometricBoundaryField::readField`): names, then groups (the last
+    /// entry first), then patterns; a quoted name is a pattern.
+    #[test]
+    fn boundary_entries_match_names_then_groups_then_patterns() {
+        let mesh = BlockMesh::from_dict(
+            &crate::case::parse_dict(
+                "vertices ((0 0 0) (1 0 0) (1 1 0) (0 1 0) (0 0 1) (1 0 1) (1 1 1) (0 1 1));\n\
+                 blocks (hex (0 1 2 3 4 5 6 7) (2 2 1) simpleGrading (1 1 1));\n\
+                 boundary ( lid { type wall; faces ((3 7 6 2)); }\n\
+                 floor { type wall; inGroups (fixedWalls); faces ((0 1 5 4)); }\n\
+                 sides { type patch; faces ((0 4 7 3) (1 2 6 5)); } );",
+                "system/blockMeshDict",
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let field = crate::case::parse_dict(
+            "boundaryField {\n\
+             \"lid\" { type fixedValue; value uniform (1 0 0); }\n\
+             wall { type noSlip; }\n\
+             fixedWalls { type slip; }\n\
+             \"s.*\" { type zeroGradient; }\n\
+             sides { type fixedValue; value uniform (0 0 0); }\n\
+             defaultFaces { type empty; } }",
+            "0/U",
+        )
+        .unwrap();
+        let mut notes = Vec::new();
+        let found = conditions(&field, &mesh, &mut notes).unwrap();
+        let kind = |name: &str| {
+            let k = mesh.patch_index(name).unwrap();
+            found[k].unwrap().get_word("type").unwrap()
+        };
+        // the quoted "lid" is a pattern: the wall group's entry comes first
+        assert_eq!(kind("lid"), "noSlip");
+        // of two groups, the last entry in the file
+        assert_eq!(kind("floor"), "slip");
+        // the name before the pattern that also matches it
+        assert_eq!(kind("sides"), "fixedValue");
+        assert!(notes.iter().any(|n| n.contains("'lid'")), "{notes:?}");
+    }
 
     #[test]
     fn nonuniform_field_order_and_length() {

@@ -33,7 +33,7 @@ pub(super) fn domain_box(
         faces[face.index()] = match patch.kind {
             PatchType::Cyclic => FaceCondition::Periodic,
             PatchType::Wall if soft_walls => FaceCondition::Wall,
-            kind => match interaction.rebound(&patch.name, kind)? {
+            kind => match interaction.rebound(patch)? {
                 Some((e, mu)) => FaceCondition::Rebound { e, mu },
                 None if kind == PatchType::Wall => {
                     return Err(CaseError::at(
@@ -87,11 +87,14 @@ enum PatchNames {
 }
 
 impl PatchNames {
-    fn matches(&self, patch: &str) -> bool {
-        match self {
-            PatchNames::Literal(name) => name == patch,
-            PatchNames::Pattern(_, re) => re.is_match(patch),
-        }
+    /// Whether the entry names the patch: by its name or one of its groups, as OpenFOAM's
+    /// `polyBoundaryMesh::indices(key, useGroups)` finds them (so `wall` names every wall).
+    fn matches(&self, patch: &Patch) -> bool {
+        let named = |text: &str| match self {
+            PatchNames::Literal(name) => name == text,
+            PatchNames::Pattern(_, re) => re.is_match(text),
+        };
+        named(&patch.name) || patch.groups.iter().any(|g| named(g))
     }
 
     fn as_str(&self) -> &str {
@@ -111,7 +114,7 @@ fn check_local_rules(
     warnings: &mut Vec<String>,
 ) -> Result<(), CaseError> {
     for r in rules {
-        if !patches.iter().any(|p| r.names.matches(&p.name)) {
+        if !patches.iter().any(|p| r.names.matches(p)) {
             warnings.push(format!(
                 "{}: localInteraction: no patch matches '{}' (patches: {})",
                 sub.file(),
@@ -127,7 +130,7 @@ fn check_local_rules(
     let unnamed: Vec<String> = patches
         .iter()
         .filter(|p| !matches!(p.kind, PatchType::Cyclic | PatchType::Empty))
-        .filter(|p| !rules.iter().any(|r| r.names.matches(&p.name)))
+        .filter(|p| !rules.iter().any(|r| r.names.matches(p)))
         .map(|p| format!("'{}' ({})", p.name, p.kind.name()))
         .collect();
     if unnamed.is_empty() {
@@ -235,10 +238,11 @@ impl PatchInteraction {
     }
 
     /// `(e, mu)` of the rebound rule for a patch, `None` when no rule applies. Under
-    /// `localInteraction` the first entry whose name or regular expression matches the whole
-    /// patch name applies, as in OpenFOAM (`patchInteractionDataList::applyToPatch` returns
+    /// `localInteraction` the first entry that names the patch or one of its groups (a word,
+    /// or a regular expression matching the whole name) applies, as in OpenFOAM (`patchInteractionDataList::applyToPatch` returns
     /// the first group that holds the patch).
-    fn rebound(&self, patch: &str, kind: PatchType) -> Result<Option<(f64, f64)>, CaseError> {
+    fn rebound(&self, patch: &Patch) -> Result<Option<(f64, f64)>, CaseError> {
+        let kind = patch.kind;
         match self {
             PatchInteraction::None => Ok(None),
             PatchInteraction::Standard(rule, loc, t) => {
@@ -256,6 +260,7 @@ impl PatchInteraction {
             PatchInteraction::Local(rules) => {
                 for LocalRule { names, rule: d } in rules {
                     if names.matches(patch) {
+                        let patch = &patch.name;
                         let t = d.get_word("type")?;
                         if t != "rebound" {
                             return Err(at_value(
@@ -320,7 +325,7 @@ mod tests {
             }
             "#,
         );
-        let rule = |patch: &str| local.rebound(patch, PatchType::Patch).unwrap();
+        let rule = |name: &str| local.rebound(&patch(name, PatchType::Patch)).unwrap();
         assert_eq!(rule("front"), Some((0.9, 0.1)));
         // both of the first two rules match `back`: the first applies (OpenFOAM's order)
         assert_eq!(rule("back"), Some((0.9, 0.1)));
@@ -338,9 +343,12 @@ mod tests {
             "patchInteractionModel localInteraction;\n\
              localInteractionCoeffs { patches ( side.* { type rebound; e 0.5; } ); }\n",
         );
-        assert_eq!(local.rebound("sideLeft", PatchType::Wall).unwrap(), None);
         assert_eq!(
-            local.rebound("side.*", PatchType::Wall).unwrap(),
+            local.rebound(&patch("sideLeft", PatchType::Wall)).unwrap(),
+            None
+        );
+        assert_eq!(
+            local.rebound(&patch("side.*", PatchType::Wall)).unwrap(),
             Some((0.5, 0.0))
         );
         let d = Dict::parse(
@@ -372,6 +380,7 @@ mod tests {
             kind,
             faces: Vec::new(),
             neighbour: None,
+            groups: crate::case::block_mesh::groups_of(kind, Vec::new()),
             loc: Location::new(&file, 0),
         }
     }
@@ -394,6 +403,28 @@ mod tests {
         ];
         let mut warnings = Vec::new();
         check_local_rules(&rules, &patches, &d, &mut warnings).unwrap();
+        // a group names its patches: `wall` every wall, `inGroups` names too
+        let groups = interaction(
+            "patchInteractionModel localInteraction;\n\
+             localInteractionCoeffs { patches ( bottom { type rebound; e 1; } \
+             wall { type rebound; e 0.5; } inlets { type rebound; e 0.7; } ); }\n",
+        );
+        let mut inlet = patch("in", PatchType::Patch);
+        inlet.groups.push("inlets".into());
+        assert_eq!(groups.rebound(&inlet).unwrap(), Some((0.7, 0.0)));
+        assert_eq!(
+            groups.rebound(&patch("top", PatchType::Wall)).unwrap(),
+            Some((0.5, 0.0))
+        );
+        // the first entry that holds the patch applies: bottom's own, before its group's
+        assert_eq!(
+            groups.rebound(&patch("bottom", PatchType::Wall)).unwrap(),
+            Some((1.0, 0.0))
+        );
+        assert_eq!(
+            groups.rebound(&patch("outlet", PatchType::Patch)).unwrap(),
+            None
+        );
         // `lid` names no patch: a warning, as OpenFOAM's "Cannot find any patch names"
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert!(
@@ -421,14 +452,16 @@ mod tests {
              localInteractionCoeffs { patches ( top { type stick; } \
              bottom { type rebound; e 1.5; } ); }\n",
         );
-        let e = local.rebound("top", PatchType::Wall).unwrap_err();
+        let e = local.rebound(&patch("top", PatchType::Wall)).unwrap_err();
         assert!(
             e.message.contains("'stick' on patch 'top'") && e.message.contains("use rebound"),
             "{}",
             e.message
         );
         assert_eq!((e.line, e.col), (2, 47), "{}", e.message);
-        let e = local.rebound("bottom", PatchType::Wall).unwrap_err();
+        let e = local
+            .rebound(&patch("bottom", PatchType::Wall))
+            .unwrap_err();
         assert!(e.message.contains("in [0, 1]"), "{}", e.message);
     }
 
@@ -439,20 +472,33 @@ mod tests {
              standardWallInteractionCoeffs { type rebound; e 0.8; mu 0.2; }\n",
         );
         assert_eq!(
-            standard.rebound("walls", PatchType::Wall).unwrap(),
+            standard.rebound(&patch("walls", PatchType::Wall)).unwrap(),
             Some((0.8, 0.2))
         );
-        assert_eq!(standard.rebound("inlet", PatchType::Patch).unwrap(), None);
+        assert_eq!(
+            standard.rebound(&patch("inlet", PatchType::Patch)).unwrap(),
+            None
+        );
         let escape = interaction(
             "patchInteractionModel standardWallInteraction;\n\
              standardWallInteractionCoeffs { type escape; }\n",
         );
-        let e = escape.rebound("walls", PatchType::Wall).unwrap_err();
+        let e = escape
+            .rebound(&patch("walls", PatchType::Wall))
+            .unwrap_err();
         assert!(e.message.contains("'escape'"), "{}", e.message);
         assert_eq!(e.line, 2, "{}", e.message);
         // a non-wall patch is not the standard interaction's, whatever its rule
-        assert_eq!(escape.rebound("inlet", PatchType::Symmetry).unwrap(), None);
+        assert_eq!(
+            escape
+                .rebound(&patch("inlet", PatchType::Symmetry))
+                .unwrap(),
+            None
+        );
         let none = interaction("patchInteractionModel none;\n");
-        assert_eq!(none.rebound("walls", PatchType::Wall).unwrap(), None);
+        assert_eq!(
+            none.rebound(&patch("walls", PatchType::Wall)).unwrap(),
+            None
+        );
     }
 }
