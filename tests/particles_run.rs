@@ -256,12 +256,58 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
              collisionResolutionSteps 12; cohesionEnergyDensity 10; }\n        \
              wallModel wallLinearSpringDashpot;",
         );
-    fs::write(&props, text).unwrap();
+    fs::write(&props, &text).unwrap();
     let err = rejected(&case);
     assert!(
         err.contains("cohesionEnergyDensity 10: cohesion is not supported by fsim"),
         "{err}"
     );
+
+    // OpenFOAM's ramp of pair forces after injection, which fsim does not implement
+    let case = copy_tutorial("particleSettling", &scratch.0, "ramp");
+    let props = case.join("constant/kinematicCloudProperties");
+    fs::write(
+        &props,
+        text.replace("cohesionEnergyDensity 10;", "forceRampTime 0.01;"),
+    )
+    .unwrap();
+    let err = rejected(&case);
+    assert!(
+        err.contains(
+            "forceRampTime 0.01: the ramp of pair forces after injection is not supported"
+        ),
+        "{err}"
+    );
+
+    // a negative start of injection: OpenFOAM would inject nothing
+    let case = cloud_case(
+        &scratch,
+        "negativeSoi",
+        &MANUAL.replace("SOI             0;", "SOI             -1e-4;"),
+        &format!("{POSITIONS_HEAD})\n"),
+    );
+    let err = rejected(&case);
+    assert!(
+        err.contains("SOI -0.0001: a negative start of injection makes OpenFOAM's manualInjection inject nothing"),
+        "{err}"
+    );
+
+    // a start time holding an OpenFOAM cloud's state, which fsim would not read
+    let case = cloud_case(
+        &scratch,
+        "lagrangian",
+        MANUAL,
+        &format!("{POSITIONS_HEAD})\n"),
+    );
+    fs::create_dir_all(case.join("0/lagrangian/kinematicCloud")).unwrap();
+    let out = fsim(&case, &[]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("0/lagrangian: the start time holds an OpenFOAM cloud's state"),
+        "{err}"
+    );
+    assert_eq!(listing(&case), ["0", "constant", "system"], "{err}");
 
     // a particle force that fsim does not implement
     let case = copy_tutorial("particleSettling", &scratch.0, "force");

@@ -265,6 +265,19 @@ impl Cloud {
             )?;
             let pair_model = if pair_kind == 0 {
                 let c = coeffs.get_dict("pairSpringSliderDashpotCoeffs")?;
+                // OpenFOAM's PairModel ramps the pair forces up over each parcel's first
+                // forceRampTime (default −1: off); fsim does not, so it refuses a ramp
+                let ramp = c.get_scalar_or("forceRampTime", -1.0)?;
+                if ramp > 0.0 {
+                    return Err(at_value(
+                        c,
+                        "forceRampTime",
+                        format!(
+                            "forceRampTime {ramp}: the ramp of pair forces after injection is \
+                             not supported by fsim (remove it, or set -1)"
+                        ),
+                    ));
+                }
                 let (alpha, b, mu, steps, rule) = spring_slider(c)?;
                 PairModel::SpringSliderDashpot {
                     youngs_modulus: scalar_in(props, "youngsModulus", None, |x| x > 0.0, "> 0")?,
@@ -397,6 +410,16 @@ impl Cloud {
                 }
                 m.lookup("massTotal");
                 let soi = m.get_scalar_or("SOI", case.control.start_time)?;
+                if soi < 0.0 {
+                    return Err(at_value(
+                        m,
+                        "SOI",
+                        format!(
+                            "SOI {soi}: a negative start of injection makes OpenFOAM's \
+                             manualInjection inject nothing; use the start time"
+                        ),
+                    ));
+                }
                 if soi > case.control.start_time {
                     return Err(at_value(
                         m,
