@@ -452,3 +452,46 @@ fn error_in_an_included_file_names_that_file() {
         "expected ';' to end the entry 'nu'",
     );
 }
+
+#[test]
+fn dimension_sets_other_than_fsims_are_refused_at_the_set() {
+    // the pressure in pascals: fsim (as icoFoam and DPMFoam) solves for p/ρ
+    let c = TempCase::from_sample("cavity");
+    c.edit("0/p", "[0 2 -2 0 0 0 0]", "[1 -1 -2 0 0 0 0]");
+    let e = c.error();
+    let at = c.position("0/p", "[1 -1 -2", 0);
+    check(
+        &e,
+        "0/p",
+        at,
+        "'dimensions' has dimensions [1 -1 -2 0 0 0 0]: expected [0 2 -2 0 0 0 0] (m²/s², the kinematic pressure",
+    );
+    // a viscosity with a unit by name, which OpenFOAM would convert
+    let c = TempCase::from_sample("cavity");
+    c.edit(
+        "constant/transportProperties",
+        "[0 2 -1 0 0 0 0] 0.01",
+        "[mm^2/s] 0.01",
+    );
+    let e = c.error();
+    let at = c.position("constant/transportProperties", "[mm^2/s]", 0);
+    check(
+        &e,
+        "constant/transportProperties",
+        at,
+        "'nu' gives its unit by name, [mm^2/s]",
+    );
+    // a dynamic viscosity's set in place of a kinematic one
+    let c = TempCase::from_sample("cavity");
+    c.edit(
+        "constant/transportProperties",
+        "[0 2 -1 0 0 0 0]",
+        "[1 -1 -1 0 0 0 0]",
+    );
+    let e = c.error();
+    assert!(
+        e.message
+            .contains("expected [0 2 -1 0 0 0 0] (m²/s, a kinematic viscosity)"),
+        "{e}"
+    );
+}

@@ -11,7 +11,7 @@ use regex::Regex;
 
 use super::error::CaseError;
 use super::source::Location;
-use super::value::{Item, Value};
+use super::value::{Dimensions, Item, Value};
 
 /// An entry's keyword: a word, or a quoted key that matches as a regular expression.
 #[derive(Clone, Debug)]
@@ -283,6 +283,58 @@ impl Dict {
                 self.describe()
             ),
         )
+    }
+
+    /// Checks the dimension set written in `keyword`'s entry (`nu [0 2 -1 0 0 0 0] 1e-5;`,
+    /// `dimensions [0 1 -1 0 0 0 0];`) against `expected`, the exponents of kg, m, s, K, mol,
+    /// A, cd; `meaning` says what they are. No set written, or no entry: nothing to check
+    /// (fsim knows each quantity's dimensions). A set that differs is an error at it, as
+    /// OpenFOAM stops on one; a unit by name (`[mm^2/s]`), which OpenFOAM converts, is refused.
+    pub fn check_dimensions(
+        &self,
+        keyword: &str,
+        expected: [f64; 7],
+        meaning: &str,
+    ) -> Result<(), CaseError> {
+        let Some(tokens) = self.peek(keyword).and_then(Entry::as_tokens) else {
+            return Ok(());
+        };
+        let Some(item) = tokens
+            .iter()
+            .find(|t| matches!(t.value, Value::Dimensions(_)))
+        else {
+            return Ok(());
+        };
+        let show = |e: &[f64]| {
+            let parts: Vec<String> = e.iter().map(|x| x.to_string()).collect();
+            format!("[{}]", parts.join(" "))
+        };
+        match &item.value {
+            Value::Dimensions(Dimensions::Exponents(e)) => {
+                let mut given = [0.0; 7];
+                given[..e.len().min(7)].copy_from_slice(&e[..e.len().min(7)]);
+                if given != expected {
+                    return Err(CaseError::at(
+                        &item.loc,
+                        format!(
+                            "'{keyword}' has dimensions {}: expected {} ({meaning})",
+                            show(e),
+                            show(&expected)
+                        ),
+                    ));
+                }
+                Ok(())
+            }
+            Value::Dimensions(Dimensions::Named(unit)) => Err(CaseError::at(
+                &item.loc,
+                format!(
+                    "'{keyword}' gives its unit by name, [{unit}]: fsim reads SI values with \
+                     exponents only; write {} and the value in SI ({meaning})",
+                    show(&expected)
+                ),
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// A required entry.

@@ -158,6 +158,16 @@ impl Fields {
         };
         let u_dict = Dict::read(&dir.join(velocity_name), Some(case_dir)).map_err(hint)?;
         let p_dict = Dict::read(&dir.join("p"), Some(case_dir)).map_err(hint)?;
+        u_dict.check_dimensions(
+            "dimensions",
+            [0.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
+            "m/s, a velocity",
+        )?;
+        p_dict.check_dimensions(
+            "dimensions",
+            [0.0, 2.0, -2.0, 0.0, 0.0, 0.0, 0.0],
+            "m²/s², the kinematic pressure p/ρ that icoFoam, pimpleFoam and DPMFoam solve for",
+        )?;
         let cells = mesh.grid.cell_count();
         let u = internal(
             &u_dict,

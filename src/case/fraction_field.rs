@@ -30,6 +30,7 @@ pub fn check_fraction_field(
     notes: &mut Vec<String>,
 ) -> Result<(), CaseError> {
     d.lookup("dimensions");
+    d.check_dimensions("dimensions", [0.0; 7], "a volume fraction, dimensionless")?;
     if let Some(e) = d.lookup("internalField") {
         let (line, col) = e.key_loc.line_col();
         notes.push(format!(

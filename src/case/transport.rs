@@ -48,6 +48,16 @@ impl Transport {
         } else {
             "nu"
         };
+        d.check_dimensions(
+            &rho_key,
+            [1.0, -3.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            "kg/m³, a density",
+        )?;
+        d.check_dimensions(
+            nu_key,
+            [0.0, 2.0, -1.0, 0.0, 0.0, 0.0, 0.0],
+            "m²/s, a kinematic viscosity",
+        )?;
         let nu = d.get_scalar(nu_key)?;
         if nu.is_nan() || nu <= 0.0 {
             return Err(at_value(
