@@ -797,6 +797,17 @@ fn read_patches(d: &Dict, block: &Block) -> Result<(Vec<Patch>, [usize; 6]), Cas
             } else {
                 None
             };
+            if neighbour.as_deref() == Some(name) {
+                // OpenFOAM's cyclicPolyPatch stops on it too
+                return Err(at_value(
+                    pd,
+                    "neighbourPatch",
+                    format!(
+                        "cyclic patch '{name}' names itself as neighbourPatch: give each side \
+                         its own patch, each naming the other"
+                    ),
+                ));
+            }
             // Transform settings do not change fsim's patches.
             for quiet in ["transform", "matchTolerance"] {
                 pd.lookup(quiet);
@@ -938,7 +949,7 @@ mod tests {
     }
 
     #[test]
-    fn point_transforms_and_both_patch_lists_are_refused() {
+    fn point_transforms_both_patch_lists_and_a_self_neighbour_are_refused() {
         for (extra, words) in [
             ("prescale 0.001;", "'prescale' (a scaling before the transform)"),
             (
@@ -946,6 +957,10 @@ mod tests {
                 "'transform' (a rotation or translation of the points)",
             ),
             ("units mm;", "'units' (the vertices' unit)"),
+            (
+                "boundary ( per { type cyclic; neighbourPatch per; faces ((0 4 7 3) (1 2 6 5)); } );",
+                "cyclic patch 'per' names itself as neighbourPatch",
+            ),
             (
                 "boundary ( w { type wall; faces ((0 1 5 4)); } );\npatches ( wall w2 ((3 7 6 2)) );",
                 "OpenFOAM reads 'patches' and ignores 'boundary'",
