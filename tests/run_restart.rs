@@ -6,6 +6,14 @@ mod support;
 use std::fs;
 use support::*;
 
+/// The names of the time directories of `case`, sorted as text.
+fn times(case: &std::path::Path) -> Vec<String> {
+    listing(case)
+        .into_iter()
+        .filter(|n| n.parse::<f64>().is_ok())
+        .collect()
+}
+
 fn assert_restart_is_exact(tutorial: &str, end: &str, half: &str, threads: &str) {
     let scratch = Scratch::new(&format!("restart-{tutorial}"));
     let whole = copy_tutorial(tutorial, &scratch.0, "whole");
@@ -47,12 +55,6 @@ fn assert_restart_is_exact(tutorial: &str, end: &str, half: &str, threads: &str)
         let b = fs::read(split.join(end).join(file)).unwrap();
         assert!(a == b, "{tutorial}: {end}/{file} differs after a restart");
     }
-    let times = |case: &std::path::Path| -> Vec<String> {
-        listing(case)
-            .into_iter()
-            .filter(|n| n.parse::<f64>().is_ok())
-            .collect()
-    };
     assert_eq!(times(&whole), times(&split));
 }
 
@@ -147,10 +149,7 @@ fn first_and_latest_time_start_at_their_directory() {
         let out = fsim(&case, &[]);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success(), "{label}: {stderr}");
-        let times: Vec<String> = listing(&case)
-            .into_iter()
-            .filter(|n| n.parse::<f64>().is_ok())
-            .collect();
+        let times = times(&case);
         // started at 0.2 (its restart state and VTK files added beside U and p), ran to
         // 0.25; never from 0, which is not written
         assert!(times.contains(&"0.25".to_string()), "{label}: {times:?}");
@@ -186,12 +185,6 @@ fn purge_write_spares_the_inputs_and_earlier_runs() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let times = |case: &std::path::Path| -> Vec<String> {
-        listing(case)
-            .into_iter()
-            .filter(|n| n.parse::<f64>().is_ok())
-            .collect()
-    };
     assert_eq!(times(&case), ["0", "0.1"]);
     assert!(case.join("0/U").exists() && case.join("0/p").exists());
     // continued: 0.1 is the earlier run's, the start of this one; 0.15 is purged by 0.2
@@ -224,10 +217,7 @@ fn adjustable_run_time_with_a_fixed_step_keeps_the_step() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let times: Vec<String> = listing(&case)
-        .into_iter()
-        .filter(|n| n.parse::<f64>().is_ok())
-        .collect();
+    let times = times(&case);
     // OpenFOAM: 0.009 and 0.021; fsim also lands on endTime (0.03, a last step of 0.003)
     assert_eq!(times, ["0", "0.009", "0.021", "0.03"]);
 }
