@@ -73,6 +73,7 @@ fn dem_in(
             ParticleFace::Rebound { e: 0.5, mu: 0.0 },
             ParticleFace::Rebound { e: 0.5, mu: 0.0 },
         ],
+        planar: [false; 3],
     };
     Dem::new(config, domain, particles).unwrap()
 }

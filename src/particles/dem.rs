@@ -79,11 +79,12 @@ impl Dem {
     pub fn new(
         config: DemConfig,
         domain: DomainBox,
-        particles: ParticleState,
+        mut particles: ParticleState,
     ) -> Result<Self, DemError> {
         validate_config(&config)?;
         validate_domain(&domain)?;
         validate_walls(&config, &domain)?;
+        domain.constrain_to_plane(&mut particles);
         validate_particles(&particles, &domain, config.overlap_tolerance)?;
         let mut dem = Dem::assemble(config, domain, particles)?;
         // input index of each sorted particle, for error messages
@@ -393,6 +394,7 @@ impl Dem {
             length: dom.length(),
             inv_l: dom.inverse_periodic_length(),
             faces: dom.faces,
+            free: dom.free_axes(),
             limit: 0.25 * self.lists.skin * self.lists.skin,
             reference: &self.lists.reference,
             inv_m: &self.inv_mass,
@@ -1123,6 +1125,37 @@ mod tests {
         // U_n = 1 (outward); U ← U − 1.6·U_n n − 0.2·U_t
         assert!(close(p.velocity[0][2], 0.6, 1e-12));
         assert!(close(p.velocity[0][0], 0.24, 1e-12));
+    }
+
+    /// A two-dimensional case (empty faces along y): OpenFOAM puts parcels on the mid-plane
+    /// with no velocity across it and keeps them there (`constrainToMeshCentre`,
+    /// `constrainDirection`), whatever the loads along y; in the plane they move freely.
+    #[test]
+    fn a_planar_axis_keeps_particles_on_the_mid_plane() {
+        let mut dom = DomainBox::uniform([0.0; 3], [0.01, 0.001, 0.01], FaceCondition::Periodic);
+        dom.faces[2] = FaceCondition::Rebound { e: 1.0, mu: 0.0 };
+        dom.faces[3] = FaceCondition::Rebound { e: 1.0, mu: 0.0 };
+        dom.planar = [false, true, false];
+        let mut p = ParticleState::default();
+        p.push(1, [0.005, 0.0003, 0.005], 1e-3, 2500.0);
+        p.velocity[0] = [0.1, 0.3, 0.0];
+        let mut config = lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
+        config.gravity = [0.0, -9.81, -9.81];
+        let mut dem = Dem::new(config, dom, p).unwrap();
+        assert_eq!(dem.particles().position[0][1], 0.0005);
+        assert_eq!(dem.particles().velocity[0][1], 0.0);
+        for _ in 0..10 {
+            dem.external_loads_mut().0[0] = [0.0, 1e-6, 0.0];
+            dem.advance(1e-3);
+        }
+        let p = dem.particles();
+        assert_eq!((p.position[0][1], p.velocity[0][1]), (0.0005, 0.0));
+        assert!(close(p.velocity[0][0], 0.1, 1e-12));
+        assert!(
+            close(p.velocity[0][2], -9.81 * 0.01, 1e-9),
+            "{:?}",
+            p.velocity[0]
+        );
     }
 
     /// Every overlapping pair (brute-force O(N²) reference, tests only) is in the lists after

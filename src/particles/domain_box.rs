@@ -1,5 +1,6 @@
 //! The box the particles live in: six faces, each a wall, a rebound patch or periodic.
 
+use super::particle_state::ParticleState;
 use super::vec3::Vec3;
 
 /// What one face of the box does to particles.
@@ -24,6 +25,10 @@ pub struct DomainBox {
     pub lo: Vec3,
     pub hi: Vec3,
     pub faces: [FaceCondition; 6],
+    /// The axes along which the case is two-dimensional (OpenFOAM's `empty` patches on both
+    /// faces): particles sit on the mid-plane and move in it only, as OpenFOAM constrains
+    /// parcels (`constrainToMeshCentre`, `constrainDirection`).
+    pub planar: [bool; 3],
 }
 
 impl DomainBox {
@@ -38,6 +43,7 @@ impl DomainBox {
             lo,
             hi,
             faces: [face; 6],
+            planar: [false; 3],
         }
     }
 
@@ -47,6 +53,23 @@ impl DomainBox {
             self.hi[1] - self.lo[1],
             self.hi[2] - self.lo[2],
         ]
+    }
+
+    /// Puts the particles on the mid-plane of each [`Self::planar`] axis, with no velocity
+    /// along it.
+    pub fn constrain_to_plane(&self, particles: &mut ParticleState) {
+        for a in (0..3).filter(|&a| self.planar[a]) {
+            let centre = 0.5 * (self.lo[a] + self.hi[a]);
+            for i in 0..particles.len() {
+                particles.position[i][a] = centre;
+                particles.velocity[i][a] = 0.0;
+            }
+        }
+    }
+
+    /// 1 along a free axis, 0 along a [`Self::planar`] one: the velocity's factor.
+    pub(crate) fn free_axes(&self) -> Vec3 {
+        std::array::from_fn(|a| if self.planar[a] { 0.0 } else { 1.0 })
     }
 
     pub fn is_periodic(&self, axis: usize) -> bool {

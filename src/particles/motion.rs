@@ -17,6 +17,8 @@ pub(super) struct Motion<'a> {
     pub(super) length: Vec3,
     pub(super) inv_l: Vec3,
     pub(super) faces: [FaceCondition; 6],
+    /// [`super::DomainBox::free_axes`].
+    pub(super) free: Vec3,
     pub(super) limit: f64,
     pub(super) reference: &'a [Vec3],
     pub(super) inv_m: &'a [f64],
@@ -43,7 +45,9 @@ impl<'a> Motion<'a> {
         let buoy = self.buoyancy(i);
         let (inv_m, inv_i) = (self.inv_m[i], self.inv_i[i]);
         for a in 0..3 {
-            v[a] += self.half * ((f[a] + self.fe[i][a]) * inv_m + self.g[a] * buoy);
+            // times 1 (exact) along a free axis, 0 along a two-dimensional case's empty one
+            v[a] = (v[a] + self.half * ((f[a] + self.fe[i][a]) * inv_m + self.g[a] * buoy))
+                * self.free[a];
             w[a] += self.half * (t[a] + self.te[i][a]) * inv_i;
         }
     }

@@ -61,7 +61,19 @@ pub(super) fn domain_box(
             },
         };
     }
-    Ok(DomainBox { lo, hi, faces })
+    // two-dimensional along an axis whose two faces are empty, as OpenFOAM's solution
+    // directions
+    let planar = std::array::from_fn(|a| {
+        [BoxFace::ALL[2 * a], BoxFace::ALL[2 * a + 1]]
+            .iter()
+            .all(|&f| case.mesh.patch_on(f).kind == PatchType::Empty)
+    });
+    Ok(DomainBox {
+        lo,
+        hi,
+        faces,
+        planar,
+    })
 }
 
 /// `patchInteractionModel` with its coefficients: `rebound` only.
