@@ -74,6 +74,7 @@ fn dem_in(
             ParticleFace::Rebound { e: 0.5, mu: 0.0 },
         ],
         planar: [false; 3],
+        wall_velocity: [[0.0; 3]; 6],
     };
     Dem::new(config, domain, particles).unwrap()
 }

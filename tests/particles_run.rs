@@ -323,3 +323,34 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
         "{err}"
     );
 }
+
+/// A wall whose velocity condition is a uniform `fixedValue` moves in the wall model, as
+/// OpenFOAM's `PairCollision` takes the fluid's velocity on the wall face.
+#[test]
+fn a_fixed_value_wall_moves_in_the_wall_model() {
+    let scratch = Scratch::new("moving-wall");
+    let case = copy_tutorial("particleSettling", &scratch.0, "belt");
+    let u = fs::read_dir(case.join("0"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.file_name().unwrap().to_string_lossy().starts_with('U'))
+        .unwrap();
+    let text = fs::read_to_string(&u).unwrap().replace(
+        "type            noSlip;",
+        "type            fixedValue;\n        value           uniform (0.5 0 0);",
+    );
+    fs::write(&u, text).unwrap();
+    let loaded = fsim::case::Case::load(&case).unwrap_or_else(|e| panic!("{}", e.report()));
+    let cloud = fsim::case::Cloud::from_case(&loaded)
+        .unwrap_or_else(|e| panic!("{}", e.report()))
+        .expect("a cloud");
+    for f in 0..6 {
+        if cloud.domain.faces[f] == fsim::particles::FaceCondition::Wall {
+            assert_eq!(cloud.domain.wall_velocity[f], [0.5, 0.0, 0.0], "face {f}");
+        }
+    }
+    assert!(cloud
+        .domain
+        .faces
+        .contains(&fsim::particles::FaceCondition::Wall));
+}

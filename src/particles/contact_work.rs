@@ -131,12 +131,15 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
                     continue;
                 }
                 let nrm = wall_normal(f);
-                let u_n = dot(vi, nrm);
+                // relative to the wall's own motion (exactly vi for a wall at rest)
+                let uw = c.domain.wall_velocity[f];
+                let vr = [vi[0] - uw[0], vi[1] - uw[1], vi[2] - uw[2]];
+                let u_n = dot(vr, nrm);
                 let sc = cross(scale(wi, ri), nrm);
                 let slip = [
-                    vi[0] - u_n * nrm[0] - sc[0],
-                    vi[1] - u_n * nrm[1] - sc[1],
-                    vi[2] - u_n * nrm[2] - sc[2],
+                    vr[0] - u_n * nrm[0] - sc[0],
+                    vr[1] - u_n * nrm[1] - sc[1],
+                    vr[2] - u_n * nrm[2] - sc[2],
                 ];
                 let (fw, ft) = law.force(
                     nrm,

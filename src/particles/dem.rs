@@ -859,6 +859,50 @@ mod tests {
         }
     }
 
+    /// A moving wall (OpenFOAM's wall data: the fluid's velocity on the face) acts on a
+    /// particle as the wall at rest acts on the particle moving relative to it.
+    #[test]
+    fn a_moving_wall_acts_through_the_relative_velocity() {
+        let wall = WallModel::SpringSliderDashpot {
+            youngs_modulus: 2e8,
+            poissons_ratio: 0.3,
+            particle_youngs_modulus: 1e7,
+            particle_poissons_ratio: 0.35,
+            alpha: 0.1,
+            b: 1.5,
+            mu: 0.25,
+            collision_resolution_steps: 12.0,
+            tangential: TangentialRule::DpmFoamReset,
+        };
+        let d = 2e-3;
+        let loads = |v: Vec3, uw: Vec3| {
+            let mut p = ParticleState::default();
+            p.push(9, [0.01, 0.01, d / 2.0 - 2e-5], d, 2500.0);
+            p.velocity[0] = v;
+            p.angular_velocity[0] = [0.0, 3.0, 0.0];
+            let mut dom = DomainBox::walled([0.0; 3], [0.02; 3]);
+            dom.wall_velocity[4] = uw;
+            let mut dem = Dem::new(
+                lenient(hertz_pair(TangentialRule::DpmFoamReset), wall.clone()),
+                dom,
+                p,
+            )
+            .unwrap();
+            dem.compute_contact_forces(1e-6);
+            (
+                dem.particles.contact_force[0],
+                dem.particles.contact_torque[0],
+            )
+        };
+        let uw = [0.5, -0.2, 0.0];
+        let moving = loads([0.01, 0.0, -0.3], uw);
+        let relative = loads([0.01 - uw[0], 0.0 - uw[1], -0.3], [0.0; 3]);
+        assert_eq!(moving, relative);
+        // the wall drags the particle its way
+        assert!(moving.0[0] > 0.0 && moving.0[1] < 0.0, "{moving:?}");
+        assert_ne!(moving, loads([0.01, 0.0, -0.3], [0.0; 3]));
+    }
+
     /// DPMFoam's sub-cycle count, by hand (`PairSpringSliderDashpot::nSubCycles`):
     /// Δt_c = 5.429675 (d_min/4) (ρ_max/(E* √(2 U_max)))^{0.4} / N, n = ceil(Δt/Δt_c).
     #[test]

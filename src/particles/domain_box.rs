@@ -29,6 +29,10 @@ pub struct DomainBox {
     /// faces): particles sit on the mid-plane and move in it only, as OpenFOAM constrains
     /// parcels (`constrainToMeshCentre`, `constrainDirection`).
     pub planar: [bool; 3],
+    /// The velocity of each [`FaceCondition::Wall`] face that the wall model measures contacts
+    /// against (OpenFOAM's `PairCollision` takes the fluid's boundary value there: a moving
+    /// wall's `fixedValue`); zero for a wall at rest.
+    pub wall_velocity: [Vec3; 6],
 }
 
 impl DomainBox {
@@ -44,6 +48,7 @@ impl DomainBox {
             hi,
             faces: [face; 6],
             planar: [false; 3],
+            wall_velocity: [[0.0; 3]; 6],
         }
     }
 

@@ -7,6 +7,7 @@ use crate::case::case::Case;
 use crate::case::control_dict::{at_value, choice};
 use crate::case::dictionary::Dict;
 use crate::case::error::CaseError;
+use crate::case::fields::VelocityBc;
 use crate::case::source::Location;
 use crate::case::value::Value;
 use crate::particles::{DomainBox, FaceCondition};
@@ -28,11 +29,15 @@ pub(super) fn domain_box(
         check_local_rules(rules, &case.mesh.patches, sub, warnings)?;
     }
     let mut faces = [FaceCondition::Periodic; 6];
+    let mut wall_velocity = [[0.0; 3]; 6];
     for face in BoxFace::ALL {
         let patch = case.mesh.patch_on(face);
         faces[face.index()] = match patch.kind {
             PatchType::Cyclic => FaceCondition::Periodic,
-            PatchType::Wall if soft_walls => FaceCondition::Wall,
+            PatchType::Wall if soft_walls => {
+                wall_velocity[face.index()] = wall_velocity_of(case, face, warnings);
+                FaceCondition::Wall
+            }
             kind => match interaction.rebound(patch)? {
                 Some((e, mu)) => FaceCondition::Rebound { e, mu },
                 None if kind == PatchType::Wall => {
@@ -73,7 +78,32 @@ pub(super) fn domain_box(
         hi,
         faces,
         planar,
+        wall_velocity,
     })
+}
+
+/// The velocity the wall model gives a wall face: OpenFOAM's `PairCollision` takes the
+/// fluid's boundary value on the face, which for `noSlip` and a uniform `fixedValue` is the
+/// wall's own motion. For another condition on a wall (an inlet, a slip wall) that value
+/// follows the flow; fsim keeps that wall at rest in the wall model and says so.
+fn wall_velocity_of(case: &Case, face: BoxFace, warnings: &mut Vec<String>) -> [f64; 3] {
+    let k = case.mesh.face_patch[face.index()];
+    match case.fields.u_bc.get(k) {
+        Some(VelocityBc::FixedValue(v)) => *v,
+        Some(VelocityBc::NoSlip) | None => [0.0; 3],
+        Some(_) => {
+            let note = format!(
+                "wall patch '{}': its velocity condition is neither noSlip nor a uniform \
+                 fixedValue, so the wall model takes the wall at rest, where OpenFOAM's takes \
+                 the fluid's velocity on it",
+                case.mesh.patches[k].name
+            );
+            if !warnings.contains(&note) {
+                warnings.push(note);
+            }
+            [0.0; 3]
+        }
+    }
 }
 
 /// `patchInteractionModel` with its coefficients: `rebound` only.
