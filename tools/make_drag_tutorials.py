@@ -78,10 +78,10 @@ gradSchemes
 divSchemes
 {
     default         none;
-    div(alphaPhic,U.air) Gauss linearUpwindV unlimited;
+    div(alphaPhi.air,U.air) Gauss linearUpwindV unlimited;
     div(((alpha.air*nuEff.air)*dev2(T(grad(U.air))))) Gauss linear;
     div(phiGByA,kinematicCloud:alpha) Gauss linear;
-    div(alphaPhic,U.water) Gauss linearUpwindV unlimited;
+    div(alphaPhi.water,U.water) Gauss linearUpwindV unlimited;
     div(((alpha.water*nuEff.water)*dev2(T(grad(U.water))))) Gauss linear;
 }
 

@@ -8,9 +8,9 @@
 //! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
 //!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
 //!   refused; `maxCo` is noted as unused.
-//! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`]. OpenFOAM
-//!   reads `c` as an under-relaxation factor that only steady clouds use; fsim's clouds are
-//!   transient, so any `c` is accepted and a value other than 1 is noted.
+//! * `solution.sourceTerms.schemes.U explicit|semiImplicit c` → [`SourceTreatment`], with
+//!   `c = 1`: DPMFoam scales the particles' momentum source by `c`
+//!   (`KinematicCloud::scaleSources`), which fsim does not, so another `c` is refused.
 //! * `solution.interpolationSchemes.U.<phase>` → [`DragLawOptions::velocity_interpolation`]:
 //!   `cell` (the value of the particle's cell) or `cellPoint` (OpenFOAM's cell-and-point
 //!   interpolation, [`crate::coupling::drag::CellPointInterpolation`]); fsim's
@@ -206,7 +206,7 @@ impl DragLawOptions {
                 place(solution, "maxCo")
             ));
         }
-        let source = source_treatment(solution, notes)?;
+        let source = source_treatment(solution)?;
         let mut velocity_interpolation = interpolation_schemes(solution, phase)?;
         let mut void_fraction = averaging_method(solution, notes)?;
         let integration = particle_integration(solution)?;
@@ -362,10 +362,7 @@ fn place(d: &Dict, keyword: &str) -> String {
 }
 
 /// `sourceTerms { schemes { U explicit|semiImplicit c; } }`; absent: explicit.
-fn source_treatment(
-    solution: &Dict,
-    notes: &mut Vec<String>,
-) -> Result<SourceTreatment, CaseError> {
+fn source_treatment(solution: &Dict) -> Result<SourceTreatment, CaseError> {
     let Some(terms) = solution.opt_dict("sourceTerms")? else {
         return Ok(SourceTreatment::Explicit);
     };
@@ -405,11 +402,12 @@ fn source_treatment(
         .as_scalar()
         .ok_or_else(|| bad(&coefficient.loc))?;
     if c != 1.0 {
-        let (line, col) = coefficient.loc.line_col();
-        notes.push(format!(
-            "{}:{line}:{col}: source-term relaxation coefficient {c}: not used (OpenFOAM \
-             applies it to steady clouds only; fsim's clouds are transient)",
-            coefficient.loc.file.display
+        return Err(CaseError::at(
+            &coefficient.loc,
+            format!(
+                "source-term coefficient {c}: DPMFoam scales the particles' momentum source by \
+                 it (KinematicCloud::scaleSources), which fsim does not; use 1"
+            ),
         ));
     }
     Ok(treatment)
@@ -744,10 +742,16 @@ subModels
         let e = err(&GOLDSCHMIDT_LIKE.replace("coupled true", "coupled false"));
         assert!(e.message.contains("one-way coupling"), "{e}");
         assert_eq!((e.line, e.col), (3, 26), "{e}");
-        let (s, notes) =
-            read(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 0.5;")).unwrap();
+        let (s, _) = read(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 1;")).unwrap();
         assert_eq!(s.source, SourceTreatment::Explicit);
-        assert!(notes[0].contains("relaxation coefficient 0.5"), "{notes:?}");
+        // DPMFoam scales the source by the coefficient; fsim does not, so it refuses one
+        let e = err(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U explicit 0.5;"));
+        assert!(
+            e.message
+                .contains("source-term coefficient 0.5: DPMFoam scales"),
+            "{e}"
+        );
+        assert_eq!(e.line, 5, "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("U semiImplicit 1;", "U implicit 1;"));
         assert!(e.message.contains("found the word 'implicit'"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("U.air cell", "U.air cellPointFace"));

@@ -32,8 +32,10 @@
 //! velocity, stable for any `Δt`, and its steady state is the root of `β (u − v) + F = 0`.
 //! Unlike DPMFoam, `F` includes the particle's last contact force besides
 //! `m(1 − ρ/ρ_p) g + f_p`: for a particle resting on others (`F ≈ 0`) DPMFoam's rule adds
-//! `x` times the particle's weight to its drag (14 % of the drag in `tutorials/packedBed` at
-//! its Δt), fsim's does not; for a free particle the two are the same. The fluid gets exactly `−f_d` (momentum
+//! `x` times the particle's weight to its drag per integration step, fsim's does not; for a
+//! free particle the two are the same. DPMFoam integrates in several such steps per fluid
+//! step (its collision sub-cycles' moves, cut into `maxCo` segments), fsim in one: the two
+//! part by about `x²` (README, drag-law model). The fluid gets exactly `−f_d` (momentum
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
 
