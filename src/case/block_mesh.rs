@@ -197,6 +197,12 @@ impl BlockMesh {
         self.patch_on(BoxFace::ALL[2 * axis]).kind == PatchType::Cyclic
     }
 
+    /// Whether the case is two-dimensional along `axis` (`empty` on both faces: OpenFOAM
+    /// solves in the other directions only).
+    pub fn is_planar(&self, axis: usize) -> bool {
+        (0..2).all(|side| self.patch_on(BoxFace::ALL[2 * axis + side]).kind == PatchType::Empty)
+    }
+
     /// Reads and validates the dictionary.
     pub fn from_dict(d: &Dict) -> Result<BlockMesh, CaseError> {
         // settings that move or rescale OpenFOAM's points: ignoring them would build

@@ -14,7 +14,7 @@ use super::fraction_field::check_fraction_field;
 use super::fv_options::{read_fv_options, MeanVelocityForce};
 use super::transport::Transport;
 use super::turbulence::{check_laminar, turbulence_file};
-use crate::output::RESTART_FILE_NAME;
+use crate::output::{list_time_directories, TimeEntry, RESTART_FILE_NAME};
 
 /// A validated case directory.
 #[derive(Clone, Debug)]
@@ -209,40 +209,31 @@ impl Case {
         if control.start_from == StartFrom::StartTime {
             return Ok(time_name(control.start_time, control.time_precision));
         }
-        let mut times: Vec<(f64, String)> = std::fs::read_dir(dir)
-            .into_iter()
-            .flatten()
-            .flatten()
-            .filter(|e| e.path().is_dir())
-            .filter_map(|e| {
-                let name = e.file_name().to_string_lossy().into_owned();
-                let t: f64 = name.parse().ok()?;
-                Some((t, name))
-            })
-            .collect();
-        times.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let times = list_time_directories(dir).map_err(|e| CaseError::plain(e.to_string()))?;
         let holds_velocity = |name: &str| exists(&dir.join(name).join(velocity));
         let earliest_with_velocity = || {
             times
                 .iter()
-                .find(|(_, name)| holds_velocity(name))
-                .map_or_else(|| "0".to_string(), |(_, name)| name.clone())
+                .find(|t| holds_velocity(&t.name))
+                .map_or_else(|| "0".to_string(), |t| t.name.clone())
         };
         if control.start_from == StartFrom::FirstTime {
             return Ok(earliest_with_velocity());
         }
-        match times.last() {
-            None => Ok("0".to_string()),
-            Some((_, name)) if holds_velocity(name) => Ok(name.clone()),
-            Some((_, name)) if dir.join(name).join(RESTART_FILE_NAME).exists() => {
-                Ok(earliest_with_velocity())
-            }
-            Some((_, name)) => Err(CaseError::plain(format!(
+        let Some(TimeEntry { name, .. }) = times.last() else {
+            return Ok("0".to_string());
+        };
+        if holds_velocity(name) {
+            Ok(name.clone())
+        } else if dir.join(name).join(RESTART_FILE_NAME).exists() {
+            Ok(earliest_with_velocity())
+        } else {
+            Err(CaseError::plain(format!(
                 "startFrom latestTime: the latest time directory '{name}' holds neither \
                  {velocity} nor fsim's {RESTART_FILE_NAME}, so the run cannot start from it \
                  (and would overwrite it from an earlier time); give it those fields, remove \
                  it, or set startFrom startTime"
-            ))),
+            )))
         }
     }
 

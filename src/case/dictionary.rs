@@ -24,9 +24,20 @@ pub enum Key {
 impl Key {
     /// A quoted key becomes a pattern; one that is not a valid expression stays a word.
     pub fn quoted(text: &str) -> Key {
-        match Regex::new(&format!("^(?:{text})$")) {
-            Ok(re) => Key::Pattern(text.to_string(), re),
-            Err(_) => Key::Word(text.to_string()),
+        Key::pattern(text).unwrap_or_else(|_| Key::Word(text.to_string()))
+    }
+
+    /// A pattern matching whole names, or the expression's error (for callers that refuse
+    /// an invalid one).
+    pub fn pattern(text: &str) -> Result<Key, regex::Error> {
+        Regex::new(&format!("^(?:{text})$")).map(|re| Key::Pattern(text.to_string(), re))
+    }
+
+    /// Whether the key names `text`: a word equal to it, a pattern matching it whole.
+    pub fn matches(&self, text: &str) -> bool {
+        match self {
+            Key::Word(w) => w == text,
+            Key::Pattern(_, re) => re.is_match(text),
         }
     }
 

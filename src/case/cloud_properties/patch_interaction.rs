@@ -5,7 +5,7 @@ use super::{scalar_in, value_loc};
 use crate::case::block_mesh::{BoxFace, Patch, PatchType};
 use crate::case::case::Case;
 use crate::case::control_dict::{at_value, choice};
-use crate::case::dictionary::Dict;
+use crate::case::dictionary::{Dict, Key};
 use crate::case::error::CaseError;
 use crate::case::fields::VelocityBc;
 use crate::case::source::Location;
@@ -66,18 +66,11 @@ pub(super) fn domain_box(
             },
         };
     }
-    // two-dimensional along an axis whose two faces are empty, as OpenFOAM's solution
-    // directions
-    let planar = std::array::from_fn(|a| {
-        [BoxFace::ALL[2 * a], BoxFace::ALL[2 * a + 1]]
-            .iter()
-            .all(|&f| case.mesh.patch_on(f).kind == PatchType::Empty)
-    });
     Ok(DomainBox {
         lo,
         hi,
         faces,
-        planar,
+        planar: std::array::from_fn(|a| case.mesh.is_planar(a)),
         wall_velocity,
     })
 }
@@ -115,34 +108,19 @@ enum PatchInteraction {
     Local(Vec<LocalRule>),
 }
 
-/// One entry of `localInteraction`'s `patches`: the patches it names and its rule.
+/// One entry of `localInteraction`'s `patches`: the patches it names and its rule. As
+/// OpenFOAM reads a `wordRe`, an unquoted word is the name itself ([`Key::Word`]), a quoted
+/// string a regular expression that must match the whole name ([`Key::Pattern`]).
 struct LocalRule {
-    names: PatchNames,
+    key: Key,
     rule: Dict,
 }
 
-/// How an entry names its patches, as OpenFOAM reads a `wordRe`: an unquoted word is the
-/// name itself, a quoted string a regular expression that must match the whole name.
-enum PatchNames {
-    Literal(String),
-    Pattern(String, regex::Regex),
-}
-
-impl PatchNames {
+impl LocalRule {
     /// Whether the entry names the patch: by its name or one of its groups, as OpenFOAM's
     /// `polyBoundaryMesh::indices(key, useGroups)` finds them (so `wall` names every wall).
-    fn matches(&self, patch: &Patch) -> bool {
-        let named = |text: &str| match self {
-            PatchNames::Literal(name) => name == text,
-            PatchNames::Pattern(_, re) => re.is_match(text),
-        };
-        named(&patch.name) || patch.groups.iter().any(|g| named(g))
-    }
-
-    fn as_str(&self) -> &str {
-        match self {
-            PatchNames::Literal(name) | PatchNames::Pattern(name, _) => name,
-        }
+    fn names(&self, patch: &Patch) -> bool {
+        self.key.matches(&patch.name) || patch.groups.iter().any(|g| self.key.matches(g))
     }
 }
 
@@ -156,11 +134,11 @@ fn check_local_rules(
     warnings: &mut Vec<String>,
 ) -> Result<(), CaseError> {
     for r in rules {
-        if !patches.iter().any(|p| r.names.matches(p)) {
+        if !patches.iter().any(|p| r.names(p)) {
             warnings.push(format!(
                 "{}: localInteraction: no patch matches '{}' (patches: {})",
                 sub.file(),
-                r.names.as_str(),
+                r.key.as_str(),
                 patches
                     .iter()
                     .map(|p| p.name.as_str())
@@ -172,7 +150,7 @@ fn check_local_rules(
     let unnamed: Vec<String> = patches
         .iter()
         .filter(|p| !matches!(p.kind, PatchType::Cyclic | PatchType::Empty))
-        .filter(|p| !rules.iter().any(|r| r.names.matches(p)))
+        .filter(|p| !rules.iter().any(|r| r.names(p)))
         .map(|p| format!("'{}' ({})", p.name, p.kind.name()))
         .collect();
     if unnamed.is_empty() {
@@ -230,22 +208,18 @@ impl PatchInteraction {
                 for pair in list.chunks(2) {
                     match pair {
                         [name, body] => {
-                            let names = match &name.value {
-                                Value::Word(w) => PatchNames::Literal(w.clone()),
-                                Value::Str(s) => {
-                                    let re =
-                                        regex::Regex::new(&format!("^(?:{s})$")).map_err(|e| {
-                                            CaseError::at(
-                                                &name.loc,
-                                                format!(
-                                                    "'{s}' is not a valid regular expression \
-                                                     for patch names: {}",
-                                                    last_line(&e.to_string())
-                                                ),
-                                            )
-                                        })?;
-                                    PatchNames::Pattern(s.clone(), re)
-                                }
+                            let key = match &name.value {
+                                Value::Word(w) => Key::Word(w.clone()),
+                                Value::Str(s) => Key::pattern(s).map_err(|e| {
+                                    CaseError::at(
+                                        &name.loc,
+                                        format!(
+                                            "'{s}' is not a valid regular expression for \
+                                             patch names: {}",
+                                            last_line(&e.to_string())
+                                        ),
+                                    )
+                                })?,
                                 _ => {
                                     return Err(CaseError::at(
                                         &name.loc,
@@ -261,7 +235,7 @@ impl PatchInteraction {
                                 ));
                             };
                             rules.push(LocalRule {
-                                names,
+                                key,
                                 rule: d.clone(),
                             });
                         }
@@ -280,9 +254,9 @@ impl PatchInteraction {
     }
 
     /// `(e, mu)` of the rebound rule for a patch, `None` when no rule applies. Under
-    /// `localInteraction` the first entry that names the patch or one of its groups (a word,
-    /// or a regular expression matching the whole name) applies, as in OpenFOAM (`patchInteractionDataList::applyToPatch` returns
-    /// the first group that holds the patch).
+    /// `localInteraction` the first entry that names the patch or one of its groups applies,
+    /// as in OpenFOAM (`patchInteractionDataList::applyToPatch` returns the first group that
+    /// holds the patch).
     fn rebound(&self, patch: &Patch) -> Result<Option<(f64, f64)>, CaseError> {
         let kind = patch.kind;
         match self {
@@ -300,9 +274,9 @@ impl PatchInteraction {
                 }
             }
             PatchInteraction::Local(rules) => {
-                for LocalRule { names, rule: d } in rules {
-                    if names.matches(patch) {
-                        let patch = &patch.name;
+                for r in rules {
+                    if r.names(patch) {
+                        let (d, patch) = (&r.rule, &patch.name);
                         let t = d.get_word("type")?;
                         if t != "rebound" {
                             return Err(at_value(
