@@ -3,7 +3,7 @@
 //! ```text
 //! load and validate the case                  (nothing is written before this succeeds)
 //! build the simulation: grid, fluid, initial or restart state
-//! while time remains:
+//! while time remains:                        (system/controlDict read again if changed)
 //!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
 //!     evolve the cloud  ┐ drag law (DPMFoam's order): forces from the fluid as it is
 //!     evolve the fluid  ┘ (eq. 10–16), DEM sub-steps; then ε, momentum predictor,
@@ -17,7 +17,7 @@
 //!     write the time directory when due       (whole or not at all)
 //! ```
 
-use crate::case::{Case, InternalField};
+use crate::case::{Case, ControlDict, ControlDictWatch, InternalField, StopAt};
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::fluid::{FluidDiagnostics, StepReport};
@@ -94,14 +94,32 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         sim.drag.is_some(),
     )?;
     reporter.log.banner(&banner(case, &sim, threads))?;
+    // The time last written: the start's, once it has its directory.
+    let mut written = None;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
         // The start time gets its VTK files and restart state too, so the series opens at t0.
         write_time(&mut output, &mut sim)?;
     }
+    if case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
+        written = Some(sim.time.time);
+    }
     let start = sim.time.time;
     reporter.log.line("Starting time loop\n")?;
 
-    while sim.time.running() {
+    let mut control = case.control.clone();
+    let mut watch = control
+        .run_time_modifiable
+        .then(|| ControlDictWatch::new(&case.dir));
+    loop {
+        if let Some(changed) = watch.as_mut().and_then(ControlDictWatch::changed) {
+            take_new_controls(changed, &mut control, &mut sim, &mut output, &mut reporter)?;
+            if !control.run_time_modifiable {
+                watch = None;
+            }
+        }
+        if !sim.time.running() {
+            break;
+        }
         let clock = Instant::now();
         let step = take_step(&mut sim)?;
         let name = output.time_name(sim.time.time);
@@ -116,10 +134,53 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         )?;
         if step.write_due {
             write_time(&mut output, &mut sim)?;
+            written = Some(sim.time.time);
         }
-        reporter.end_step(sim.time.time, start, case.control.end_time)?;
+        reporter.end_step(sim.time.time, start, sim.time.end_time)?;
+    }
+    // An endTime lowered during the run to a time already passed ends it where it is: that
+    // time is written too (the last time always is), unless stopAt noWriteNow said not to.
+    if written != Some(sim.time.time) && sim.time.stop_at != StopAt::NoWriteNow {
+        write_time(&mut output, &mut sim)?;
     }
     reporter.finish()
+}
+
+/// Takes a `system/controlDict` changed during the run (`runTimeModifiable`), or says why
+/// not: a file that does not read leaves the settings as they were, and the run goes on.
+fn take_new_controls(
+    changed: Result<ControlDict, crate::case::CaseError>,
+    control: &mut ControlDict,
+    sim: &mut Simulation,
+    output: &mut CaseOutput,
+    reporter: &mut StepReporter,
+) -> Result<(), FsimError> {
+    match changed {
+        Ok(new) => {
+            let changes = new.changes_from(control);
+            let what = if changes.is_empty() {
+                "nothing that a running case reads".to_string()
+            } else {
+                changes.join(", ")
+            };
+            reporter.log.line(&format!(
+                "system/controlDict changed at t = {}: {what}\n",
+                output.time_name(sim.time.time)
+            ))?;
+            sim.apply_control(&new);
+            output.set_controls(new.time_precision, new.purge_write);
+            *control = new;
+        }
+        Err(e) => {
+            let message = format!(
+                "{e}; the run goes on with the settings it had (t = {})",
+                output.time_name(sim.time.time)
+            );
+            eprintln!("fsimFoam: warning: {message}");
+            reporter.log.line(&format!("warning: {message}\n"))?;
+        }
+    }
+    Ok(())
 }
 
 /// What one step did, for the monitors.

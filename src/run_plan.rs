@@ -43,7 +43,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     if !sim.time.running() {
         println!(
             "Steps   : none: the run already reached endTime {} s (at t = {} s)",
-            case.control.end_time, sim.time.time
+            sim.time.end_time, sim.time.time
         );
         return Ok(());
     }
@@ -51,7 +51,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     let timed = time_steps(sim)?;
     let count = timed.seconds.len();
     let (steps, dt, why) = if !sim.time.running() {
-        let dt = (case.control.end_time - start) / count as f64;
+        let dt = (sim.time.time - start) / count as f64;
         (count as f64, dt, ", all of them timed below".to_string())
     } else {
         // The run's next step fails here as it would in the run (a fixed step beyond the
@@ -64,7 +64,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         let bound = sim.stability_bound();
         let settling = settling_step(case, sim).filter(|s| s.dt < allowed);
         let dt = settling.as_ref().map_or(allowed, |s| s.dt);
-        let left = ((case.control.end_time - sim.time.time) / dt)
+        let left = ((sim.time.planned_end(dt) - sim.time.time) / dt)
             .ceil()
             .max(0.0);
         let why = match &settling {
@@ -82,13 +82,16 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         };
         (count as f64 + left, dt, why)
     };
-    println!(
-        "Steps   : about {steps} of {dt:.3e} s from t = {start} to {} s{why}",
-        case.control.end_time
-    );
+    // endTime, or where stopAt ends the run
+    let end = if sim.time.running() {
+        sim.time.planned_end(dt)
+    } else {
+        sim.time.time
+    };
+    println!("Steps   : about {steps} of {dt:.3e} s from t = {start} to {end} s{why}");
     let writes = match case.control.write_control {
         crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
-        _ => (case.control.end_time - start) / case.control.write_interval,
+        _ => (end - start) / case.control.write_interval,
     }
     .floor();
     println!(

@@ -10,7 +10,7 @@
 //! case is read into the solvers' settings in `case_settings`, each step's size is chosen in
 //! `step_size`, and the restart state is written and read in `restart`.
 
-use crate::case::{Case, Cloud, CouplingModel, InternalField};
+use crate::case::{Case, Cloud, ControlDict, CouplingModel, InternalField};
 use crate::coupling::direct::{
     periodic_directions, DirectCoupling, DirectSettings, MotionSettings, ParticleMotion,
     SedimentationReport,
@@ -148,21 +148,8 @@ impl Simulation {
             .map_err(|e| FsimError::input(format!("fvOptions: {e}")))?;
 
         let control = &case.control;
-        let sizing = if control.adjust_time_step {
-            StepSizing::Adaptive {
-                max_co: control.max_co,
-                max_delta_t: control.max_delta_t,
-            }
-        } else {
-            StepSizing::Fixed(control.delta_t)
-        };
-        // OpenFOAM fits the step to the write times only within its adjustable step
-        // (`Time::adjustDeltaT`, reached through setDeltaT.H): with a fixed step,
-        // adjustableRunTime writes as runTime does
-        let write_control = match control.write_control {
-            WriteControl::AdjustableRunTime if !control.adjust_time_step => WriteControl::RunTime,
-            w => w,
-        };
+        let sizing = step_sizing(control);
+        let write_control = effective_write_control(control);
 
         let mut sim = Simulation {
             fluid,
@@ -187,6 +174,7 @@ impl Simulation {
             phase_times: PhaseTimes::default(),
             settling: None,
         };
+        sim.time.set_stop(control.stop_at, control.end_time);
         let direct_settings = match case.coupling.model {
             CouplingModel::Direct => {
                 Some(DirectSettings::from_coupling(&case.coupling).map_err(FsimError::from)?)
@@ -328,6 +316,20 @@ impl Simulation {
     /// The grid of the fluid.
     pub fn grid(&self) -> &Grid {
         self.fluid.grid()
+    }
+
+    /// Takes the settings of a `system/controlDict` changed during the run
+    /// (`runTimeModifiable`): when to stop, the step's rule, when to write. A fixed step's
+    /// new `deltaT` applies from the next step; an adjustable one goes on from the last.
+    pub fn apply_control(&mut self, control: &ControlDict) {
+        self.sizing = step_sizing(control);
+        self.time.set_stop(control.stop_at, control.end_time);
+        let write_control = effective_write_control(control);
+        if write_control != self.time.write_control
+            || control.write_interval != self.time.write_interval
+        {
+            self.time.set_writes(write_control, control.write_interval);
+        }
     }
 
     /// Advances the fluid by `dt`. Alone: momentum predictor, pressure projection, bulk
@@ -551,5 +553,27 @@ fn advance_cloud(p: &mut Particles, dt: f64) -> CloudReport {
         mean_velocity: p.dem.mean_velocity(),
         max_overlap: p.dem.max_overlap_ratio(),
         substeps: p.substeps,
+    }
+}
+
+/// The step rule of `adjustTimeStep`, `maxCo`, `maxDeltaT` and `deltaT`.
+fn step_sizing(control: &ControlDict) -> StepSizing {
+    if control.adjust_time_step {
+        StepSizing::Adaptive {
+            max_co: control.max_co,
+            max_delta_t: control.max_delta_t,
+        }
+    } else {
+        StepSizing::Fixed(control.delta_t)
+    }
+}
+
+/// OpenFOAM fits the step to the write times only within its adjustable step
+/// (`Time::adjustDeltaT`, reached through setDeltaT.H): with a fixed step,
+/// adjustableRunTime writes as runTime does.
+fn effective_write_control(control: &ControlDict) -> WriteControl {
+    match control.write_control {
+        WriteControl::AdjustableRunTime if !control.adjust_time_step => WriteControl::RunTime,
+        w => w,
     }
 }

@@ -10,8 +10,13 @@
 //! uninterrupted one does (OpenFOAM.com counts from the start time, openfoam.org since 2020
 //! from the case's begin time). The run ends at `endTime` (to rounding), and the final time is
 //! always written so that a run can be continued from it.
+//!
+//! `stopAt` acts at each step's end as in OpenFOAM's `Time::operator++`: `writeNow` ends the
+//! run after the next step and writes it, `noWriteNow` ends it there without a write (unless
+//! the step is a write time anyway), `nextWrite` ends it at the next write time; `endTime` is
+//! then not needed.
 
-pub use crate::case::WriteControl;
+pub use crate::case::{StopAt, WriteControl};
 
 /// The time axis of a run.
 #[derive(Clone, Debug)]
@@ -19,6 +24,7 @@ pub struct TimeControl {
     pub time: f64,
     pub step: u64,
     pub end_time: f64,
+    pub stop_at: StopAt,
     pub write_control: WriteControl,
     pub write_interval: f64,
     /// Index of the next write time for the run-time controls (`write_index · writeInterval`).
@@ -37,23 +43,43 @@ impl TimeControl {
         write_control: WriteControl,
         write_interval: f64,
     ) -> Self {
-        let write_index = match write_control {
-            WriteControl::TimeStep => 0,
-            _ => (time / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
-        };
-        TimeControl {
+        let mut control = TimeControl {
             time,
             step,
             end_time,
+            stop_at: StopAt::EndTime,
             write_control,
             write_interval,
-            write_index,
-        }
+            write_index: 0,
+        };
+        control.set_writes(write_control, write_interval);
+        control
+    }
+
+    /// Sets `stopAt` and `endTime` (`end_time` counts only for `StopAt::EndTime`; the others
+    /// run on until their step).
+    pub fn set_stop(&mut self, stop_at: StopAt, end_time: f64) {
+        self.stop_at = stop_at;
+        self.end_time = match stop_at {
+            StopAt::EndTime => end_time,
+            _ => f64::INFINITY,
+        };
+    }
+
+    /// Sets when to write, from the current time on: the next run-time write is the first
+    /// multiple of `write_interval` after now (OpenFOAM rescales its write index alike).
+    pub fn set_writes(&mut self, write_control: WriteControl, write_interval: f64) {
+        self.write_control = write_control;
+        self.write_interval = write_interval;
+        self.write_index = match write_control {
+            WriteControl::TimeStep => 0,
+            _ => (self.time / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
+        };
     }
 
     /// True while there is time left to run.
     pub fn running(&self) -> bool {
-        self.end_time - self.time > TIME_EPS * self.end_time.abs()
+        self.end_time == f64::INFINITY || self.end_time - self.time > TIME_EPS * self.end_time.abs()
     }
 
     fn next_write_time(&self) -> f64 {
@@ -86,7 +112,22 @@ impl TimeControl {
         }
     }
 
-    /// Advance by `dt`; returns true when the new time is a write time (or the end).
+    /// Where the run will stop at steps of `dt` (for a plan): `endTime`, or for `stopAt` the
+    /// end of the next step or the next write time.
+    pub fn planned_end(&self, dt: f64) -> f64 {
+        match (self.stop_at, self.write_control) {
+            (StopAt::EndTime, _) => self.end_time,
+            (StopAt::WriteNow | StopAt::NoWriteNow, _) => self.time + dt,
+            (StopAt::NextWrite, WriteControl::TimeStep) => {
+                let every = self.write_interval.round().max(1.0) as u64;
+                self.time + (every - self.step % every) as f64 * dt
+            }
+            (StopAt::NextWrite, _) => self.next_write_time(),
+        }
+    }
+
+    /// Advance by `dt`; returns true when the new time is a write time (or the end, unless
+    /// `stopAt noWriteNow` ends the run there).
     pub fn advance(&mut self, dt: f64) -> bool {
         self.step += 1;
         self.time += dt;
@@ -109,6 +150,16 @@ impl TimeControl {
                 hit
             }
         };
+        match self.stop_at {
+            StopAt::EndTime => {}
+            StopAt::WriteNow => self.end_time = self.time,
+            StopAt::NoWriteNow => {
+                self.end_time = self.time;
+                return write;
+            }
+            StopAt::NextWrite if write => self.end_time = self.time,
+            StopAt::NextWrite => {}
+        }
         write || !self.running()
     }
 }
@@ -178,6 +229,57 @@ mod tests {
         let (_, writes) = run(tc, 0.1);
         assert_eq!(writes.len(), 2);
         assert!((writes[0] - 0.75).abs() < 1e-12);
+    }
+
+    #[test]
+    fn stop_at_ends_the_run_as_openfoam_does() {
+        // writeNow: one more step, written
+        let mut tc = TimeControl::new(0.2, 2, 1.0, WriteControl::TimeStep, 5.0);
+        tc.set_stop(StopAt::WriteNow, 1.0);
+        assert!(tc.running());
+        let (times, writes) = run(tc, 0.1);
+        assert_eq!(times.len(), 1);
+        assert_eq!(writes, times);
+        // noWriteNow: one more step, not written
+        let mut tc = TimeControl::new(0.2, 2, 1.0, WriteControl::TimeStep, 5.0);
+        tc.set_stop(StopAt::NoWriteNow, 1.0);
+        let (times, writes) = run(tc, 0.1);
+        assert_eq!(times.len(), 1);
+        assert!(writes.is_empty());
+        // ... but a step that is a write time anyway is written
+        let mut tc = TimeControl::new(0.2, 4, 1.0, WriteControl::TimeStep, 5.0);
+        tc.set_stop(StopAt::NoWriteNow, 1.0);
+        let (_, writes) = run(tc, 0.1);
+        assert_eq!(writes.len(), 1);
+        // nextWrite: on to the next write time, past endTime, which it does not need
+        let mut tc = TimeControl::new(0.0, 0, 0.1, WriteControl::AdjustableRunTime, 0.25);
+        tc.set_stop(StopAt::NextWrite, 0.1);
+        let (times, writes) = run(tc, 0.07);
+        assert_eq!(writes.len(), 1);
+        assert!((writes[0] - 0.25).abs() < 1e-12);
+        assert_eq!(*times.last().unwrap(), writes[0]);
+        // back to endTime
+        let mut tc = TimeControl::new(0.0, 0, 0.1, WriteControl::TimeStep, 1.0);
+        tc.set_stop(StopAt::NextWrite, 0.1);
+        tc.set_stop(StopAt::EndTime, 0.3);
+        assert_eq!(run(tc, 0.1).0.len(), 3);
+    }
+
+    #[test]
+    fn new_write_settings_count_from_now() {
+        let mut tc = TimeControl::new(0.0, 0, 1.0, WriteControl::AdjustableRunTime, 0.5);
+        for _ in 0..3 {
+            let dt = tc.step_size(0.1);
+            tc.advance(dt);
+        }
+        // at 0.3: the next write of the new interval 0.2 is 0.4, not 0.2
+        tc.set_writes(WriteControl::AdjustableRunTime, 0.2);
+        let (_, writes) = run(tc, 0.1);
+        let expect = [0.4, 0.6, 0.8, 1.0];
+        assert_eq!(writes.len(), expect.len(), "{writes:?}");
+        for (w, e) in writes.iter().zip(expect) {
+            assert!((w - e).abs() < 1e-12, "{writes:?}");
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::block_mesh::{BlockMesh, BoxFace};
-use super::control_dict::{time_name, ControlDict, StartFrom, WriteControl};
+use super::control_dict::{time_name, ControlDict, StartFrom, StopAt, WriteControl};
 use super::coupling::{Coupling, CouplingModel};
 use super::dictionary::Dict;
 use super::drag_law_options::fraction_name;
@@ -260,7 +260,7 @@ impl Case {
         };
         format!(
             "grid {}x{}x{} = {} cells, h = ({} {} {}) m; patches: {}; fluid{phase}: \
-             rho = {} kg/m3, nu = {} m2/s; t = {} .. {} s, deltaT = {} s{}; write {write}; \
+             rho = {} kg/m3, nu = {} m2/s; t = {} .. {}, deltaT = {} s{}; write {write}; \
              coupling {}",
             g.n[0],
             g.n[1],
@@ -273,7 +273,10 @@ impl Case {
             short(self.transport.rho),
             short(self.transport.nu),
             short(self.control.start_time),
-            short(self.control.end_time),
+            match self.control.stop_at {
+                StopAt::EndTime => format!("{} s", short(self.control.end_time)),
+                stop => format!("stopAt {}", stop.name()),
+            },
             short(self.control.delta_t),
             if self.control.adjust_time_step {
                 format!(" (adjustable, maxCo {})", self.control.max_co)

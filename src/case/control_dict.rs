@@ -15,6 +15,31 @@ pub enum StartFrom {
     FirstTime,
 }
 
+/// When a run stops (`stopAt`), as OpenFOAM's `Time` decides at each step's end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopAt {
+    /// At `endTime`.
+    EndTime,
+    /// After the next step, which is written.
+    WriteNow,
+    /// After the next step, written only if it is a write time anyway.
+    NoWriteNow,
+    /// At the next write time.
+    NextWrite,
+}
+
+impl StopAt {
+    /// The keyword's word.
+    pub fn name(self) -> &'static str {
+        match self {
+            StopAt::EndTime => "endTime",
+            StopAt::WriteNow => "writeNow",
+            StopAt::NoWriteNow => "noWriteNow",
+            StopAt::NextWrite => "nextWrite",
+        }
+    }
+}
+
 /// When time directories are written (`writeControl`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WriteControl {
@@ -26,11 +51,24 @@ pub enum WriteControl {
     AdjustableRunTime,
 }
 
+impl WriteControl {
+    /// The keyword's word.
+    pub fn name(self) -> &'static str {
+        match self {
+            WriteControl::TimeStep => "timeStep",
+            WriteControl::RunTime => "runTime",
+            WriteControl::AdjustableRunTime => "adjustableRunTime",
+        }
+    }
+}
+
 /// The typed `system/controlDict`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ControlDict {
     pub start_from: StartFrom,
     pub start_time: f64,
+    pub stop_at: StopAt,
+    /// `endTime`; infinite when `stopAt` is not `endTime` and the file gives none.
     pub end_time: f64,
     /// Initial (or fixed) time step, seconds.
     pub delta_t: f64,
@@ -46,6 +84,9 @@ pub struct ControlDict {
     pub max_delta_t: f64,
     /// Significant digits of time directory names (default 6).
     pub time_precision: usize,
+    /// `runTimeModifiable`: read the file again when it changes during the run (default no,
+    /// as OpenFOAM.com's `Time`; every OpenFOAM tutorial says yes).
+    pub run_time_modifiable: bool,
 }
 
 /// Reads a keyword that must be one of `choices`, returning the choice's index.
@@ -102,22 +143,22 @@ impl ControlDict {
             _ => StartFrom::FirstTime,
         };
         let start_time = d.get_scalar_or("startTime", 0.0)?;
-        let stop = choice(
+        let stop_at = match choice(
             d,
             "stopAt",
             &["endTime", "writeNow", "noWriteNow", "nextWrite"],
             Some(0),
-        )?;
-        if stop != 0 {
-            return Err(at_value(
-                d,
-                "stopAt",
-                "expected 'stopAt endTime' (writeNow, noWriteNow and nextWrite stop a running \
-                 OpenFOAM job; fsim does not support them)"
-                    .to_string(),
-            ));
-        }
-        let end_time = d.get_scalar("endTime")?;
+        )? {
+            0 => StopAt::EndTime,
+            1 => StopAt::WriteNow,
+            2 => StopAt::NoWriteNow,
+            _ => StopAt::NextWrite,
+        };
+        // OpenFOAM runs on without an end (endTime GREAT) when stopAt is not endTime.
+        let end_time = match stop_at {
+            StopAt::EndTime => d.get_scalar("endTime")?,
+            _ => d.get_scalar_or("endTime", f64::INFINITY)?,
+        };
         let delta_t = d.get_scalar("deltaT")?;
         if delta_t.is_nan() || delta_t <= 0.0 {
             return Err(at_value(
@@ -178,6 +219,7 @@ impl ControlDict {
                 format!("expected a positive time step for 'maxDeltaT', found {max_delta_t}"),
             ));
         }
+        let run_time_modifiable = d.get_bool_or("runTimeModifiable", false)?;
         let time_precision = d.get_label_or("timePrecision", 6)?;
         if !(1..=17).contains(&time_precision) {
             return Err(at_value(
@@ -208,6 +250,7 @@ impl ControlDict {
         Ok(ControlDict {
             start_from,
             start_time,
+            stop_at,
             end_time,
             delta_t,
             write_control,
@@ -217,7 +260,72 @@ impl ControlDict {
             max_co,
             max_delta_t,
             time_precision,
+            run_time_modifiable,
         })
+    }
+
+    /// What a run takes from `self` in place of `before` when the file changes during it
+    /// (`runTimeModifiable`), one `keyword old -> new` each: OpenFOAM's `Time::readDict` and
+    /// DPMFoam's `readTimeControls.H`. `startFrom` and `startTime` matter only at the start.
+    pub fn changes_from(&self, before: &ControlDict) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut note = |key: &str, old: String, new: String| {
+            if old != new {
+                out.push(format!("{key} {old} -> {new}"));
+            }
+        };
+        note(
+            "stopAt",
+            before.stop_at.name().into(),
+            self.stop_at.name().into(),
+        );
+        note(
+            "endTime",
+            before.end_time.to_string(),
+            self.end_time.to_string(),
+        );
+        note(
+            "deltaT",
+            before.delta_t.to_string(),
+            self.delta_t.to_string(),
+        );
+        note(
+            "adjustTimeStep",
+            before.adjust_time_step.to_string(),
+            self.adjust_time_step.to_string(),
+        );
+        note("maxCo", before.max_co.to_string(), self.max_co.to_string());
+        note(
+            "maxDeltaT",
+            before.max_delta_t.to_string(),
+            self.max_delta_t.to_string(),
+        );
+        note(
+            "writeControl",
+            before.write_control.name().into(),
+            self.write_control.name().into(),
+        );
+        note(
+            "writeInterval",
+            before.write_interval.to_string(),
+            self.write_interval.to_string(),
+        );
+        note(
+            "purgeWrite",
+            before.purge_write.to_string(),
+            self.purge_write.to_string(),
+        );
+        note(
+            "timePrecision",
+            before.time_precision.to_string(),
+            self.time_precision.to_string(),
+        );
+        note(
+            "runTimeModifiable",
+            before.run_time_modifiable.to_string(),
+            self.run_time_modifiable.to_string(),
+        );
+        out
     }
 }
 
@@ -274,5 +382,38 @@ mod tests {
         assert!(e
             .message
             .contains("expected one of timeStep, runTime, adjustableRunTime"));
+    }
+
+    #[test]
+    fn stop_at_and_run_time_modifiable() {
+        let read = |text: &str| {
+            let d = parse_dict(text, "system/controlDict").unwrap();
+            ControlDict::from_dict(&d, &mut Vec::new())
+        };
+        let base = "deltaT 0.01; writeControl timeStep; writeInterval 10;";
+        let c = read(&format!("{base} endTime 1;")).unwrap();
+        assert_eq!(c.stop_at, StopAt::EndTime);
+        assert!(!c.run_time_modifiable, "OpenFOAM.com's default");
+        // without stopAt endTime the end is not needed
+        let c = read(&format!("{base} stopAt nextWrite; runTimeModifiable yes;")).unwrap();
+        assert_eq!(c.stop_at, StopAt::NextWrite);
+        assert_eq!(c.end_time, f64::INFINITY);
+        assert!(c.run_time_modifiable);
+        let e = read(&format!("{base} stopAt writeNow;")).unwrap();
+        assert_eq!(e.stop_at, StopAt::WriteNow);
+        assert!(read(&format!("{base} stopAt endTime;")).is_err());
+        let e = read(&format!("{base} endTime 1; stopAt never;")).unwrap_err();
+        assert!(
+            e.message.contains("expected one of endTime, writeNow"),
+            "{e}"
+        );
+        // what a running case reports as changed
+        let before = read(&format!("{base} endTime 1;")).unwrap();
+        let after = read(&format!("{base} endTime 2; stopAt noWriteNow;")).unwrap();
+        assert_eq!(
+            after.changes_from(&before),
+            ["stopAt endTime -> noWriteNow", "endTime 1 -> 2"]
+        );
+        assert!(before.changes_from(&before).is_empty());
     }
 }

@@ -13,6 +13,7 @@ pub mod block_mesh;
 pub mod case;
 pub mod cloud_properties;
 pub mod control_dict;
+pub mod control_watch;
 pub mod coupling;
 pub mod dictionary;
 pub mod drag_law_options;
@@ -33,7 +34,8 @@ pub mod value;
 pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};
 pub use case::Case;
 pub use cloud_properties::Cloud;
-pub use control_dict::{time_name, ControlDict, StartFrom, WriteControl};
+pub use control_dict::{time_name, ControlDict, StartFrom, StopAt, WriteControl};
+pub use control_watch::ControlDictWatch;
 pub use coupling::{Coupling, CouplingModel};
 pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
 pub use drag_law_options::{

@@ -117,6 +117,13 @@ impl CaseOutput {
         self.time_precision
     }
 
+    /// Takes a `system/controlDict` changed during the run: its `timePrecision` (which may
+    /// grow again, as in [`Self::begin`]) and `purgeWrite`, applied from the next write on.
+    pub fn set_controls(&mut self, time_precision: usize, purge_write: usize) {
+        self.time_precision = time_precision;
+        self.purge_write = purge_write;
+    }
+
     /// Starts the time directory of time `t`; write its files at [`TimeDirectory::file`].
     ///
     /// As OpenFOAM does, when `t` differs from the previously written time but would get the

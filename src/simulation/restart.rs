@@ -35,6 +35,7 @@ impl Simulation {
             write_control,
             control.write_interval,
         );
+        self.time.set_stop(control.stop_at, control.end_time);
         self.dt = header.delta_t;
         self.largest_dt = header.delta_t;
         Ok(state)
