@@ -5,7 +5,7 @@
 //! the cloud and the machine (the fluid-only rate this replaced planned 18 s for the
 //! benchmark's 0.1 s, which took 317 s).
 
-use crate::case::Case;
+use crate::case::{Case, WriteControl};
 use crate::coupling::drag::terminal_velocity;
 use crate::error::FsimError;
 use crate::run::take_step;
@@ -89,9 +89,16 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         sim.time.time
     };
     println!("Steps   : about {steps} of {dt:.3e} s from t = {start} to {end} s{why}");
+    let step = timed.representative();
+    // the run's wall time, and its CPU time on every thread
+    let seconds = steps * step;
     let writes = match case.control.write_control {
-        crate::case::WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
-        _ => (end - start) / case.control.write_interval,
+        WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
+        WriteControl::ClockTime => seconds / case.control.write_interval,
+        WriteControl::CpuTime => seconds * threads as f64 / case.control.write_interval,
+        WriteControl::RunTime | WriteControl::AdjustableRunTime => {
+            (end - start) / case.control.write_interval
+        }
     }
     .floor();
     println!(
@@ -111,7 +118,6 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
             bytes / n.max(1) as f64
         );
     }
-    let step = timed.representative();
     let total: f64 = timed.seconds.iter().sum();
     let share = |part: f64| 100.0 * part / total.max(f64::MIN_POSITIVE);
     println!(
@@ -130,7 +136,6 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         share(timed.phases.coupling),
         share(timed.phases.particles)
     );
-    let seconds = steps * step;
     println!(
         "Run time: about {} s on {threads} thread(s) ({steps} steps of {:.1} ms; steps \
          from rest can cost more or less than the developed flow's)",

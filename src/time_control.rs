@@ -15,8 +15,12 @@
 //! run after the next step and writes it, `noWriteNow` ends it there without a write (unless
 //! the step is a write time anyway), `nextWrite` ends it at the next write time; `endTime` is
 //! then not needed.
+//!
+//! `clockTime` and `cpuTime` write every `writeInterval` seconds of wall-clock or CPU time
+//! since the run started (OpenFOAM: at the first step after each multiple).
 
 pub use crate::case::{StopAt, WriteControl};
+use crate::output::cpu_time_seconds;
 
 /// The time axis of a run.
 #[derive(Clone, Debug)]
@@ -27,8 +31,12 @@ pub struct TimeControl {
     pub stop_at: StopAt,
     pub write_control: WriteControl,
     pub write_interval: f64,
-    /// Index of the next write time for the run-time controls (`write_index · writeInterval`).
+    /// Index of the next write time for the run-time controls (`write_index · writeInterval`);
+    /// for `clockTime` and `cpuTime` the multiples of `writeInterval` already passed.
     write_index: u64,
+    /// Wall-clock and CPU seconds at the start, for `clockTime` and `cpuTime`.
+    started: std::time::Instant,
+    cpu_at_start: f64,
 }
 
 /// Relative tolerance on time comparisons (of `endTime` and of `writeInterval`).
@@ -51,6 +59,8 @@ impl TimeControl {
             write_control,
             write_interval,
             write_index: 0,
+            started: std::time::Instant::now(),
+            cpu_at_start: cpu_time_seconds(),
         };
         control.set_writes(write_control, write_interval);
         control
@@ -73,8 +83,21 @@ impl TimeControl {
         self.write_interval = write_interval;
         self.write_index = match write_control {
             WriteControl::TimeStep => 0,
+            WriteControl::ClockTime | WriteControl::CpuTime => {
+                (self.elapsed() / write_interval).floor() as u64
+            }
             _ => (self.time / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
         };
+    }
+
+    /// Seconds of wall-clock (`clockTime`) or CPU time (`cpuTime`) since the start; 0 for
+    /// the other controls.
+    fn elapsed(&self) -> f64 {
+        match self.write_control {
+            WriteControl::ClockTime => self.started.elapsed().as_secs_f64(),
+            WriteControl::CpuTime => cpu_time_seconds() - self.cpu_at_start,
+            _ => 0.0,
+        }
     }
 
     /// True while there is time left to run.
@@ -122,6 +145,8 @@ impl TimeControl {
                 let every = self.write_interval.round().max(1.0) as u64;
                 self.time + (every - self.step % every) as f64 * dt
             }
+            // a wall or CPU interval's steps are unknown before they are taken
+            (StopAt::NextWrite, WriteControl::ClockTime | WriteControl::CpuTime) => self.time + dt,
             (StopAt::NextWrite, _) => self.next_write_time(),
         }
     }
@@ -129,6 +154,12 @@ impl TimeControl {
     /// Advance by `dt`; returns true when the new time is a write time (or the end, unless
     /// `stopAt noWriteNow` ends the run there).
     pub fn advance(&mut self, dt: f64) -> bool {
+        let elapsed = self.elapsed();
+        self.advance_after(dt, elapsed)
+    }
+
+    /// [`Self::advance`] with the wall-clock or CPU seconds since the start given.
+    fn advance_after(&mut self, dt: f64, elapsed: f64) -> bool {
         self.step += 1;
         self.time += dt;
         let write = match self.write_control {
@@ -147,6 +178,12 @@ impl TimeControl {
                     self.write_index += 1;
                     hit = true;
                 }
+                hit
+            }
+            WriteControl::ClockTime | WriteControl::CpuTime => {
+                let passed = (elapsed / self.write_interval).floor() as u64;
+                let hit = passed > self.write_index;
+                self.write_index = self.write_index.max(passed);
                 hit
             }
         };
@@ -279,6 +316,21 @@ mod tests {
         assert_eq!(writes.len(), expect.len(), "{writes:?}");
         for (w, e) in writes.iter().zip(expect) {
             assert!((w - e).abs() < 1e-12, "{writes:?}");
+        }
+    }
+
+    #[test]
+    fn clock_and_cpu_time_write_at_the_first_step_past_each_interval() {
+        for control in [WriteControl::ClockTime, WriteControl::CpuTime] {
+            let mut tc = TimeControl::new(0.0, 0, 1.0, control, 2.0);
+            // seconds since the start at each step's end
+            let elapsed = [0.5, 1.9, 2.1, 2.5, 3.9, 6.3, 6.4];
+            let written: Vec<bool> = elapsed.iter().map(|&e| tc.advance_after(0.1, e)).collect();
+            assert_eq!(
+                written,
+                [false, false, true, false, false, true, false],
+                "{control:?}"
+            );
         }
     }
 

@@ -371,10 +371,10 @@ fn unsupported_write_control() {
     c.edit(
         "system/controlDict",
         "writeControl    timeStep;",
-        "writeControl    clockTime;",
+        "writeControl    wallTime;",
     );
     let e = c.error();
-    let at = c.position("system/controlDict", "clockTime", 0);
+    let at = c.position("system/controlDict", "wallTime", 0);
     check(
         &e,
         "system/controlDict",

@@ -183,12 +183,54 @@ fn without_run_time_modifiable_the_file_is_read_once() {
         "fixed",
         &[("endTime", "10000"), ("writeInterval", "0.5")],
     );
+    // OpenFOAM.com's default: no (the tutorial says yes)
+    let control = case.join("system/controlDict");
+    let text = fs::read_to_string(&control).unwrap();
+    let kept: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("runTimeModifiable"))
+        .collect();
+    fs::write(&control, kept.join("\n")).unwrap();
     let mut run = spawn(&case);
     wait_for("the first write", || case.join("0.5").is_dir());
     change(&case, "stopAt", "writeNow");
+    // long enough for the change to settle and be read, were it read
+    let changed = Instant::now();
     let after = times(&case).len() + 2;
-    wait_for("two more writes", || times(&case).len() >= after);
+    wait_for("two more writes, a second on", || {
+        times(&case).len() >= after && changed.elapsed() > Duration::from_secs(1)
+    });
     assert!(run.try_wait().unwrap().is_none(), "the run went on");
     run.kill().unwrap();
     run.wait().unwrap();
+}
+
+#[test]
+fn clock_time_writes_every_interval_of_wall_time() {
+    let scratch = Scratch::new("clock-time");
+    let case = cavity(
+        &scratch,
+        "clockTime",
+        &[
+            ("endTime", "10"),
+            ("writeControl", "clockTime"),
+            ("writeInterval", "0.2"),
+        ],
+    );
+    let start = Instant::now();
+    let out = fsim(&case, &[]);
+    let wall = start.elapsed().as_secs_f64();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // 2,000 steps: at least a few tenths of a second on any machine
+    let t = times(&case);
+    assert_eq!((t[0], *t.last().unwrap()), (0.0, 10.0));
+    let between = t.len() - 2;
+    assert!(
+        between >= 1 && between as f64 <= wall / 0.2 + 1.0,
+        "{between} writes in {wall:.2} s: {t:?}"
+    );
 }

@@ -252,6 +252,10 @@ impl Case {
             WriteControl::RunTime | WriteControl::AdjustableRunTime => {
                 format!("every {} s", self.control.write_interval)
             }
+            WriteControl::ClockTime => {
+                format!("every {} s of wall time", self.control.write_interval)
+            }
+            WriteControl::CpuTime => format!("every {} s of CPU time", self.control.write_interval),
         };
         let phase = if self.transport.phase.is_empty() {
             String::new()

@@ -49,6 +49,10 @@ pub enum WriteControl {
     RunTime,
     /// Every `writeInterval` seconds exactly: the time step is shortened to land on it.
     AdjustableRunTime,
+    /// Every `writeInterval` seconds of wall-clock time since the run started.
+    ClockTime,
+    /// Every `writeInterval` seconds of the process's CPU time (all threads) since it started.
+    CpuTime,
 }
 
 impl WriteControl {
@@ -58,6 +62,8 @@ impl WriteControl {
             WriteControl::TimeStep => "timeStep",
             WriteControl::RunTime => "runTime",
             WriteControl::AdjustableRunTime => "adjustableRunTime",
+            WriteControl::ClockTime => "clockTime",
+            WriteControl::CpuTime => "cpuTime",
         }
     }
 }
@@ -178,12 +184,21 @@ impl ControlDict {
             d,
             "writeControl",
             // `adjustable` is OpenFOAM's short alias of `adjustableRunTime`.
-            &["timeStep", "runTime", "adjustableRunTime", "adjustable"],
+            &[
+                "timeStep",
+                "runTime",
+                "adjustableRunTime",
+                "adjustable",
+                "clockTime",
+                "cpuTime",
+            ],
             Some(0),
         )? {
             0 => WriteControl::TimeStep,
             1 => WriteControl::RunTime,
-            _ => WriteControl::AdjustableRunTime,
+            2 | 3 => WriteControl::AdjustableRunTime,
+            4 => WriteControl::ClockTime,
+            _ => WriteControl::CpuTime,
         };
         let write_interval = d.get_scalar("writeInterval")?;
         let interval_ok = match write_control {
@@ -374,6 +389,13 @@ mod tests {
         assert_eq!(c.write_control, WriteControl::AdjustableRunTime);
         let d = parse_dict(
             "endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;",
+            "system/controlDict",
+        )
+        .unwrap();
+        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        assert_eq!(c.write_control, WriteControl::ClockTime);
+        let d = parse_dict(
+            "endTime 1; deltaT 0.01; writeControl wallTime; writeInterval 1;",
             "system/controlDict",
         )
         .unwrap();
