@@ -200,23 +200,54 @@ impl ControlDict {
             4 => WriteControl::ClockTime,
             _ => WriteControl::CpuTime,
         };
-        let write_interval = d.get_scalar("writeInterval")?;
+        // `writeFrequency` is OpenFOAM's older name of it (Time::readDict)
+        let interval_key =
+            if d.peek("writeInterval").is_none() && d.peek("writeFrequency").is_some() {
+                "writeFrequency"
+            } else {
+                "writeInterval"
+            };
+        let mut write_interval = d.get_scalar(interval_key)?;
+        if write_control == WriteControl::TimeStep
+            && write_interval > 1.0
+            && write_interval.fract() != 0.0
+        {
+            // OpenFOAM counts label(writeInterval) steps
+            notes.push(format!(
+                "{}: {interval_key} {write_interval} steps: {} steps, as OpenFOAM counts them",
+                d.file(),
+                write_interval.trunc()
+            ));
+            write_interval = write_interval.trunc();
+        }
         let interval_ok = match write_control {
-            WriteControl::TimeStep => write_interval >= 1.0 && write_interval.fract() == 0.0,
+            WriteControl::TimeStep => write_interval >= 1.0,
             _ => write_interval > 0.0,
         };
         if !interval_ok {
             let what = match write_control {
-                WriteControl::TimeStep => "a whole number of steps (at least 1)",
+                WriteControl::TimeStep => "a number of steps of at least 1",
                 _ => "a positive time",
             };
             return Err(at_value(
                 d,
-                "writeInterval",
-                format!("expected {what} for 'writeInterval', found {write_interval}"),
+                interval_key,
+                format!("expected {what} for '{interval_key}', found {write_interval}"),
             ));
         }
-        let purge_write = d.get_label_or("purgeWrite", 0)?;
+        let purge_write = match d.opt_integer("purgeWrite")? {
+            Some(n) if n < 0 => {
+                // OpenFOAM warns and keeps everything
+                notes.push(format!(
+                    "{}: purgeWrite {n} is negative: 0 (every time directory is kept), as OpenFOAM \
+                     takes it",
+                    d.file()
+                ));
+                0
+            }
+            Some(n) => n as usize,
+            None => 0,
+        };
         let adjust_time_step = d.get_bool_or("adjustTimeStep", false)?;
         let max_co = d.get_scalar_or("maxCo", 1.0)?;
         if max_co.is_nan() || max_co <= 0.0 {
@@ -437,5 +468,48 @@ mod tests {
             ["stopAt endTime -> noWriteNow", "endTime 1 -> 2"]
         );
         assert!(before.changes_from(&before).is_empty());
+    }
+
+    #[test]
+    fn write_frequency_a_fractional_step_count_and_a_negative_purge_as_openfoam_reads_them() {
+        let read = |text: &str, notes: &mut Vec<String>| {
+            let d = parse_dict(text, "system/controlDict").unwrap();
+            ControlDict::from_dict(&d, notes)
+        };
+        let mut notes = Vec::new();
+        let c = read(
+            "endTime 1; deltaT 0.01; writeControl runTime; writeFrequency 0.1;",
+            &mut notes,
+        )
+        .unwrap();
+        assert_eq!(c.write_interval, 0.1);
+        assert!(notes.is_empty());
+        // label(writeInterval) steps, with a note
+        let c = read(
+            "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 2.5; purgeWrite -1;",
+            &mut notes,
+        )
+        .unwrap();
+        assert_eq!((c.write_interval, c.purge_write), (2.0, 0));
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(
+            notes[0].contains("writeInterval 2.5 steps: 2 steps"),
+            "{notes:?}"
+        );
+        assert!(notes[1].contains("purgeWrite -1 is negative"), "{notes:?}");
+        // below one step is still refused, at the value
+        let e = read(
+            "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 0.5;",
+            &mut notes,
+        )
+        .unwrap_err();
+        assert_eq!((e.line, e.col), (1, 62), "{e}");
+        assert!(
+            e.message
+                .contains("at least 1 for 'writeInterval', found 0.5"),
+            "{e}"
+        );
+        let e = read("endTime 1; deltaT 0.01; writeControl timeStep;", &mut notes).unwrap_err();
+        assert!(e.message.contains("writeInterval"), "{e}");
     }
 }

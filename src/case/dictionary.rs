@@ -421,6 +421,11 @@ impl Dict {
         })
     }
 
+    /// An optional integer of either sign.
+    pub fn opt_integer(&self, keyword: &str) -> Result<Option<i64>, CaseError> {
+        self.typed(keyword, "an integer", |i| i.as_label())
+    }
+
     /// A required non-negative integer.
     pub fn get_label(&self, keyword: &str) -> Result<usize, CaseError> {
         self.opt_label(keyword)?
