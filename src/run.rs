@@ -17,7 +17,7 @@
 //!     write the time directory when due       (whole or not at all)
 //! ```
 
-use crate::case::{Case, ControlDict, ControlDictWatch, InternalField, StopAt};
+use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalField};
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::fluid::{FluidDiagnostics, StepReport};
@@ -30,6 +30,8 @@ use std::time::Instant;
 
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
+    // From before the case is read, so that no change made while the run starts is missed.
+    let watch = ControlDictWatch::new(&options.case);
     let mut case = load_case(options)?;
     let threads = options.threads.unwrap_or_else(|| {
         std::thread::available_parallelism()
@@ -43,7 +45,7 @@ pub fn run(options: &Options) -> Result<(), FsimError> {
         .num_threads(threads)
         .build()
         .map_err(|e| FsimError::run(format!("cannot start {threads} threads: {e}")))?;
-    pool.install(|| run_case(&mut case, options, threads))
+    pool.install(|| run_case(&mut case, options, threads, watch))
 }
 
 /// Reads and validates every file of the case, listing the keywords fsim ignores.
@@ -55,7 +57,12 @@ fn load_case(options: &Options) -> Result<Case, FsimError> {
     Ok(case)
 }
 
-fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), FsimError> {
+fn run_case(
+    case: &mut Case,
+    options: &Options,
+    threads: usize,
+    watch: ControlDictWatch,
+) -> Result<(), FsimError> {
     let output_error = |e: OutputError| FsimError::run(e.to_string());
     let restart = if continues(case) {
         crate::output::latest_time(&case.dir)
@@ -94,31 +101,28 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         sim.drag.is_some(),
     )?;
     reporter.log.banner(&banner(case, &sim, threads))?;
-    // The time last written: the start's, once it has its directory.
-    let mut written = None;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
         // The start time gets its VTK files and restart state too, so the series opens at t0.
         write_time(&mut output, &mut sim)?;
     }
-    if case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
-        written = Some(sim.time.time);
-    }
+    // The time last written: the start's directory holds its state by now.
+    let mut written = sim.time.time;
     let start = sim.time.time;
     reporter.log.line("Starting time loop\n")?;
 
     let mut control = case.control.clone();
-    let mut watch = control
-        .run_time_modifiable
-        .then(|| ControlDictWatch::new(&case.dir));
-    loop {
+    let mut watch = control.run_time_modifiable.then_some(watch);
+    while sim.time.running() {
+        // As OpenFOAM's Time::run: read a changed controlDict only while running (a stop
+        // is final), and look again whether to go on.
         if let Some(changed) = watch.as_mut().and_then(ControlDictWatch::changed) {
             take_new_controls(changed, &mut control, &mut sim, &mut output, &mut reporter)?;
             if !control.run_time_modifiable {
                 watch = None;
             }
-        }
-        if !sim.time.running() {
-            break;
+            if !sim.time.running() {
+                break;
+            }
         }
         let clock = Instant::now();
         let step = take_step(&mut sim)?;
@@ -134,13 +138,13 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
         )?;
         if step.write_due {
             write_time(&mut output, &mut sim)?;
-            written = Some(sim.time.time);
+            written = sim.time.time;
         }
-        reporter.end_step(sim.time.time, start, sim.time.end_time)?;
+        reporter.end_step(sim.time.time, start, sim.time.planned_end(step.dt))?;
     }
     // An endTime lowered during the run to a time already passed ends it where it is: that
-    // time is written too (the last time always is), unless stopAt noWriteNow said not to.
-    if written != Some(sim.time.time) && sim.time.stop_at != StopAt::NoWriteNow {
+    // time is written too (the last time always is, unless stopAt noWriteNow says not to).
+    if written != sim.time.time && sim.time.final_write_due() {
         write_time(&mut output, &mut sim)?;
     }
     reporter.finish()
@@ -149,37 +153,49 @@ fn run_case(case: &mut Case, options: &Options, threads: usize) -> Result<(), Fs
 /// Takes a `system/controlDict` changed during the run (`runTimeModifiable`), or says why
 /// not: a file that does not read leaves the settings as they were, and the run goes on.
 fn take_new_controls(
-    changed: Result<ControlDict, crate::case::CaseError>,
+    changed: ControlChange,
     control: &mut ControlDict,
     sim: &mut Simulation,
     output: &mut CaseOutput,
     reporter: &mut StepReporter,
 ) -> Result<(), FsimError> {
-    match changed {
-        Ok(new) => {
-            let changes = new.changes_from(control);
-            let what = if changes.is_empty() {
-                "nothing that a running case reads".to_string()
+    let now = output.time_name(sim.time.time);
+    let refused = match changed {
+        Ok((new, notes)) => {
+            let bound = sim.stability_bound();
+            if !new.adjust_time_step && new.delta_t > bound {
+                // A run stopped by its own controlDict would lose what it computed since
+                // its last write.
+                format!(
+                    "system/controlDict: deltaT {} exceeds the scheme's stability bound \
+                     {bound:.4e} s now",
+                    new.delta_t
+                )
             } else {
-                changes.join(", ")
-            };
-            reporter.log.line(&format!(
-                "system/controlDict changed at t = {}: {what}\n",
-                output.time_name(sim.time.time)
-            ))?;
-            sim.apply_control(&new);
-            output.set_controls(new.time_precision, new.purge_write);
-            *control = new;
+                for note in notes {
+                    eprintln!("fsimFoam: note: {note}");
+                    reporter.log.line(&format!("note: {note}"))?;
+                }
+                let changes = new.changes_from(control);
+                let what = if changes.is_empty() {
+                    "nothing that a running case reads".to_string()
+                } else {
+                    changes.join(", ")
+                };
+                reporter.log.line(&format!(
+                    "system/controlDict changed at t = {now}: {what}\n"
+                ))?;
+                sim.apply_control(&new);
+                output.set_controls(new.time_precision, new.purge_write);
+                *control = new;
+                return Ok(());
+            }
         }
-        Err(e) => {
-            let message = format!(
-                "{e}; the run goes on with the settings it had (t = {})",
-                output.time_name(sim.time.time)
-            );
-            eprintln!("fsimFoam: warning: {message}");
-            reporter.log.line(&format!("warning: {message}\n"))?;
-        }
-    }
+        Err(e) => e.to_string(),
+    };
+    let message = format!("{refused}; the run goes on with the settings it had (t = {now})");
+    eprintln!("fsimFoam: warning: {message}");
+    reporter.log.line(&format!("warning: {message}\n"))?;
     Ok(())
 }
 

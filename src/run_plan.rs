@@ -5,7 +5,7 @@
 //! the cloud and the machine (the fluid-only rate this replaced planned 18 s for the
 //! benchmark's 0.1 s, which took 317 s).
 
-use crate::case::{Case, WriteControl};
+use crate::case::{Case, StopAt, WriteControl};
 use crate::coupling::drag::terminal_velocity;
 use crate::error::FsimError;
 use crate::run::take_step;
@@ -101,8 +101,13 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         }
     }
     .floor();
+    let besides = match sim.time.stop_at {
+        StopAt::EndTime | StopAt::WriteNow => "the start and the end",
+        StopAt::NoWriteNow => "the start; the end is not written",
+        StopAt::NextWrite => "the start; the next is the end",
+    };
     println!(
-        "Writes  : about {writes} time directories (+ the start and the end), each about {:.1} MB",
+        "Writes  : about {writes} time directories (+ {besides}), each about {:.1} MB",
         cells as f64 * 2.0 * 4.0 * 8.0 / 1e6
     );
     if let Some(p) = &sim.particles {

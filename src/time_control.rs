@@ -76,9 +76,19 @@ impl TimeControl {
         };
     }
 
-    /// Sets when to write, from the current time on: the next run-time write is the first
-    /// multiple of `write_interval` after now (OpenFOAM rescales its write index alike).
+    /// Sets when to write from now on. A run-time interval's next write is its first
+    /// multiple after now and after the last write time of the interval before, which
+    /// `runTime` may have written a little early (OpenFOAM rescales its write index to
+    /// the same end); a wall or CPU interval counts the multiples already passed.
     pub fn set_writes(&mut self, write_control: WriteControl, write_interval: f64) {
+        let run_time =
+            |w: WriteControl| matches!(w, WriteControl::RunTime | WriteControl::AdjustableRunTime);
+        let since = if run_time(self.write_control) && self.write_index > 0 {
+            self.time
+                .max((self.write_index - 1) as f64 * self.write_interval)
+        } else {
+            self.time
+        };
         self.write_control = write_control;
         self.write_interval = write_interval;
         self.write_index = match write_control {
@@ -86,8 +96,14 @@ impl TimeControl {
             WriteControl::ClockTime | WriteControl::CpuTime => {
                 (self.elapsed() / write_interval).floor() as u64
             }
-            _ => (self.time / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
+            _ => (since / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
         };
+    }
+
+    /// Whether a run that ends at the current time must still write it: the last time is
+    /// always written, unless `stopAt noWriteNow` said not to.
+    pub fn final_write_due(&self) -> bool {
+        self.stop_at != StopAt::NoWriteNow
     }
 
     /// Seconds of wall-clock (`clockTime`) or CPU time (`cpuTime`) since the start; 0 for
@@ -155,11 +171,11 @@ impl TimeControl {
     /// `stopAt noWriteNow` ends the run there).
     pub fn advance(&mut self, dt: f64) -> bool {
         let elapsed = self.elapsed();
-        self.advance_after(dt, elapsed)
+        self.advance_with_elapsed(dt, elapsed)
     }
 
     /// [`Self::advance`] with the wall-clock or CPU seconds since the start given.
-    fn advance_after(&mut self, dt: f64, elapsed: f64) -> bool {
+    fn advance_with_elapsed(&mut self, dt: f64, elapsed: f64) -> bool {
         self.step += 1;
         self.time += dt;
         let write = match self.write_control {
@@ -303,6 +319,23 @@ mod tests {
     }
 
     #[test]
+    fn a_longer_interval_does_not_write_the_last_write_time_again() {
+        // runTime writes 0.5 at the step ending at 0.498 (nearest); a change to 0.5 then
+        // must not write at 0.504 for 0.5 again, but at 1.002 (nearer 1 than 0.996)
+        let mut tc = TimeControl::new(0.0, 0, 2.0, WriteControl::RunTime, 0.25);
+        let mut writes = Vec::new();
+        for _ in 0..83 {
+            if tc.advance(0.006) {
+                writes.push(tc.time);
+            }
+        }
+        assert!((tc.time - 0.498).abs() < 1e-9 && (writes[1] - 0.498).abs() < 1e-9);
+        tc.set_writes(WriteControl::RunTime, 0.5);
+        let (_, later) = run(tc, 0.006);
+        assert!((later[0] - 1.002).abs() < 1e-9, "{later:?}");
+    }
+
+    #[test]
     fn new_write_settings_count_from_now() {
         let mut tc = TimeControl::new(0.0, 0, 1.0, WriteControl::AdjustableRunTime, 0.5);
         for _ in 0..3 {
@@ -325,7 +358,10 @@ mod tests {
             let mut tc = TimeControl::new(0.0, 0, 1.0, control, 2.0);
             // seconds since the start at each step's end
             let elapsed = [0.5, 1.9, 2.1, 2.5, 3.9, 6.3, 6.4];
-            let written: Vec<bool> = elapsed.iter().map(|&e| tc.advance_after(0.1, e)).collect();
+            let written: Vec<bool> = elapsed
+                .iter()
+                .map(|&e| tc.advance_with_elapsed(0.1, e))
+                .collect();
             assert_eq!(
                 written,
                 [false, false, true, false, false, true, false],

@@ -80,16 +80,45 @@ fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
     assert_eq!(times(&case), [0.0, 0.05]);
 }
 
-/// fsimFoam on `case` in the background, its log and messages into files of the case.
-fn spawn(case: &Path) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_fsimFoam"))
-        .arg("-case")
-        .arg(case)
-        .stdout(fs::File::create(case.join("log.out")).unwrap())
-        .stderr(fs::File::create(case.join("log.err")).unwrap())
-        .stdin(Stdio::null())
-        .spawn()
-        .unwrap()
+/// fsimFoam running on a case in the background, its log and messages into files of the
+/// case; killed if a test fails before it ends.
+struct Running(Child);
+
+impl Running {
+    fn start(case: &Path) -> Self {
+        let child = Command::new(env!("CARGO_BIN_EXE_fsimFoam"))
+            .arg("-case")
+            .arg(case)
+            .stdout(fs::File::create(case.join("log.out")).unwrap())
+            .stderr(fs::File::create(case.join("log.err")).unwrap())
+            .stdin(Stdio::null())
+            .spawn()
+            .unwrap();
+        Running(child)
+    }
+
+    fn is_running(&mut self) -> bool {
+        self.0.try_wait().unwrap().is_none()
+    }
+
+    /// Waits for the run to end; whether it succeeded.
+    fn finish(mut self) -> bool {
+        let mut status = None;
+        wait_for("the end of the run", || {
+            status = self.0.try_wait().unwrap();
+            status.is_some()
+        });
+        status.unwrap().success()
+    }
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        if self.is_running() {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
 }
 
 /// Waits up to two minutes (a loaded machine) for `done`.
@@ -109,37 +138,53 @@ fn change(case: &Path, key: &str, value: &str) {
     set_entry(&case.join("system/controlDict"), key, value);
 }
 
-#[test]
-fn a_running_case_takes_its_changed_control_dict() {
-    let scratch = Scratch::new("run-time-modifiable");
+fn read(case: &Path, file: &str) -> String {
+    fs::read_to_string(case.join(file)).unwrap()
+}
+
+/// A long cavity run that reads its controlDict again, once it has written 0.5.
+fn modifiable_run(scratch: &Scratch, name: &str) -> (PathBuf, Running) {
     let case = cavity(
-        &scratch,
-        "modifiable",
+        scratch,
+        name,
         &[
             ("endTime", "10000"),
             ("writeInterval", "0.5"),
             ("runTimeModifiable", "yes"),
         ],
     );
-    let mut run = spawn(&case);
+    let run = Running::start(&case);
     wait_for("the first write", || case.join("0.5").is_dir());
+    (case, run)
+}
+
+#[test]
+fn a_running_case_takes_its_changed_control_dict() {
+    let scratch = Scratch::new("run-time-modifiable");
+    let (case, mut run) = modifiable_run(&scratch, "modifiable");
 
     // A file that does not read: a warning at its place, and the run goes on.
     change(&case, "endTime", "10000 3");
     wait_for("the warning", || {
-        fs::read_to_string(case.join("log.err"))
-            .unwrap()
-            .contains("system/controlDict:")
+        read(&case, "log.err").contains("controlDict:")
     });
-    let err = fs::read_to_string(case.join("log.err")).unwrap();
+    let err = read(&case, "log.err");
     assert!(
         err.contains("the run goes on with the settings it had"),
         "{err}"
     );
-    assert!(run.try_wait().unwrap().is_none(), "the run went on");
+    assert!(run.is_running());
+
+    // A fixed step beyond the scheme's bound would stop the run: refused, the run goes on.
+    change(&case, "endTime", "10000");
+    change(&case, "deltaT", "0.5");
+    wait_for("the second warning", || {
+        read(&case, "log.err").contains("exceeds the scheme's stability bound")
+    });
+    assert!(run.is_running());
 
     // Then a new write interval, then writeNow: one more step, written, and the end.
-    change(&case, "endTime", "10000");
+    change(&case, "deltaT", "0.005");
     change(&case, "writeInterval", "0.25");
     // a write at an odd multiple of 0.25 s, which the old interval never gives
     let odd_quarter = |t: &f64| {
@@ -150,29 +195,46 @@ fn a_running_case_takes_its_changed_control_dict() {
         times(&case).iter().any(odd_quarter)
     });
     change(&case, "stopAt", "writeNow");
-    let status = {
-        let mut status = None;
-        wait_for("the end of the run", || {
-            status = run.try_wait().unwrap();
-            status.is_some()
-        });
-        status.unwrap()
-    };
-    assert!(status.success());
-    let log = fs::read_to_string(case.join("log.out")).unwrap();
+    assert!(run.finish());
+    let log = read(&case, "log.out");
     assert!(log.contains("writeInterval 0.5 -> 0.25"), "{log}");
     assert!(log.contains("stopAt endTime -> writeNow"), "{log}");
     assert!(log.trim_end().ends_with("End"), "{log}");
-    let last = *times(&case).last().unwrap();
-    assert!(last < 10000.0);
-    let name = listing(&case)
-        .into_iter()
-        .find(|n| n.parse::<f64>().ok() == Some(last))
-        .unwrap();
-    assert!(case.join(&name).join("restart.bin").exists());
-    // the step after the change is the last
+    // the step after the change is the last, and written
     let after = log.rsplit("stopAt endTime -> writeNow").next().unwrap();
     assert_eq!(after.matches("\nTime = ").count(), 1, "{after}");
+    let last = after
+        .split("\nTime = ")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap();
+    assert!(case.join(last).join("restart.bin").exists(), "{last}");
+    assert_eq!(*times(&case).last().unwrap(), last.parse::<f64>().unwrap());
+}
+
+#[test]
+fn an_end_time_already_passed_ends_the_run_where_it_is_and_writes_it() {
+    let scratch = Scratch::new("end-time-passed");
+    let (case, run) = modifiable_run(&scratch, "passed");
+    change(&case, "endTime", "0.1");
+    assert!(run.finish());
+    let log = read(&case, "log.out");
+    assert!(log.contains("endTime 10000 -> 0.1"), "{log}");
+    let at = log.rsplit("changed at t = ").next().unwrap();
+    let at = at.split(':').next().unwrap();
+    assert!(at.parse::<f64>().unwrap() > 0.5, "{at}");
+    let last = listing(&case)
+        .into_iter()
+        .filter(|n| n.parse::<f64>().is_ok())
+        .max_by(|a, b| {
+            a.parse::<f64>()
+                .unwrap()
+                .total_cmp(&b.parse::<f64>().unwrap())
+        });
+    assert_eq!(last.as_deref(), Some(at));
+    assert!(case.join(at).join("restart.bin").exists());
 }
 
 #[test]
@@ -191,7 +253,7 @@ fn without_run_time_modifiable_the_file_is_read_once() {
         .filter(|l| !l.starts_with("runTimeModifiable"))
         .collect();
     fs::write(&control, kept.join("\n")).unwrap();
-    let mut run = spawn(&case);
+    let mut run = Running::start(&case);
     wait_for("the first write", || case.join("0.5").is_dir());
     change(&case, "stopAt", "writeNow");
     // long enough for the change to settle and be read, were it read
@@ -200,9 +262,7 @@ fn without_run_time_modifiable_the_file_is_read_once() {
     wait_for("two more writes, a second on", || {
         times(&case).len() >= after && changed.elapsed() > Duration::from_secs(1)
     });
-    assert!(run.try_wait().unwrap().is_none(), "the run went on");
-    run.kill().unwrap();
-    run.wait().unwrap();
+    assert!(run.is_running(), "the run went on");
 }
 
 #[test]
@@ -212,9 +272,9 @@ fn clock_time_writes_every_interval_of_wall_time() {
         &scratch,
         "clockTime",
         &[
-            ("endTime", "10"),
+            ("endTime", "20"),
             ("writeControl", "clockTime"),
-            ("writeInterval", "0.2"),
+            ("writeInterval", "0.1"),
         ],
     );
     let start = Instant::now();
@@ -225,12 +285,12 @@ fn clock_time_writes_every_interval_of_wall_time() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    // 2,000 steps: at least a few tenths of a second on any machine
+    // 4,000 steps: at least a few tenths of a second on any machine
     let t = times(&case);
-    assert_eq!((t[0], *t.last().unwrap()), (0.0, 10.0));
+    assert_eq!((t[0], *t.last().unwrap()), (0.0, 20.0));
     let between = t.len() - 2;
     assert!(
-        between >= 1 && between as f64 <= wall / 0.2 + 1.0,
+        between >= 1 && between as f64 <= wall / 0.1 + 1.0,
         "{between} writes in {wall:.2} s: {t:?}"
     );
 }

@@ -312,66 +312,40 @@ impl ControlDict {
 
     /// What a run takes from `self` in place of `before` when the file changes during it
     /// (`runTimeModifiable`), one `keyword old -> new` each: OpenFOAM's `Time::readDict` and
-    /// DPMFoam's `readTimeControls.H`. `startFrom` and `startTime` matter only at the start.
+    /// DPMFoam's `readTimeControls.H`. `startFrom` and `startTime` matter only at the start,
+    /// `deltaT` only to a fixed step.
     pub fn changes_from(&self, before: &ControlDict) -> Vec<String> {
-        let mut out = Vec::new();
-        let mut note = |key: &str, old: String, new: String| {
-            if old != new {
-                out.push(format!("{key} {old} -> {new}"));
-            }
+        let entries = |c: &ControlDict| -> [(&'static str, String); 11] {
+            [
+                ("stopAt", c.stop_at.name().to_string()),
+                ("endTime", c.end_time.to_string()),
+                (
+                    "deltaT",
+                    if c.adjust_time_step {
+                        String::new()
+                    } else {
+                        c.delta_t.to_string()
+                    },
+                ),
+                ("adjustTimeStep", c.adjust_time_step.to_string()),
+                ("maxCo", c.max_co.to_string()),
+                ("maxDeltaT", c.max_delta_t.to_string()),
+                ("writeControl", c.write_control.name().to_string()),
+                ("writeInterval", c.write_interval.to_string()),
+                ("purgeWrite", c.purge_write.to_string()),
+                ("timePrecision", c.time_precision.to_string()),
+                ("runTimeModifiable", c.run_time_modifiable.to_string()),
+            ]
         };
-        note(
-            "stopAt",
-            before.stop_at.name().into(),
-            self.stop_at.name().into(),
-        );
-        note(
-            "endTime",
-            before.end_time.to_string(),
-            self.end_time.to_string(),
-        );
-        note(
-            "deltaT",
-            before.delta_t.to_string(),
-            self.delta_t.to_string(),
-        );
-        note(
-            "adjustTimeStep",
-            before.adjust_time_step.to_string(),
-            self.adjust_time_step.to_string(),
-        );
-        note("maxCo", before.max_co.to_string(), self.max_co.to_string());
-        note(
-            "maxDeltaT",
-            before.max_delta_t.to_string(),
-            self.max_delta_t.to_string(),
-        );
-        note(
-            "writeControl",
-            before.write_control.name().into(),
-            self.write_control.name().into(),
-        );
-        note(
-            "writeInterval",
-            before.write_interval.to_string(),
-            self.write_interval.to_string(),
-        );
-        note(
-            "purgeWrite",
-            before.purge_write.to_string(),
-            self.purge_write.to_string(),
-        );
-        note(
-            "timePrecision",
-            before.time_precision.to_string(),
-            self.time_precision.to_string(),
-        );
-        note(
-            "runTimeModifiable",
-            before.run_time_modifiable.to_string(),
-            self.run_time_modifiable.to_string(),
-        );
-        out
+        entries(before)
+            .into_iter()
+            .zip(entries(self))
+            .filter(|((_, old), (_, new))| old != new && !new.is_empty())
+            .map(|((key, old), (_, new))| match old.is_empty() {
+                true => format!("{key} {new}"),
+                false => format!("{key} {old} -> {new}"),
+            })
+            .collect()
     }
 }
 

@@ -6,56 +6,71 @@ use super::error::CaseError;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
-/// How old a change must be before it is read. File times tick coarsely (a few ms on
-/// Linux), so two writes close together can share one; a file read while such writes are
-/// under way could leave the last unseen. A change is read once it is this old, by when any
-/// later write bears a later time.
+/// How old a change must be before it is read: a file caught while it is being written would
+/// otherwise be read half-written.
 const SETTLE: Duration = Duration::from_millis(100);
 
-/// Watches a case's `system/controlDict` by its modification time, as OpenFOAM's
-/// `timeStamp` file checking does, between two steps (OpenFOAM's `Time::run`).
+/// How long after its last change the file's text is compared on every look, not only its
+/// time: file times tick coarsely (a few ms on Linux, up to 2 s on some mounted file
+/// systems), so a second write within the tick of one already read keeps the same time.
+const RECENT: Duration = Duration::from_secs(3);
+
+/// A changed controlDict as read: its settings and the notes its reading gave (ignored or
+/// adjusted entries), or the error at its place.
+pub type ControlChange = Result<(ControlDict, Vec<String>), CaseError>;
+
+/// Watches a case's `system/controlDict` between two steps (OpenFOAM's `Time::run`), by its
+/// modification time as OpenFOAM's `timeStamp` checking does, and by its text while the
+/// change is recent.
 ///
 /// Files the dictionary `#include`s are not watched: touch the controlDict itself.
 #[derive(Debug)]
 pub struct ControlDictWatch {
     case_dir: PathBuf,
     path: PathBuf,
-    /// The modification time last seen (`None`: the file could not be looked at).
+    /// The modification time of the text last taken (`None`: the file could not be read).
     seen: Option<SystemTime>,
+    /// The text last taken.
+    text: Vec<u8>,
 }
 
 impl ControlDictWatch {
-    /// Watches `case_dir/system/controlDict` from its present state on.
+    /// Watches `case_dir/system/controlDict` from its present state on: create it before
+    /// the case is read, so that no change made while the run starts up is missed.
     pub fn new(case_dir: &Path) -> Self {
         let path = case_dir.join("system/controlDict");
         ControlDictWatch {
             seen: modified(&path),
+            text: std::fs::read(&path).unwrap_or_default(),
             case_dir: case_dir.to_path_buf(),
             path,
         }
     }
 
-    /// The file's settings when it has changed since the last look: `Ok` when it reads as a
-    /// controlDict, else the error at its place (the run keeps the settings it has, and the
-    /// next change is read again). `None` while it is unchanged, changed less than
-    /// a tenth of a second ago (while a write may be under way), or missing for a moment
-    /// (an editor replacing it).
-    pub fn changed(&mut self) -> Option<Result<ControlDict, CaseError>> {
+    /// The file's settings when its text has changed since the last look (the run keeps
+    /// its settings when it does not read, and reads the next change). `None` while it is
+    /// unchanged, changed less than a tenth of a second ago, or missing for a moment (an
+    /// editor replacing it).
+    pub fn changed(&mut self) -> Option<ControlChange> {
         let stamp = modified(&self.path)?;
-        if self.seen == Some(stamp) {
+        // (a time in the future, a clock's skew, counts as old)
+        let age = |t: SystemTime| SystemTime::now().duration_since(t).unwrap_or(RECENT);
+        if self.seen == Some(stamp) && age(stamp) >= RECENT {
             return None;
         }
-        // (a time in the future, a clock's skew, counts as settled)
-        if SystemTime::now()
-            .duration_since(stamp)
-            .is_ok_and(|age| age < SETTLE)
-        {
+        if age(stamp) < SETTLE {
             return None;
         }
+        let text = std::fs::read(&self.path).ok()?;
         self.seen = Some(stamp);
+        if text == self.text {
+            return None;
+        }
+        self.text = text;
+        let mut notes = Vec::new();
         let read = Dict::read(&self.path, Some(&self.case_dir))
-            .and_then(|dict| ControlDict::from_dict(&dict, &mut Vec::new()));
-        Some(read)
+            .and_then(|dict| ControlDict::from_dict(&dict, &mut notes));
+        Some(read.map(|control| (control, notes)))
     }
 }
 
@@ -71,7 +86,7 @@ mod tests {
     const CONTROL: &str = "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 10;";
 
     /// Writes `text` as the controlDict with a modification time `seconds` after the epoch
-    /// (a rewrite within the file system's clock tick must still be seen as a change).
+    /// (long settled).
     fn write(path: &Path, text: &str, seconds: u64) {
         fs::write(path, text).unwrap();
         let file = fs::File::options().write(true).open(path).unwrap();
@@ -89,13 +104,30 @@ mod tests {
         assert!(watch.changed().is_none());
 
         write(&path, &CONTROL.replace("endTime 1", "endTime 2"), 1_001);
-        let control = watch.changed().expect("a change").expect("a valid file");
+        let (control, notes) = watch.changed().expect("a change").expect("a valid file");
         assert_eq!(control.end_time, 2.0);
+        assert!(notes.is_empty());
         assert!(watch.changed().is_none(), "one change is read once");
+
+        // a rewrite with the same time (one tick of a coarse clock) is seen while recent
+        let recent = SystemTime::now() - Duration::from_secs(1);
+        fs::write(&path, CONTROL.replace("endTime 1", "endTime 3")).unwrap();
+        let file = fs::File::options().write(true).open(&path).unwrap();
+        file.set_modified(recent).unwrap();
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 3.0);
+        fs::write(&path, CONTROL.replace("endTime 1", "endTime 4")).unwrap();
+        file.set_modified(recent).unwrap();
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 4.0);
+        assert!(watch.changed().is_none());
 
         write(&path, &format!("{CONTROL}\nstopAt now;"), 1_002);
         let e = watch.changed().expect("a change").unwrap_err();
         assert_eq!((e.line, e.col), (2, 8), "{e}");
+
+        // the notes of the reading come with the settings
+        write(&path, &CONTROL.replace("10;", "10; purgeWrite -2;"), 1_003);
+        let (_, notes) = watch.changed().unwrap().unwrap();
+        assert_eq!(notes.len(), 1, "{notes:?}");
 
         // a change of a moment ago waits until it has settled (unless this thread stalled)
         let written = std::time::Instant::now();
@@ -104,13 +136,13 @@ mod tests {
         if written.elapsed() < SETTLE {
             assert!(early.is_none());
             std::thread::sleep(SETTLE);
-            assert_eq!(watch.changed().unwrap().unwrap().end_time, 1.0);
+            assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 1.0);
         }
 
         fs::remove_file(&path).unwrap();
         assert!(watch.changed().is_none(), "a missing file is no change");
-        write(&path, &format!("{CONTROL} stopAt writeNow;"), 1_003);
-        let control = watch.changed().unwrap().unwrap();
+        write(&path, &format!("{CONTROL} stopAt writeNow;"), 1_004);
+        let (control, _) = watch.changed().unwrap().unwrap();
         assert_eq!(control.stop_at, crate::case::StopAt::WriteNow);
         fs::remove_dir_all(&dir).unwrap();
     }

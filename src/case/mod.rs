@@ -35,7 +35,7 @@ pub use block_mesh::{BlockMesh, BoxFace, Patch, PatchType};
 pub use case::Case;
 pub use cloud_properties::Cloud;
 pub use control_dict::{time_name, ControlDict, StartFrom, StopAt, WriteControl};
-pub use control_watch::ControlDictWatch;
+pub use control_watch::{ControlChange, ControlDictWatch};
 pub use coupling::{Coupling, CouplingModel};
 pub use dictionary::{Dict, Directive, Entry, EntryBody, Key};
 pub use drag_law_options::{
