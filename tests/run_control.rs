@@ -294,3 +294,23 @@ fn clock_time_writes_every_interval_of_wall_time() {
         "{between} writes in {wall:.2} s: {t:?}"
     );
 }
+
+#[test]
+fn a_run_stopped_by_write_now_continues_bit_for_bit() {
+    let scratch = Scratch::new("write-now-continued");
+    let entries = [("endTime", "0.1"), ("writeInterval", "0.05")];
+    let whole = cavity(&scratch, "whole", &entries);
+    let split = cavity(&scratch, "split", &entries);
+    assert!(fsim(&whole, &[]).status.success());
+    change(&split, "stopAt", "writeNow");
+    assert!(fsim(&split, &[]).status.success());
+    assert_eq!(times(&split), [0.0, 0.005]);
+    change(&split, "stopAt", "endTime");
+    change(&split, "startFrom", "latestTime");
+    assert!(fsim(&split, &[]).status.success());
+    for file in ["restart.bin", "fluid.vtk"] {
+        let a = fs::read(whole.join("0.1").join(file)).unwrap();
+        let b = fs::read(split.join("0.1").join(file)).unwrap();
+        assert!(a == b, "0.1/{file} differs after a stop and a restart");
+    }
+}
