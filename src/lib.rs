@@ -13,6 +13,7 @@ pub mod output;
 pub mod particles;
 pub mod run;
 pub mod run_plan;
+pub mod run_signals;
 pub mod simulation;
 pub mod step_reporter;
 pub mod time_control;

@@ -17,13 +17,14 @@
 //!     write the time directory when due       (whole or not at all)
 //! ```
 
-use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalField};
+use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalField, StopAt};
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::fluid::{FluidDiagnostics, StepReport};
 use crate::output::{
     write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
+use crate::run_signals::RunSignals;
 use crate::simulation::{continues, CloudReport, Simulation, StepSizing};
 use crate::step_reporter::StepReporter;
 use std::time::Instant;
@@ -112,7 +113,10 @@ fn run_case(
 
     let mut control = case.control.clone();
     let mut watch = control.run_time_modifiable.then_some(watch);
+    let signals = RunSignals::install(control.write_now_signal, control.stop_at_write_now_signal)
+        .map_err(FsimError::run)?;
     while sim.time.running() {
+        take_signals(&signals, &mut sim, &mut reporter)?;
         // As OpenFOAM's Time::run: read a changed controlDict only while running (a stop
         // is final), and look again whether to go on.
         if let Some(changed) = watch.as_mut().and_then(ControlDictWatch::changed) {
@@ -196,6 +200,32 @@ fn take_new_controls(
     let message = format!("{refused}; the run goes on with the settings it had (t = {now})");
     eprintln!("fsimFoam: warning: {message}");
     reporter.log.line(&format!("warning: {message}\n"))?;
+    Ok(())
+}
+
+/// Acts on the signals that came since the last step: OpenFOAM's `writeNowSignal` writes
+/// the next step, `stopAtWriteNowSignal` makes the run stop as `stopAt writeNow`.
+fn take_signals(
+    signals: &RunSignals,
+    sim: &mut Simulation,
+    reporter: &mut StepReporter,
+) -> Result<(), FsimError> {
+    let caught = signals.caught();
+    if caught.write_now {
+        sim.time.write_next_step();
+        reporter.log.line(&format!(
+            "signal {}: the next step is written\n",
+            signals.write_now.unwrap_or(-1)
+        ))?;
+    }
+    if caught.stop_at_write_now {
+        let end = sim.time.end_time;
+        sim.time.set_stop(StopAt::WriteNow, end);
+        reporter.log.line(&format!(
+            "signal {}: stopAt writeNow (the next step is written and ends the run)\n",
+            signals.stop_at_write_now.unwrap_or(-1)
+        ))?;
+    }
     Ok(())
 }
 

@@ -34,6 +34,8 @@ pub struct TimeControl {
     /// Index of the next write time for the run-time controls (`write_index · writeInterval`);
     /// for `clockTime` and `cpuTime` the multiples of `writeInterval` already passed.
     write_index: u64,
+    /// Whether the next step is written whatever the write control (a `writeNowSignal`).
+    write_next: bool,
     /// Wall-clock and CPU seconds at the start, for `clockTime` and `cpuTime`.
     started: std::time::Instant,
     cpu_at_start: f64,
@@ -59,6 +61,7 @@ impl TimeControl {
             write_control,
             write_interval,
             write_index: 0,
+            write_next: false,
             started: std::time::Instant::now(),
             cpu_at_start: cpu_time_seconds(),
         };
@@ -98,6 +101,11 @@ impl TimeControl {
             }
             _ => (since / write_interval * (1.0 + TIME_EPS)).floor() as u64 + 1,
         };
+    }
+
+    /// Writes the next step whatever the write control (OpenFOAM's `writeOnce`).
+    pub fn write_next_step(&mut self) {
+        self.write_next = true;
     }
 
     /// Whether a run that ends at the current time must still write it: the last time is
@@ -203,6 +211,7 @@ impl TimeControl {
                 hit
             }
         };
+        let write = write || std::mem::take(&mut self.write_next);
         match self.stop_at {
             StopAt::EndTime => {}
             StopAt::WriteNow => self.end_time = self.time,

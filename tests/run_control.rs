@@ -314,3 +314,53 @@ fn a_run_stopped_by_write_now_continues_bit_for_bit() {
         assert!(a == b, "0.1/{file} differs after a stop and a restart");
     }
 }
+
+#[test]
+fn signals_write_the_next_step_or_stop_the_run_as_openfoam_switches_say() {
+    let scratch = Scratch::new("signals");
+    let case = cavity(
+        &scratch,
+        "signals",
+        &[("endTime", "10000"), ("writeInterval", "0.5")],
+    );
+    let control = case.join("system/controlDict");
+    let text = fs::read_to_string(&control).unwrap();
+    fs::write(
+        &control,
+        format!("{text}\nOptimisationSwitches\n{{\n    writeNowSignal 12;\n    stopAtWriteNowSignal 10;\n}}\n"),
+    )
+    .unwrap();
+    let run = Running::start(&case);
+    wait_for("the first write", || case.join("0.5").is_dir());
+    let pid = run.0.id() as libc::pid_t;
+    let off_the_interval = |case: &Path| {
+        times(case)
+            .into_iter()
+            .filter(|t| ((t * 2.0).round() - t * 2.0).abs() > 1e-9)
+            .collect::<Vec<f64>>()
+    };
+    // SIGUSR2: a write of the next step, and the run goes on
+    // SAFETY: a signal to the child this test started.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR2) }, 0);
+    wait_for("the extra write", || off_the_interval(&case).len() == 1);
+    wait_for("a write after it", || {
+        times(&case).last() > off_the_interval(&case).first()
+    });
+    // SIGUSR1: the next step written, and the end
+    // SAFETY: as above.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
+    assert!(run.finish());
+    let log = read(&case, "log.out");
+    assert!(log.contains("signal 12: the next step is written"), "{log}");
+    let after = log.rsplit("signal 10: stopAt writeNow").next().unwrap();
+    assert_eq!(after.matches("\nTime = ").count(), 1, "{after}");
+    let last = after
+        .split("\nTime = ")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap();
+    assert_eq!(*times(&case).last().unwrap(), last.parse::<f64>().unwrap());
+    assert!(case.join(last).join("restart.bin").exists());
+}

@@ -93,6 +93,12 @@ pub struct ControlDict {
     /// `runTimeModifiable`: read the file again when it changes during the run (default no,
     /// as OpenFOAM.com's `Time`; every OpenFOAM tutorial says yes).
     pub run_time_modifiable: bool,
+    /// `OptimisationSwitches { writeNowSignal N; }`: the signal that makes the run write
+    /// the step after it (OpenFOAM's `sigWriteNow`; off by default).
+    pub write_now_signal: Option<i32>,
+    /// `OptimisationSwitches { stopAtWriteNowSignal N; }`: the signal that makes the run
+    /// stop as `stopAt writeNow` (OpenFOAM's `sigStopAtWriteNow`; off by default).
+    pub stop_at_write_now_signal: Option<i32>,
 }
 
 /// Reads a keyword that must be one of `choices`, returning the choice's index.
@@ -131,6 +137,25 @@ pub(crate) fn at_value(dict: &Dict, keyword: &str, message: String) -> CaseError
             Err(_) => CaseError::at(e.value_loc(), message),
         },
         None => CaseError::at(&dict.loc, message),
+    }
+}
+
+/// A signal number of `OptimisationSwitches` (negative or absent: none, OpenFOAM's -1). Only
+/// signals a process may catch and that do not stop it otherwise are taken: 1–31 but for
+/// SIGKILL (9) and SIGSTOP (19), which cannot be caught, and SIGSEGV (11).
+fn signal_switch(switches: &Dict, keyword: &str) -> Result<Option<i32>, CaseError> {
+    match switches.opt_integer(keyword)? {
+        None => Ok(None),
+        Some(n) if n < 0 => Ok(None),
+        Some(n) if (1..=31).contains(&n) && ![9, 11, 19].contains(&n) => Ok(Some(n as i32)),
+        Some(n) => Err(at_value(
+            switches,
+            keyword,
+            format!(
+                "expected a signal number from 1 to 31 other than 9, 11 and 19 for '{keyword}' \
+                 (or -1: none), found {n}"
+            ),
+        )),
     }
 }
 
@@ -266,6 +291,21 @@ impl ControlDict {
             ));
         }
         let run_time_modifiable = d.get_bool_or("runTimeModifiable", false)?;
+        let (write_now_signal, stop_at_write_now_signal) =
+            match d.opt_dict("OptimisationSwitches")? {
+                Some(switches) => (
+                    signal_switch(switches, "writeNowSignal")?,
+                    signal_switch(switches, "stopAtWriteNowSignal")?,
+                ),
+                None => (None, None),
+            };
+        if write_now_signal.is_some() && write_now_signal == stop_at_write_now_signal {
+            return Err(at_value(
+                d.opt_dict("OptimisationSwitches")?.expect("read above"),
+                "stopAtWriteNowSignal",
+                "expected a signal other than writeNowSignal's".to_string(),
+            ));
+        }
         let time_precision = d.get_label_or("timePrecision", 6)?;
         if !(1..=17).contains(&time_precision) {
             return Err(at_value(
@@ -307,6 +347,8 @@ impl ControlDict {
             max_delta_t,
             time_precision,
             run_time_modifiable,
+            write_now_signal,
+            stop_at_write_now_signal,
         })
     }
 
@@ -485,5 +527,33 @@ mod tests {
         );
         let e = read("endTime 1; deltaT 0.01; writeControl timeStep;", &mut notes).unwrap_err();
         assert!(e.message.contains("writeInterval"), "{e}");
+    }
+
+    #[test]
+    fn signal_switches_as_openfoam_names_them() {
+        let read = |switches: &str| {
+            let text = format!(
+                "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 1; \
+                 OptimisationSwitches {{ {switches} }}"
+            );
+            let d = parse_dict(&text, "system/controlDict").unwrap();
+            ControlDict::from_dict(&d, &mut Vec::new())
+        };
+        let c = read("writeNowSignal 12; stopAtWriteNowSignal 10;").unwrap();
+        assert_eq!(
+            (c.write_now_signal, c.stop_at_write_now_signal),
+            (Some(12), Some(10))
+        );
+        let c = read("writeNowSignal -1;").unwrap();
+        assert_eq!(
+            (c.write_now_signal, c.stop_at_write_now_signal),
+            (None, None)
+        );
+        for bad in ["writeNowSignal 9;", "stopAtWriteNowSignal 40;"] {
+            let e = read(bad).unwrap_err();
+            assert!(e.message.contains("expected a signal number"), "{e}");
+        }
+        let e = read("writeNowSignal 10; stopAtWriteNowSignal 10;").unwrap_err();
+        assert!(e.message.contains("other than writeNowSignal's"), "{e}");
     }
 }
