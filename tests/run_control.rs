@@ -142,6 +142,30 @@ fn read(case: &Path, file: &str) -> String {
     fs::read_to_string(case.join(file)).unwrap()
 }
 
+/// After the log's last `marker`, the run took exactly one step, and wrote it last.
+fn assert_one_more_step_written(case: &Path, log: &str, marker: &str) {
+    let after = log.rsplit(marker).next().unwrap();
+    assert_eq!(after.matches("\nTime = ").count(), 1, "{after}");
+    let last = after.split("\nTime = ").nth(1).unwrap();
+    let last = last.lines().next().unwrap();
+    assert!(case.join(last).join("restart.bin").exists(), "{last}");
+    assert_eq!(*times(case).last().unwrap(), last.parse::<f64>().unwrap());
+}
+
+/// The cavity to run until stopped (endTime 10000 s, a write each 0.5 s), its controlDict's
+/// text then passed through `edit`.
+fn long_cavity(scratch: &Scratch, name: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let case = cavity(
+        scratch,
+        name,
+        &[("endTime", "10000"), ("writeInterval", "0.5")],
+    );
+    let control = case.join("system/controlDict");
+    let text = fs::read_to_string(&control).unwrap();
+    fs::write(&control, edit(&text)).unwrap();
+    case
+}
+
 /// A long cavity run that reads its controlDict again, once it has written 0.5.
 fn modifiable_run(scratch: &Scratch, name: &str) -> (PathBuf, Running) {
     let case = cavity(
@@ -200,18 +224,7 @@ fn a_running_case_takes_its_changed_control_dict() {
     assert!(log.contains("writeInterval 0.5 -> 0.25"), "{log}");
     assert!(log.contains("stopAt endTime -> writeNow"), "{log}");
     assert!(log.trim_end().ends_with("End"), "{log}");
-    // the step after the change is the last, and written
-    let after = log.rsplit("stopAt endTime -> writeNow").next().unwrap();
-    assert_eq!(after.matches("\nTime = ").count(), 1, "{after}");
-    let last = after
-        .split("\nTime = ")
-        .nth(1)
-        .unwrap()
-        .lines()
-        .next()
-        .unwrap();
-    assert!(case.join(last).join("restart.bin").exists(), "{last}");
-    assert_eq!(*times(&case).last().unwrap(), last.parse::<f64>().unwrap());
+    assert_one_more_step_written(&case, &log, "stopAt endTime -> writeNow");
 }
 
 #[test]
@@ -240,19 +253,14 @@ fn an_end_time_already_passed_ends_the_run_where_it_is_and_writes_it() {
 #[test]
 fn without_run_time_modifiable_the_file_is_read_once() {
     let scratch = Scratch::new("not-modifiable");
-    let case = cavity(
-        &scratch,
-        "fixed",
-        &[("endTime", "10000"), ("writeInterval", "0.5")],
-    );
     // OpenFOAM.com's default: no (the tutorial says yes)
-    let control = case.join("system/controlDict");
-    let text = fs::read_to_string(&control).unwrap();
-    let kept: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with("runTimeModifiable"))
-        .collect();
-    fs::write(&control, kept.join("\n")).unwrap();
+    let case = long_cavity(&scratch, "fixed", |text| {
+        let kept: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with("runTimeModifiable"))
+            .collect();
+        kept.join("\n")
+    });
     let mut run = Running::start(&case);
     wait_for("the first write", || case.join("0.5").is_dir());
     change(&case, "stopAt", "writeNow");
@@ -318,18 +326,12 @@ fn a_run_stopped_by_write_now_continues_bit_for_bit() {
 #[test]
 fn signals_write_the_next_step_or_stop_the_run_as_openfoam_switches_say() {
     let scratch = Scratch::new("signals");
-    let case = cavity(
-        &scratch,
-        "signals",
-        &[("endTime", "10000"), ("writeInterval", "0.5")],
-    );
-    let control = case.join("system/controlDict");
-    let text = fs::read_to_string(&control).unwrap();
-    fs::write(
-        &control,
-        format!("{text}\nOptimisationSwitches\n{{\n    writeNowSignal 12;\n    stopAtWriteNowSignal 10;\n}}\n"),
-    )
-    .unwrap();
+    let case = long_cavity(&scratch, "signals", |text| {
+        format!(
+            "{text}\nOptimisationSwitches\n{{\n    writeNowSignal 12;\n    \
+             stopAtWriteNowSignal 10;\n}}\n"
+        )
+    });
     let run = Running::start(&case);
     wait_for("the first write", || case.join("0.5").is_dir());
     let pid = run.0.id() as libc::pid_t;
@@ -352,15 +354,5 @@ fn signals_write_the_next_step_or_stop_the_run_as_openfoam_switches_say() {
     assert!(run.finish());
     let log = read(&case, "log.out");
     assert!(log.contains("signal 12: the next step is written"), "{log}");
-    let after = log.rsplit("signal 10: stopAt writeNow").next().unwrap();
-    assert_eq!(after.matches("\nTime = ").count(), 1, "{after}");
-    let last = after
-        .split("\nTime = ")
-        .nth(1)
-        .unwrap()
-        .lines()
-        .next()
-        .unwrap();
-    assert_eq!(*times(&case).last().unwrap(), last.parse::<f64>().unwrap());
-    assert!(case.join(last).join("restart.bin").exists());
+    assert_one_more_step_written(&case, &log, "signal 10: stopAt writeNow");
 }
