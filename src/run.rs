@@ -164,38 +164,35 @@ fn take_new_controls(
     reporter: &mut StepReporter,
 ) -> Result<(), FsimError> {
     let now = output.time_name(sim.time.time);
+    let bound = sim.stability_bound();
     let refused = match changed {
-        Ok((new, notes)) => {
-            let bound = sim.stability_bound();
-            if !new.adjust_time_step && new.delta_t > bound {
-                // A run stopped by its own controlDict would lose what it computed since
-                // its last write.
-                format!(
-                    "system/controlDict: deltaT {} exceeds the scheme's stability bound \
-                     {bound:.4e} s now",
-                    new.delta_t
-                )
-            } else {
-                for note in notes {
-                    eprintln!("fsimFoam: note: {note}");
-                    reporter.log.line(&format!("note: {note}"))?;
-                }
-                let changes = new.changes_from(control);
-                let what = if changes.is_empty() {
-                    "nothing that a running case reads".to_string()
-                } else {
-                    changes.join(", ")
-                };
-                reporter.log.line(&format!(
-                    "system/controlDict changed at t = {now}: {what}\n"
-                ))?;
-                sim.apply_control(&new);
-                output.set_controls(new.time_precision, new.purge_write);
-                *control = new;
-                return Ok(());
-            }
-        }
         Err(e) => e.to_string(),
+        // A run stopped by its own controlDict would lose what it computed since its last
+        // write.
+        Ok((new, _)) if !new.adjust_time_step && new.delta_t > bound => format!(
+            "system/controlDict: deltaT {} exceeds the scheme's stability bound {bound:.4e} s \
+             now",
+            new.delta_t
+        ),
+        Ok((new, notes)) => {
+            for note in notes {
+                eprintln!("fsimFoam: note: {note}");
+                reporter.log.line(&format!("note: {note}"))?;
+            }
+            let changes = new.changes_from(control);
+            let what = if changes.is_empty() {
+                "nothing that a running case reads".to_string()
+            } else {
+                changes.join(", ")
+            };
+            reporter.log.line(&format!(
+                "system/controlDict changed at t = {now}: {what}\n"
+            ))?;
+            sim.apply_control(&new);
+            output.set_controls(new.time_precision, new.purge_write);
+            *control = new;
+            return Ok(());
+        }
     };
     let message = format!("{refused}; the run goes on with the settings it had (t = {now})");
     eprintln!("fsimFoam: warning: {message}");

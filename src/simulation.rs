@@ -148,19 +148,10 @@ impl Simulation {
             .map_err(|e| FsimError::input(format!("fvOptions: {e}")))?;
 
         let control = &case.control;
-        let sizing = step_sizing(control);
-        let write_control = effective_write_control(control);
-
         let mut sim = Simulation {
             fluid,
-            time: TimeControl::new(
-                control.start_time,
-                0,
-                control.end_time,
-                write_control,
-                control.write_interval,
-            ),
-            sizing,
+            time: time_axis(control.start_time, 0, control),
+            sizing: step_sizing(control),
             dt: control.delta_t,
             largest_dt: 0.0,
             model: case.coupling.model,
@@ -174,7 +165,6 @@ impl Simulation {
             phase_times: PhaseTimes::default(),
             settling: None,
         };
-        sim.time.set_stop(control.stop_at, control.end_time);
         let direct_settings = match case.coupling.model {
             CouplingModel::Direct => {
                 Some(DirectSettings::from_coupling(&case.coupling).map_err(FsimError::from)?)
@@ -191,7 +181,7 @@ impl Simulation {
         match restart {
             Some(entry) => {
                 let dir = case.dir.join(&entry.name);
-                let state = sim.restore(&dir, write_control, control)?;
+                let state = sim.restore(&dir, control)?;
                 direct_shell = state
                     .array(DirectCoupling::RESTART_NAME)
                     .map(|a| a.to_vec());
@@ -554,6 +544,19 @@ fn advance_cloud(p: &mut Particles, dt: f64) -> CloudReport {
         max_overlap: p.dem.max_overlap_ratio(),
         substeps: p.substeps,
     }
+}
+
+/// The time axis from `time` (step index `step`) as `control` sets it.
+pub(super) fn time_axis(time: f64, step: u64, control: &ControlDict) -> TimeControl {
+    let mut axis = TimeControl::new(
+        time,
+        step,
+        control.end_time,
+        effective_write_control(control),
+        control.write_interval,
+    );
+    axis.set_stop(control.stop_at, control.end_time);
+    axis
 }
 
 /// The step rule of `adjustTimeStep`, `maxCo`, `maxDeltaT` and `deltaT`.

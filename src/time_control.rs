@@ -103,6 +103,11 @@ impl TimeControl {
         };
     }
 
+    /// `writeControl timeStep`'s interval.
+    fn steps_per_write(&self) -> u64 {
+        self.write_interval.round().max(1.0) as u64
+    }
+
     /// Writes the next step whatever the write control (OpenFOAM's `writeOnce`).
     pub fn write_next_step(&mut self) {
         self.write_next = true;
@@ -166,7 +171,7 @@ impl TimeControl {
             (StopAt::EndTime, _) => self.end_time,
             (StopAt::WriteNow | StopAt::NoWriteNow, _) => self.time + dt,
             (StopAt::NextWrite, WriteControl::TimeStep) => {
-                let every = self.write_interval.round().max(1.0) as u64;
+                let every = self.steps_per_write();
                 self.time + (every - self.step % every) as f64 * dt
             }
             // a wall or CPU interval's steps are unknown before they are taken
@@ -187,10 +192,7 @@ impl TimeControl {
         self.step += 1;
         self.time += dt;
         let write = match self.write_control {
-            WriteControl::TimeStep => {
-                let every = self.write_interval.round().max(1.0) as u64;
-                self.step.is_multiple_of(every)
-            }
+            WriteControl::TimeStep => self.step.is_multiple_of(self.steps_per_write()),
             WriteControl::RunTime | WriteControl::AdjustableRunTime => {
                 // runTime: the step nearest the write time; adjustableRunTime lands on it
                 let reach = match self.write_control {

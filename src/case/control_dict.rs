@@ -291,20 +291,17 @@ impl ControlDict {
             ));
         }
         let run_time_modifiable = d.get_bool_or("runTimeModifiable", false)?;
-        let (write_now_signal, stop_at_write_now_signal) =
-            match d.opt_dict("OptimisationSwitches")? {
-                Some(switches) => (
-                    signal_switch(switches, "writeNowSignal")?,
-                    signal_switch(switches, "stopAtWriteNowSignal")?,
-                ),
-                None => (None, None),
-            };
-        if write_now_signal.is_some() && write_now_signal == stop_at_write_now_signal {
-            return Err(at_value(
-                d.opt_dict("OptimisationSwitches")?.expect("read above"),
-                "stopAtWriteNowSignal",
-                "expected a signal other than writeNowSignal's".to_string(),
-            ));
+        let (mut write_now_signal, mut stop_at_write_now_signal) = (None, None);
+        if let Some(switches) = d.opt_dict("OptimisationSwitches")? {
+            write_now_signal = signal_switch(switches, "writeNowSignal")?;
+            stop_at_write_now_signal = signal_switch(switches, "stopAtWriteNowSignal")?;
+            if write_now_signal.is_some() && write_now_signal == stop_at_write_now_signal {
+                return Err(at_value(
+                    switches,
+                    "stopAtWriteNowSignal",
+                    "expected a signal other than writeNowSignal's".to_string(),
+                ));
+            }
         }
         let time_precision = d.get_label_or("timePrecision", 6)?;
         if !(1..=17).contains(&time_precision) {

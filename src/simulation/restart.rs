@@ -8,13 +8,11 @@ use crate::error::FsimError;
 use crate::fluid::FluidSolver;
 use crate::output::{RestartHeader, RestartState};
 use crate::particles::{Dem, DemSnapshot};
-use crate::time_control::TimeControl;
 
 impl Simulation {
     pub(super) fn restore(
         &mut self,
         time_dir: &std::path::Path,
-        write_control: crate::case::WriteControl,
         control: &crate::case::ControlDict,
     ) -> Result<RestartState, FsimError> {
         let path = time_dir.join(crate::output::RESTART_FILE_NAME);
@@ -28,14 +26,7 @@ impl Simulation {
                 .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
         }
         let header = &state.header;
-        self.time = TimeControl::new(
-            header.time,
-            header.step,
-            control.end_time,
-            write_control,
-            control.write_interval,
-        );
-        self.time.set_stop(control.stop_at, control.end_time);
+        self.time = super::time_axis(header.time, header.step, control);
         self.dt = header.delta_t;
         self.largest_dt = header.delta_t;
         Ok(state)
