@@ -2,13 +2,12 @@
 //! 500 spheres of r/h = 2.5 in a 24r × 72r × 24r periodic box (60 × 180 × 60 cells):
 //! rebuilding the forced faces, one imposition, and the loads (stress integral and shell)
 //! with trilinear and tricubic interpolation: the fastest of several repetitions (a shared
-//! machine is noisy). Then a rebuild followed by the fluid's frozen terms (`EulerRKC`, as
-//! the tutorial) against the two side by side, as a step runs them, alternated: medians.
+//! machine is noisy).
 //!
 //! `cargo run --release --example direct_load_cost [threads]`
 
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, Interpolation, RigidSphere};
-use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, TimeScheme};
+use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver};
 use fsim::grid::Grid;
 use fsim::particles::SplitMix64;
 use std::time::Instant;
@@ -37,7 +36,6 @@ fn run() {
         FluidSettings::new(1.5e-5),
     )
     .unwrap();
-    fluid.set_scheme(TimeScheme::EulerRKC).unwrap();
     fluid.set_velocity(|c, x| {
         if c == 1 {
             0.01 * (x[0] * 1e4).sin()
@@ -95,41 +93,10 @@ fn run() {
             coupling.boundary().forced_count()
         );
     }
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    let (mut after, mut beside) = (Vec::new(), Vec::new());
-    for round in 0..40 {
-        for s in spheres.iter_mut() {
-            s.centre[1] -= 1e-9;
-        }
-        let clock = Instant::now();
-        let begun = if round % 2 == 0 {
-            coupling.set_spheres(&spheres, &ids);
-            fluid.begin_step(1e-6)
-        } else {
-            let fluid = &mut fluid;
-            coupling.set_spheres_beside(&spheres, &ids, || fluid.begin_step(1e-6))
-        };
-        let elapsed = clock.elapsed().as_secs_f64();
-        if round % 2 == 0 {
-            after.push(elapsed)
-        } else {
-            beside.push(elapsed)
-        }
-        fluid.continue_step(begun, &mut |stage| coupling.impose(stage));
-    }
-    let median = |v: &mut Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
-    println!(
-        "rebuild, then frozen terms: {:.4} s; side by side: {:.4} s (medians of 20)",
-        median(&mut after),
-        median(&mut beside)
-    );
     let clock = Instant::now();
     fluid.step(1e-6);
     println!(
-        "one fluid step (EulerRKC): {:.4} s",
+        "one fluid step (RK3): {:.4} s",
         clock.elapsed().as_secs_f64()
     );
 }

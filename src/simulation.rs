@@ -349,15 +349,9 @@ impl Simulation {
                 }
             }
             (None, Some(direct), Some(p)) => {
-                // The fluid computes its frozen terms beside the forced faces' last phase:
-                // neither reads what the other writes. The overlap counts as the fluid's.
-                let fluid = &mut self.fluid;
-                let (begun, frozen_time) = direct.set_particles_beside(p.dem.particles(), || {
-                    let clock = Instant::now();
-                    (fluid.begin_step(dt), clock.elapsed().as_secs_f64())
-                });
-                self.phase_times.coupling = clock.elapsed().as_secs_f64() - frozen_time;
-                fluid.continue_step(begun, &mut |stage| direct.impose(stage))
+                direct.set_particles(p.dem.particles());
+                self.phase_times.coupling = clock.elapsed().as_secs_f64();
+                self.fluid.step_with(dt, &mut |stage| direct.impose(stage))
             }
             _ => self.fluid.step(dt),
         };

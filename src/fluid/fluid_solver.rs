@@ -21,8 +21,6 @@ use crate::grid::Grid;
 mod health_check;
 mod time_step;
 
-pub use time_step::BegunStep;
-
 use health_check::CachedReductions;
 
 /// Physical and numerical settings of the fluid.

@@ -75,7 +75,7 @@ pub use boundary_conditions::{BoundaryConditions, FaceCondition};
 pub use chebyshev_stages::{ChebyshevStage, ChebyshevStages};
 pub use coefficient_fields::{comparison_beta, seeded_uniform};
 pub use diagnostics::FluidDiagnostics;
-pub use fluid_solver::{BegunStep, FluidSettings, FluidSolver, PredictedVelocity, StepReport};
+pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
 #[cfg(test)]
 pub(crate) use ghost_fill::fill_velocity_ghosts;
 pub use implicit_stage::ImplicitStage;

@@ -186,19 +186,6 @@ impl DirectCoupling {
     /// order of the call does not matter (the spheres are kept in id order, so a DEM that
     /// re-sorts its particles costs no rebuild); the loads come back in the call's order.
     pub fn set_spheres(&mut self, spheres: &[RigidSphere], ids: &[u64]) {
-        self.set_spheres_beside(spheres, ids, || ());
-    }
-
-    /// [`Self::set_spheres`], running `beside` alongside the last phase of a rebuild (the
-    /// closed-cell search, [`ImmersedBoundary::update_beside`]), else after the faces are
-    /// brought up. `beside` must not touch the fluid the forced faces act on until the
-    /// next [`Self::impose`]; the fluid's frozen terms qualify. Returns what it returned.
-    pub fn set_spheres_beside<R: Send>(
-        &mut self,
-        spheres: &[RigidSphere],
-        ids: &[u64],
-        beside: impl FnOnce() -> R + Send,
-    ) -> R {
         assert_eq!(spheres.len(), ids.len(), "one id per sphere");
         // The same particles in the same caller order as last time: the order holds.
         let order_holds = self.order.len() == ids.len()
@@ -221,7 +208,7 @@ impl DirectCoupling {
         self.sorted.extend(self.order.iter().map(|&i| spheres[i]));
         if same_particles && self.spheres == self.sorted {
             self.last_rebuilt = false;
-            return beside();
+            return;
         }
         std::mem::swap(&mut self.spheres, &mut self.sorted);
         for s in &self.spheres {
@@ -238,14 +225,13 @@ impl DirectCoupling {
         }
         let restored = !self.built && self.build_where_restored();
         self.built = true;
-        let (rebuilt, done) = if same_particles || restored {
+        self.last_rebuilt = if same_particles || restored {
             let skin = self.settings.rebuild_distance * self.h;
-            self.boundary.follow_beside(&self.spheres, skin, beside)
+            self.boundary.follow(&self.spheres, skin)
         } else {
-            (true, self.boundary.update_beside(&self.spheres, beside))
+            self.boundary.update(&self.spheres);
+            true
         };
-        self.last_rebuilt = rebuilt;
-        done
     }
 
     /// Whether the last [`Self::set_spheres`] rebuilt the forced faces.
@@ -305,15 +291,6 @@ impl DirectCoupling {
 
     /// The DEM's particles as spheres (same order), then as [`Self::set_spheres`].
     pub fn set_particles(&mut self, p: &ParticleState) {
-        self.set_particles_beside(p, || ());
-    }
-
-    /// [`Self::set_particles`] with work `beside` it, as [`Self::set_spheres_beside`].
-    pub fn set_particles_beside<R: Send>(
-        &mut self,
-        p: &ParticleState,
-        beside: impl FnOnce() -> R + Send,
-    ) -> R {
         let mut spheres = std::mem::take(&mut self.particle_spheres);
         spheres.clear();
         spheres.extend((0..p.len()).map(|i| RigidSphere {
@@ -322,9 +299,8 @@ impl DirectCoupling {
             velocity: p.velocity[i],
             angular_velocity: p.angular_velocity[i],
         }));
-        let done = self.set_spheres_beside(&spheres, &p.id, beside);
+        self.set_spheres(&spheres, &p.id);
         self.particle_spheres = spheres;
-        done
     }
 
     /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted

@@ -181,17 +181,6 @@ impl ImmersedBoundary {
     /// faces' roles stay (a forcing face overtaken by the sphere, an inside face left
     /// behind) mixes two surfaces: +1.8 %, +3.5 % and +7.5 %; not kept.
     pub fn follow(&mut self, spheres: &[RigidSphere], skin: f64) -> bool {
-        self.follow_beside(spheres, skin, || ()).0
-    }
-
-    /// [`Self::follow`], running `beside` alongside its last phase (see
-    /// [`Self::update_beside`]): whether it rebuilt, and what `beside` returned.
-    pub fn follow_beside<R: Send>(
-        &mut self,
-        spheres: &[RigidSphere],
-        skin: f64,
-        beside: impl FnOnce() -> R + Send,
-    ) -> (bool, R) {
         let length = self.grid.length();
         let periodic = self.periodic;
         let moved_beyond = |a: &RigidSphere, b: &RigidSphere| {
@@ -210,13 +199,12 @@ impl ImmersedBoundary {
                 .iter()
                 .zip(&self.built)
                 .any(|(a, b)| moved_beyond(a, b));
-        let done = if rebuild {
-            self.update_beside(spheres, beside)
+        if rebuild {
+            self.update(spheres);
         } else {
             self.refresh(spheres);
-            beside()
-        };
-        (rebuild, done)
+        }
+        rebuild
     }
 
     /// Recomputes, for `spheres` (the spheres of the last [`Self::update`], in the same
@@ -266,17 +254,6 @@ impl ImmersedBoundary {
     /// interior faces in parallel over the spheres and the forcing faces over the
     /// candidates, in an order that does not depend on the thread count.
     pub fn update(&mut self, spheres: &[RigidSphere]) {
-        self.update_beside(spheres, || ());
-    }
-
-    /// [`Self::update`], running `beside` (work that does not touch the forced faces, such
-    /// as the fluid's frozen terms) alongside the closed-cell search, which is mostly serial
-    /// and would otherwise leave the other threads idle. Returns what `beside` returned.
-    pub fn update_beside<R: Send>(
-        &mut self,
-        spheres: &[RigidSphere],
-        beside: impl FnOnce() -> R + Send,
-    ) -> R {
         assert!(
             spheres.len() < ForcingLine::MAX_SPHERES,
             "a forcing line names at most 2²⁹ spheres"
@@ -336,7 +313,7 @@ impl ImmersedBoundary {
         ];
         jobs.par_iter_mut()
             .for_each(|job| job.run(spheres, quadratic));
-        rayon::join(|| self.find_closed_cells(), beside).1
+        self.find_closed_cells();
     }
 
     /// Cells next to forced faces whose six faces are all forced. Their divergence is
@@ -956,33 +933,5 @@ mod tests {
             .find(|f| f.slot % 18 > 2)
             .unwrap();
         assert!((u[0][f.slot as usize] - (1.0 + 0.2 * 0.5 / h)).abs() < 1e-12);
-    }
-
-    /// Work run beside a build (the fluid's frozen terms in a step) changes nothing of it:
-    /// the same faces and closed cells as a build alone, what the work returned handed back,
-    /// and a move within the skin only refreshed.
-    #[test]
-    fn a_build_with_work_beside_it_is_the_build() {
-        let (n, h) = (16, 0.1);
-        let mut alone = periodic_boundary(n, h);
-        let mut beside = periodic_boundary(n, h);
-        for seed in 0..3 {
-            let spheres = overlapping_spheres(40, n as f64 * h, 0.22, 200 + seed);
-            alone.update(&spheres);
-            let sum = beside.update_beside(&spheres, || (0..100u64).sum::<u64>());
-            assert_eq!(sum, 4950);
-            assert!(lists(&alone) == lists(&beside), "seed {seed}");
-            assert_eq!(alone.closed_cells(), beside.closed_cells(), "seed {seed}");
-            let mut moved = spheres.clone();
-            moved[0].centre[1] += 0.01 * h;
-            let (rebuilt, work) = beside.follow_beside(&moved, 0.05 * h, || "done");
-            assert_eq!((rebuilt, work), (false, "done"));
-            assert!(alone.follow(&moved, 0.05 * h) == rebuilt);
-            assert!(lists(&alone) == lists(&beside), "seed {seed}");
-            moved[0].centre[1] += 0.1 * h;
-            let (rebuilt, _) = beside.follow_beside(&moved, 0.05 * h, || ());
-            assert!(rebuilt && alone.follow(&moved, 0.05 * h));
-            assert!(lists(&alone) == lists(&beside), "seed {seed}");
-        }
     }
 }

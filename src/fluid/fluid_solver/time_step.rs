@@ -16,17 +16,6 @@ use crate::fluid::momentum::{
 use crate::fluid::projection::{divergence_rhs, subtract_gradient};
 use rayon::prelude::*;
 
-/// A step whose fluid-only part is done ([`FluidSolver::begin_step`]).
-#[must_use = "a begun step goes on with FluidSolver::continue_step"]
-#[derive(Debug)]
-pub struct BegunStep {
-    dt: f64,
-    /// The fluid's generation when the step began: nothing may change it before the rest.
-    generation: u64,
-    /// Whether `q` holds the step's frozen terms (`EulerRKC`).
-    frozen_terms: bool,
-}
-
 impl FluidSolver {
     /// Advances by `dt` with the configured scheme.
     pub fn step(&mut self, dt: f64) -> StepReport {
@@ -48,53 +37,11 @@ impl FluidSolver {
         dt: f64,
         hook: &mut dyn FnMut(PredictedVelocity<'_>),
     ) -> StepReport {
-        let begun = self.begin_step(dt);
-        self.continue_step(begun, hook)
-    }
-
-    /// The part of a step by `dt` that reads only the fluid's own state: with `EulerRKC`, the
-    /// frozen terms (advection, body force, old pressure gradient); nothing with the other
-    /// schemes. A coupling can do its own work beside it (`rayon::join`), such as bringing its
-    /// forced faces up to the particles, as long as it does not touch the fluid; then
-    /// [`Self::continue_step`] goes on with the stages.
-    pub fn begin_step(&mut self, dt: f64) -> BegunStep {
         self.velocity_changes();
-        let frozen_terms = self.settings.scheme.is_chebyshev();
-        if frozen_terms {
-            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            let terms = MomentumTerms {
-                layout: &self.layout,
-                h: self.grid.h,
-                nu: self.settings.nu,
-                force: self.total_body_force(),
-                source: self.source.as_ref(),
-                ranges: &self.momentum_ranges,
-            };
-            frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
-        }
-        BegunStep {
-            dt,
-            generation: self.generation,
-            frozen_terms,
-        }
-    }
-
-    /// The rest of the step [`Self::begin_step`] began, as [`Self::step_with`]. Panics if the
-    /// fluid was changed in between.
-    pub fn continue_step(
-        &mut self,
-        begun: BegunStep,
-        hook: &mut dyn FnMut(PredictedVelocity<'_>),
-    ) -> StepReport {
-        assert_eq!(
-            begun.generation, self.generation,
-            "the fluid changed between begin_step and continue_step"
-        );
-        let dt = begun.dt;
         if self.settings.scheme.is_semi_implicit() {
             return self.step_semi_implicit(dt, hook);
         }
-        if begun.frozen_terms {
+        if self.settings.scheme.is_chebyshev() {
             return self.step_chebyshev(dt, hook);
         }
         let stages = self.settings.scheme.stages();
@@ -273,13 +220,23 @@ impl FluidSolver {
     ) -> StepReport {
         let t0 = self.time;
         let h = self.grid.h;
+        let force = self.total_body_force();
         let nu = self.settings.nu;
         let method = ChebyshevStages::for_step(dt * self.diffusion_spectral_radius());
         let work = self
             .chebyshev
             .as_mut()
             .expect("set_scheme prepares the Chebyshev registers");
-        // q holds the frozen terms (begin_step)
+        fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
+        let terms = MomentumTerms {
+            layout: &self.layout,
+            h,
+            nu,
+            force,
+            source: self.source.as_ref(),
+            ranges: &self.momentum_ranges,
+        };
+        frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
         let terms = StageTerms {
             layout: &self.layout,
             h,
