@@ -227,6 +227,32 @@ fn a_running_case_takes_its_changed_control_dict() {
     assert_one_more_step_written(&case, &log, "stopAt endTime -> writeNow");
 }
 
+/// A file the controlDict `#include`s is watched as OpenFOAM watches it: `stopAt writeNow`
+/// written into it stops the run after one more step, written.
+#[test]
+fn a_running_case_takes_a_change_of_a_file_its_control_dict_includes() {
+    let scratch = Scratch::new("included-control");
+    let case = long_cavity(&scratch, "included", |text| {
+        let kept: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with("stopAt") && !l.starts_with("runTimeModifiable"))
+            .collect();
+        format!(
+            "{}\nrunTimeModifiable yes;\n#include \"runControl\"\n",
+            kept.join("\n")
+        )
+    });
+    let included = case.join("system/runControl");
+    fs::write(&included, "stopAt endTime;\n").unwrap();
+    let run = Running::start(&case);
+    wait_for("the first write", || case.join("0.5").is_dir());
+    fs::write(&included, "stopAt writeNow;\n").unwrap();
+    assert!(run.finish());
+    let log = read(&case, "log.out");
+    assert!(log.contains("stopAt endTime -> writeNow"), "{log}");
+    assert_one_more_step_written(&case, &log, "stopAt endTime -> writeNow");
+}
+
 #[test]
 fn an_end_time_already_passed_ends_the_run_where_it_is_and_writes_it() {
     let scratch = Scratch::new("end-time-passed");

@@ -19,14 +19,21 @@ const RECENT: Duration = Duration::from_secs(3);
 /// adjusted entries), or the error at its place.
 pub type ControlChange = Result<(ControlDict, Vec<String>), CaseError>;
 
-/// Watches a case's `system/controlDict` between two steps (OpenFOAM's `Time::run`), by its
-/// modification time as OpenFOAM's `timeStamp` checking does, and by its text while the
-/// change is recent.
-///
-/// Files the dictionary `#include`s are not watched: touch the controlDict itself.
+/// Watches a case's `system/controlDict` and the files it `#include`s between two steps
+/// (OpenFOAM's `Time::run`; OpenFOAM's `#include` adds a watch on the file it reads), each
+/// by its modification time as OpenFOAM's `timeStamp` checking does, and by its text while
+/// its change is recent. A change of any of them reads the controlDict again, and the files
+/// it then includes are the ones watched.
 #[derive(Debug)]
 pub struct ControlDictWatch {
     case_dir: PathBuf,
+    /// The controlDict first, then the files its last reading included.
+    files: Vec<WatchedFile>,
+}
+
+/// One watched file as last taken.
+#[derive(Debug)]
+struct WatchedFile {
     path: PathBuf,
     /// The modification time of the text last taken (`None`: the file could not be read).
     seen: Option<SystemTime>,
@@ -34,44 +41,104 @@ pub struct ControlDictWatch {
     text: Vec<u8>,
 }
 
-impl ControlDictWatch {
-    /// Watches `case_dir/system/controlDict` from its present state on: create it before
-    /// the case is read, so that no change made while the run starts up is missed.
-    pub fn new(case_dir: &Path) -> Self {
-        let path = case_dir.join("system/controlDict");
-        ControlDictWatch {
+impl WatchedFile {
+    fn new(path: PathBuf) -> Self {
+        WatchedFile {
             seen: modified(&path),
             text: std::fs::read(&path).unwrap_or_default(),
-            case_dir: case_dir.to_path_buf(),
             path,
         }
     }
 
-    /// The file's settings when its text has changed since the last look (the run keeps
-    /// its settings when it does not read, and reads the next change). `None` while it is
-    /// unchanged, changed less than a tenth of a second ago, or missing for a moment (an
-    /// editor replacing it).
-    pub fn changed(&mut self) -> Option<ControlChange> {
-        let stamp = modified(&self.path)?;
-        // (a time in the future, a clock's skew, counts as old)
-        let age = |t: SystemTime| SystemTime::now().duration_since(t).unwrap_or(RECENT);
+    /// Whether the file was modified less than [`SETTLE`] ago (it may be half-written).
+    fn settling(&self) -> bool {
+        modified(&self.path).is_some_and(|stamp| age(stamp) < SETTLE)
+    }
+
+    /// Takes the file's present text; whether it differs from the text last taken. A
+    /// missing file, or one unchanged and long settled, is no change.
+    fn take_change(&mut self) -> bool {
+        let Some(stamp) = modified(&self.path) else {
+            return false;
+        };
         if self.seen == Some(stamp) && age(stamp) >= RECENT {
-            return None;
+            return false;
         }
-        if age(stamp) < SETTLE {
-            return None;
-        }
-        let text = std::fs::read(&self.path).ok()?;
+        let Ok(text) = std::fs::read(&self.path) else {
+            return false;
+        };
         self.seen = Some(stamp);
         if text == self.text {
-            return None;
+            return false;
         }
         self.text = text;
+        true
+    }
+}
+
+impl ControlDictWatch {
+    /// Watches `case_dir/system/controlDict` (and what it includes) from its present state
+    /// on: create it before the case is read, so that no change made while the run starts up
+    /// is missed.
+    pub fn new(case_dir: &Path) -> Self {
+        let path = case_dir.join("system/controlDict");
+        let mut watch = ControlDictWatch {
+            case_dir: case_dir.to_path_buf(),
+            files: vec![WatchedFile::new(path)],
+        };
+        // A file that does not read now fails the case's own reading, with its message.
+        if let Ok(dict) = Dict::read(&watch.files[0].path, Some(case_dir)) {
+            watch.follow_includes(&dict);
+        }
+        watch
+    }
+
+    /// The controlDict's settings when its text, or that of a file it includes, has changed
+    /// since the last look (the run keeps its settings when it does not read, and reads the
+    /// next change). `None` while they are unchanged, while one changed less than a tenth of
+    /// a second ago, or while the controlDict is missing for a moment (an editor replacing
+    /// it).
+    pub fn changed(&mut self) -> Option<ControlChange> {
+        modified(&self.files[0].path)?;
+        if self.files.iter().any(WatchedFile::settling) {
+            return None;
+        }
+        // every file's change taken, not only the first one's
+        let mut any = false;
+        for file in &mut self.files {
+            any |= file.take_change();
+        }
+        if !any {
+            return None;
+        }
         let mut notes = Vec::new();
-        let read = Dict::read(&self.path, Some(&self.case_dir))
-            .and_then(|dict| ControlDict::from_dict(&dict, &mut notes));
+        let read = Dict::read(&self.files[0].path, Some(&self.case_dir)).and_then(|dict| {
+            self.follow_includes(&dict);
+            ControlDict::from_dict(&dict, &mut notes)
+        });
         Some(read.map(|control| (control, notes)))
     }
+
+    /// Watches the files `dict` included from now on, keeping the state of those already
+    /// watched.
+    fn follow_includes(&mut self, dict: &Dict) {
+        let mut old: Vec<WatchedFile> = self.files.drain(1..).collect();
+        for path in &dict.included {
+            if self.files.iter().any(|f| &f.path == path) {
+                continue;
+            }
+            let file = match old.iter().position(|f| &f.path == path) {
+                Some(k) => old.swap_remove(k),
+                None => WatchedFile::new(path.clone()),
+            };
+            self.files.push(file);
+        }
+    }
+}
+
+/// Time since `stamp` (a time in the future, a clock's skew, counts as old).
+fn age(stamp: SystemTime) -> Duration {
+    SystemTime::now().duration_since(stamp).unwrap_or(RECENT)
 }
 
 fn modified(path: &Path) -> Option<SystemTime> {
@@ -144,6 +211,42 @@ mod tests {
         write(&path, &format!("{CONTROL} stopAt writeNow;"), 1_004);
         let (control, _) = watch.changed().unwrap().unwrap();
         assert_eq!(control.stop_at, crate::case::StopAt::WriteNow);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Edits of a file the controlDict `#include`s are read as OpenFOAM reads them; a file
+    /// no longer included is no longer watched, and a newly included one is.
+    #[test]
+    fn included_files_are_watched_while_they_are_included() {
+        let dir = std::env::temp_dir().join(format!("fsim-watch-include-{}", std::process::id()));
+        fs::create_dir_all(dir.join("system")).unwrap();
+        let path = dir.join("system/controlDict");
+        let times = dir.join("system/times");
+        let other = dir.join("system/other");
+        write(&times, "endTime 1;", 1_000);
+        write(&other, "endTime 7;", 1_000);
+        let base = "deltaT 0.01; writeControl timeStep; writeInterval 10;";
+        write(&path, &format!("#include \"times\"\n{base}"), 1_000);
+        let mut watch = ControlDictWatch::new(&dir);
+        assert!(watch.changed().is_none());
+
+        write(&times, "endTime 2;", 1_001);
+        let (control, _) = watch.changed().expect("a change").expect("a valid file");
+        assert_eq!(control.end_time, 2.0);
+        assert!(watch.changed().is_none(), "one change is read once");
+
+        // a broken included file is reported at its own line and column
+        write(&times, "endTime 3;\nstopAt now;", 1_002);
+        let e = watch.changed().expect("a change").unwrap_err();
+        assert!(e.to_string().contains("times"), "{e}");
+        assert_eq!((e.line, e.col), (2, 8), "{e}");
+
+        write(&path, &format!("#include \"other\"\n{base}"), 1_003);
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 7.0);
+        write(&times, "endTime 4;", 1_004);
+        assert!(watch.changed().is_none(), "no longer included");
+        write(&other, "endTime 8;", 1_004);
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 8.0);
         fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -90,6 +90,7 @@ fn parse_with(
         include_depth: 0,
         macro_tokens: 0,
         pack,
+        included: Vec::new(),
     };
     let text = file.text();
     let src = Src {
@@ -99,7 +100,9 @@ fn parse_with(
     let rest = ctx.body(&src, &text, None)?;
     debug_assert!(rest.is_empty());
     release_if_large(&file, text.len());
-    Ok(ctx.stack.pop().expect("top-level dictionary"))
+    let mut top = ctx.stack.pop().expect("top-level dictionary");
+    top.included = ctx.included;
+    Ok(top)
 }
 
 /// Files at least this long let their text go once parsed (a message reads them again).
@@ -137,6 +140,8 @@ struct Ctx {
     include_depth: usize,
     macro_tokens: usize,
     pack: bool,
+    /// The files `#include`s read, in order.
+    included: Vec<PathBuf>,
 }
 
 // ----- lexemes (nom) --------------------------------------------------------------------------
@@ -1088,5 +1093,25 @@ mod tests {
         let text = format!("a {};", "(".repeat(10_000));
         let e = err(&text);
         assert!(e.message.contains("nested"), "{e}");
+    }
+
+    /// The top level lists the files its `#include`s read, nested ones too, in the order
+    /// read; an optional include of a missing file reads none.
+    #[test]
+    fn the_files_included_are_listed_in_the_order_read() {
+        let dir = std::env::temp_dir().join(format!("fsim-parser-included-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        std::fs::write(
+            dir.join("top"),
+            "#include \"sub/a\"\n#includeIfPresent \"none\"\nc 3;\n",
+        )
+        .unwrap();
+        std::fs::write(dir.join("sub/a"), "a 1;\n#include \"b\"\n").unwrap();
+        std::fs::write(dir.join("sub/b"), "b 2;\n").unwrap();
+        let d = read_dict_file(&dir.join("top"), Some(&dir));
+        let _ = std::fs::remove_dir_all(&dir);
+        let d = d.unwrap_or_else(|e| panic!("{}", e.report()));
+        assert_eq!(d.included, vec![dir.join("sub/a"), dir.join("sub/b")]);
+        assert!(d.contains("a") && d.contains("b") && d.contains("c"));
     }
 }

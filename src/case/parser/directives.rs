@@ -148,6 +148,8 @@ impl Ctx {
             ));
         }
         let file = Arc::new(SourceFile::read(&path, self.case_dir.as_deref())?);
+        self.included
+            .push(if path.is_file() { path.clone() } else { gz });
         let text = file.text();
         let inner = Src {
             file: &file,
