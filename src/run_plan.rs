@@ -50,6 +50,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     let start = sim.time.time;
     let timed = time_steps(sim)?;
     let count = timed.seconds.len();
+    let step = timed.representative();
     let (steps, dt, why) = if !sim.time.running() {
         let dt = (sim.time.time - start) / count as f64;
         (count as f64, dt, ", all of them timed below".to_string())
@@ -83,13 +84,26 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         (count as f64 + left, dt, why)
     };
     // endTime, or where stopAt ends the run
-    let end = if sim.time.running() {
-        sim.time.planned_end(dt)
-    } else {
-        sim.time.time
+    let clocked = steps_to_clocked_write(sim, step, threads).filter(|_| sim.time.running());
+    let (steps, end) = match clocked {
+        Some(n) => (n, start + n * dt),
+        None if sim.time.running() => (steps, sim.time.planned_end(dt)),
+        None => (steps, sim.time.time),
+    };
+    let why = match clocked {
+        Some(_) => format!(
+            "{why}; stopAt nextWrite: to the first write, after {} s of {} at the timed \
+             steps' cost",
+            sim.time.write_interval,
+            if sim.time.write_control == WriteControl::ClockTime {
+                "wall-clock time"
+            } else {
+                "CPU time on all threads"
+            }
+        ),
+        None => why,
     };
     println!("Steps   : about {steps} of {dt:.3e} s from t = {start} to {end} s{why}");
-    let step = timed.representative();
     // the run's wall time, and its CPU time on every thread
     let seconds = steps * step;
     let writes = match case.control.write_control {
@@ -162,6 +176,23 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         None => println!("Memory  : about {:.1} MB for the fluid", fluid / 1e6),
     }
     Ok(())
+}
+
+/// With `stopAt nextWrite` and a `clockTime` or `cpuTime` write, the run ends at its first
+/// write: after `writeInterval` seconds of wall-clock time, or of CPU time on all `threads`,
+/// at the timed `step` seconds a step. `None` with other controls.
+fn steps_to_clocked_write(sim: &Simulation, step: f64, threads: usize) -> Option<f64> {
+    let time = &sim.time;
+    if time.stop_at != StopAt::NextWrite {
+        return None;
+    }
+    let seconds_per_step = match time.write_control {
+        WriteControl::ClockTime => step,
+        WriteControl::CpuTime => step * threads as f64,
+        _ => return None,
+    };
+    let steps = time.write_interval / seconds_per_step.max(f64::MIN_POSITIVE);
+    Some(steps.ceil().max(1.0))
 }
 
 /// The plan's step for a settling suspension ([`SETTLING_SPEED`]).

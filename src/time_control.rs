@@ -174,7 +174,8 @@ impl TimeControl {
                 let every = self.steps_per_write();
                 self.time + (every - self.step % every) as f64 * dt
             }
-            // a wall or CPU interval's steps are unknown before they are taken
+            // a wall or CPU interval's steps are unknown before they are taken (the plan
+            // counts them from its timed steps)
             (StopAt::NextWrite, WriteControl::ClockTime | WriteControl::CpuTime) => self.time + dt,
             (StopAt::NextWrite, _) => self.next_write_time(),
         }

@@ -78,6 +78,31 @@ fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(times(&case), [0.0, 0.05]);
+
+    // nextWrite at a wall-clock write: the plan counts the steps to it at its timed cost
+    let case = cavity(
+        &scratch,
+        "nextWriteClock",
+        &[
+            ("stopAt", "nextWrite"),
+            ("writeControl", "clockTime"),
+            ("writeInterval", "2"),
+        ],
+    );
+    let plan = fsim(&case, &["-dry-run"]);
+    let plan = String::from_utf8_lossy(&plan.stdout);
+    let run_time: f64 = plan
+        .split("Run time: about ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{plan}"));
+    assert!((2.0..2.2).contains(&run_time), "{plan}");
+    assert!(
+        plan.contains("to the first write, after 2 s of wall-clock time"),
+        "{plan}"
+    );
+    assert!(!plan.contains("Steps   : about 1 of"), "{plan}");
 }
 
 /// fsimFoam running on a case in the background, its log and messages into files of the
