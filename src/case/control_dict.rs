@@ -29,6 +29,14 @@ pub enum StopAt {
 }
 
 impl StopAt {
+    /// Every choice, in the order the keyword's error lists them.
+    pub const ALL: [StopAt; 4] = [
+        StopAt::EndTime,
+        StopAt::WriteNow,
+        StopAt::NoWriteNow,
+        StopAt::NextWrite,
+    ];
+
     /// The keyword's word.
     pub fn name(self) -> &'static str {
         match self {
@@ -56,6 +64,15 @@ pub enum WriteControl {
 }
 
 impl WriteControl {
+    /// Every choice, in the order the keyword's error lists them.
+    pub const ALL: [WriteControl; 5] = [
+        WriteControl::TimeStep,
+        WriteControl::RunTime,
+        WriteControl::AdjustableRunTime,
+        WriteControl::ClockTime,
+        WriteControl::CpuTime,
+    ];
+
     /// The keyword's word.
     pub fn name(self) -> &'static str {
         match self {
@@ -174,17 +191,8 @@ impl ControlDict {
             _ => StartFrom::FirstTime,
         };
         let start_time = d.get_scalar_or("startTime", 0.0)?;
-        let stop_at = match choice(
-            d,
-            "stopAt",
-            &["endTime", "writeNow", "noWriteNow", "nextWrite"],
-            Some(0),
-        )? {
-            0 => StopAt::EndTime,
-            1 => StopAt::WriteNow,
-            2 => StopAt::NoWriteNow,
-            _ => StopAt::NextWrite,
-        };
+        let names = StopAt::ALL.map(StopAt::name);
+        let stop_at = StopAt::ALL[choice(d, "stopAt", &names, Some(0))?];
         // OpenFOAM runs on without an end (endTime GREAT) when stopAt is not endTime.
         let end_time = match stop_at {
             StopAt::EndTime => d.get_scalar("endTime")?,
@@ -205,26 +213,13 @@ impl ControlDict {
                 format!("expected 'endTime' at or after startTime {start_time}, found {end_time}"),
             ));
         }
-        let write_control = match choice(
-            d,
-            "writeControl",
-            // `adjustable` is OpenFOAM's short alias of `adjustableRunTime`.
-            &[
-                "timeStep",
-                "runTime",
-                "adjustableRunTime",
-                "adjustable",
-                "clockTime",
-                "cpuTime",
-            ],
-            Some(0),
-        )? {
-            0 => WriteControl::TimeStep,
-            1 => WriteControl::RunTime,
-            2 | 3 => WriteControl::AdjustableRunTime,
-            4 => WriteControl::ClockTime,
-            _ => WriteControl::CpuTime,
-        };
+        let mut names = WriteControl::ALL.map(WriteControl::name).to_vec();
+        // `adjustable` is OpenFOAM's short alias of `adjustableRunTime`.
+        names.push("adjustable");
+        let write_control = WriteControl::ALL
+            .get(choice(d, "writeControl", &names, Some(0))?)
+            .copied()
+            .unwrap_or(WriteControl::AdjustableRunTime);
         // `writeFrequency` is OpenFOAM's older name of it (Time::readDict)
         let interval_key =
             if d.peek("writeInterval").is_none() && d.peek("writeFrequency").is_some() {
