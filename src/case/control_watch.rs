@@ -1,8 +1,8 @@
 //! `runTimeModifiable`: `system/controlDict` read again when it changes during a run.
 
 use super::control_dict::ControlDict;
-use super::dictionary::Dict;
 use super::error::CaseError;
+use super::parser::read_dict_file_with_includes;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
@@ -27,8 +27,10 @@ pub type ControlChange = Result<(ControlDict, Vec<String>), CaseError>;
 #[derive(Debug)]
 pub struct ControlDictWatch {
     case_dir: PathBuf,
-    /// The controlDict first, then the files its last reading included.
+    /// The controlDict first, then the files its last reading named in `#include`s.
     files: Vec<WatchedFile>,
+    /// A reading put off because a file it newly included was still being written.
+    put_off: bool,
 }
 
 /// One watched file as last taken.
@@ -85,11 +87,11 @@ impl ControlDictWatch {
         let mut watch = ControlDictWatch {
             case_dir: case_dir.to_path_buf(),
             files: vec![WatchedFile::new(path)],
+            put_off: false,
         };
-        // A file that does not read now fails the case's own reading, with its message.
-        if let Ok(dict) = Dict::read(&watch.files[0].path, Some(case_dir)) {
-            watch.follow_includes(&dict);
-        }
+        // (a file that does not read now fails the case's own reading, with its message)
+        let (_, included) = read_dict_file_with_includes(&watch.files[0].path, Some(case_dir));
+        watch.follow_includes(&included);
         watch
     }
 
@@ -104,35 +106,48 @@ impl ControlDictWatch {
             return None;
         }
         // every file's change taken, not only the first one's
-        let mut any = false;
+        let mut any = std::mem::take(&mut self.put_off);
         for file in &mut self.files {
             any |= file.take_change();
         }
         if !any {
             return None;
         }
+        let (read, included) =
+            read_dict_file_with_includes(&self.files[0].path, Some(&self.case_dir));
+        // The includes named are watched whether or not the file read, so that the next
+        // change mends it (an include named before its file was written, a broken one).
+        // A file newly included is taken after the reading: if it changed within the
+        // settling time it may have been read half-written, or changed since; read again.
+        if self.follow_includes(&included) {
+            self.put_off = true;
+            return None;
+        }
         let mut notes = Vec::new();
-        let read = Dict::read(&self.files[0].path, Some(&self.case_dir)).and_then(|dict| {
-            self.follow_includes(&dict);
-            ControlDict::from_dict(&dict, &mut notes)
-        });
+        let read = read.and_then(|dict| ControlDict::from_dict(&dict, &mut notes));
         Some(read.map(|control| (control, notes)))
     }
 
-    /// Watches the files `dict` included from now on, keeping the state of those already
-    /// watched.
-    fn follow_includes(&mut self, dict: &Dict) {
+    /// Watches the files `included` from now on, keeping the state of those already
+    /// watched; whether a file newly watched is still settling.
+    fn follow_includes(&mut self, included: &[PathBuf]) -> bool {
         let mut old: Vec<WatchedFile> = self.files.drain(1..).collect();
-        for path in &dict.included {
+        let mut settling = false;
+        for path in included {
             if self.files.iter().any(|f| &f.path == path) {
                 continue;
             }
             let file = match old.iter().position(|f| &f.path == path) {
                 Some(k) => old.swap_remove(k),
-                None => WatchedFile::new(path.clone()),
+                None => {
+                    let file = WatchedFile::new(path.clone());
+                    settling |= file.settling();
+                    file
+                }
             };
             self.files.push(file);
         }
+        settling
     }
 }
 
@@ -247,6 +262,35 @@ mod tests {
         assert!(watch.changed().is_none(), "no longer included");
         write(&other, "endTime 8;", 1_004);
         assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 8.0);
+
+        // An include named before its file is written: an error, then the file's creation
+        // is read.
+        let late = dir.join("system/late");
+        write(&path, &format!("#include \"late\"\n{base}"), 1_005);
+        let e = watch.changed().expect("a change").unwrap_err();
+        assert!(e.message.contains("file not found"), "{e}");
+        write(&late, "endTime 9;", 1_006);
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 9.0);
+
+        // A newly included file that does not read: its mending is read.
+        let fresh = dir.join("system/fresh");
+        write(&fresh, "endTime 10", 1_007);
+        write(&path, &format!("#include \"fresh\"\n{base}"), 1_007);
+        assert!(watch.changed().expect("a change").is_err());
+        write(&fresh, "endTime 10;", 1_008);
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 10.0);
+
+        // A file newly included while it is being written: read once it has settled.
+        let newest = dir.join("system/newest");
+        write(&path, &format!("#include \"newest\"\n{base}"), 1_009);
+        let written = std::time::Instant::now();
+        fs::write(&newest, "endTime 11;").unwrap();
+        let early = watch.changed();
+        if written.elapsed() < SETTLE {
+            assert!(early.is_none(), "{early:?}");
+            std::thread::sleep(SETTLE);
+            assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 11.0);
+        }
         fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -5,7 +5,6 @@
 //! the last defined first, each matching the whole keyword. Every lookup marks the entry as
 //! read, so that [`Dict::unused`] can list what fsim ignored.
 
-use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use regex::Regex;
@@ -160,9 +159,6 @@ pub struct Dict {
     pub values: Vec<Item>,
     /// Directives recorded but not run.
     pub directives: Vec<Directive>,
-    /// At a file's top level: the files its `#include`s read, in the order read (what
-    /// `runTimeModifiable` watches besides the file itself, as OpenFOAM does).
-    pub included: Vec<PathBuf>,
 }
 
 impl Dict {
@@ -173,7 +169,6 @@ impl Dict {
             entries: Vec::new(),
             values: Vec::new(),
             directives: Vec::new(),
-            included: Vec::new(),
         }
     }
 

@@ -44,7 +44,9 @@ pub use drag_law_options::{
 pub use error::CaseError;
 pub use fields::{Fields, InternalField, PressureBc, VelocityBc};
 pub use fv_options::MeanVelocityForce;
-pub use parser::{check_parser_invariants, parse_dict, read_dict_file};
+pub use parser::{
+    check_parser_invariants, parse_dict, read_dict_file, read_dict_file_with_includes,
+};
 pub use pressure_solver::PressureSolverControls;
 pub use source::{Element, Location, SourceFile};
 pub use transport::Transport;

@@ -61,6 +61,20 @@ pub fn read_dict_file(path: &Path, case_dir: Option<&Path>) -> Result<Dict, Case
     parse_source(file, case_dir)
 }
 
+/// [`read_dict_file`], with the files its `#include`s name, in the order met (nested ones
+/// too): those read, and a required one found missing. On an error, those met before it.
+/// What `runTimeModifiable` watches besides the file itself, as OpenFOAM's `#include` adds
+/// a watch on the file it reads.
+pub fn read_dict_file_with_includes(
+    path: &Path,
+    case_dir: Option<&Path>,
+) -> (Result<Dict, CaseError>, Vec<PathBuf>) {
+    match SourceFile::read(path, case_dir) {
+        Ok(file) => parse_with(Arc::new(file), case_dir, true),
+        Err(e) => (Err(e), Vec::new()),
+    }
+}
+
 /// Parses dictionary text held in memory; `display` names it in messages. `#include` is
 /// refused there (there is no directory to resolve it from).
 pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
@@ -74,15 +88,16 @@ pub fn parse_dict(text: &str, display: &str) -> Result<Dict, CaseError> {
 }
 
 fn parse_source(file: Arc<SourceFile>, case_dir: Option<&Path>) -> Result<Dict, CaseError> {
-    parse_with(file, case_dir, true)
+    parse_with(file, case_dir, true).0
 }
 
+/// The dictionary, and the files its `#include`s named ([`read_dict_file_with_includes`]).
 /// `pack`: whether numeric lists are read packed (off only to compare with the general path).
 fn parse_with(
     file: Arc<SourceFile>,
     case_dir: Option<&Path>,
     pack: bool,
-) -> Result<Dict, CaseError> {
+) -> (Result<Dict, CaseError>, Vec<PathBuf>) {
     let mut ctx = Ctx {
         stack: vec![Dict::new(String::new(), Location::new(&file, 0))],
         case_dir: case_dir.map(Path::to_path_buf),
@@ -97,12 +112,12 @@ fn parse_with(
         file: &file,
         text: &text,
     };
-    let rest = ctx.body(&src, &text, None)?;
-    debug_assert!(rest.is_empty());
-    release_if_large(&file, text.len());
-    let mut top = ctx.stack.pop().expect("top-level dictionary");
-    top.included = ctx.included;
-    Ok(top)
+    let read = ctx.body(&src, &text, None).map(|rest| {
+        debug_assert!(rest.is_empty());
+        release_if_large(&file, text.len());
+        ctx.stack.pop().expect("top-level dictionary")
+    });
+    (read, ctx.included)
 }
 
 /// Files at least this long let their text go once parsed (a message reads them again).
@@ -140,7 +155,7 @@ struct Ctx {
     include_depth: usize,
     macro_tokens: usize,
     pack: bool,
-    /// The files `#include`s read, in order.
+    /// The files `#include`s named: read, or required and missing.
     included: Vec<PathBuf>,
 }
 
@@ -713,7 +728,9 @@ mod tests {
             "test".to_string(),
             text.to_string(),
         ));
-        parse_with(file, None, false).unwrap_or_else(|e| panic!("{}", e.report()))
+        parse_with(file, None, false)
+            .0
+            .unwrap_or_else(|e| panic!("{}", e.report()))
     }
 
     /// SplitMix64 (Steele, Lea & Flood 2014): seeded numbers for the tests.
@@ -1095,10 +1112,11 @@ mod tests {
         assert!(e.message.contains("nested"), "{e}");
     }
 
-    /// The top level lists the files its `#include`s read, nested ones too, in the order
-    /// read; an optional include of a missing file reads none.
+    /// The files `#include`s name are listed, nested ones too, in the order met; an optional
+    /// include of a missing file names none, a required one does (and fails the read, with
+    /// the files met before it).
     #[test]
-    fn the_files_included_are_listed_in_the_order_read() {
+    fn the_files_included_are_listed_in_the_order_met() {
         let dir = std::env::temp_dir().join(format!("fsim-parser-included-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         std::fs::write(
@@ -1108,10 +1126,18 @@ mod tests {
         .unwrap();
         std::fs::write(dir.join("sub/a"), "a 1;\n#include \"b\"\n").unwrap();
         std::fs::write(dir.join("sub/b"), "b 2;\n").unwrap();
-        let d = read_dict_file(&dir.join("top"), Some(&dir));
+        std::fs::write(
+            dir.join("broken"),
+            "#include \"sub/b\"\n#include \"later\"\n",
+        )
+        .unwrap();
+        let (read, included) = read_dict_file_with_includes(&dir.join("top"), Some(&dir));
+        let (broken, met) = read_dict_file_with_includes(&dir.join("broken"), Some(&dir));
         let _ = std::fs::remove_dir_all(&dir);
-        let d = d.unwrap_or_else(|e| panic!("{}", e.report()));
-        assert_eq!(d.included, vec![dir.join("sub/a"), dir.join("sub/b")]);
+        let d = read.unwrap_or_else(|e| panic!("{}", e.report()));
+        assert_eq!(included, vec![dir.join("sub/a"), dir.join("sub/b")]);
         assert!(d.contains("a") && d.contains("b") && d.contains("c"));
+        assert!(broken.unwrap_err().message.contains("file not found"));
+        assert_eq!(met, vec![dir.join("sub/b"), dir.join("later")]);
     }
 }

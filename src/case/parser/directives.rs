@@ -136,6 +136,8 @@ impl Ctx {
             if optional {
                 return Ok(());
             }
+            // watched all the same: its creation mends the dictionary
+            self.included.push(path.clone());
             return Err(CaseError::at(
                 loc,
                 format!("cannot include \"{arg}\": file not found"),
