@@ -8,6 +8,7 @@
 use crate::case::{Case, StopAt, WriteControl};
 use crate::coupling::drag::terminal_velocity;
 use crate::error::FsimError;
+use crate::output::cpu_time_seconds;
 use crate::run::take_step;
 use crate::simulation::{PhaseTimes, Simulation};
 use std::time::Instant;
@@ -84,7 +85,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         (count as f64 + left, dt, why)
     };
     // endTime, or where stopAt ends the run
-    let clocked = steps_to_clocked_write(sim, step, threads).filter(|_| sim.time.running());
+    let clocked = steps_to_clocked_write(sim, step, timed.cpu_rate).filter(|_| sim.time.running());
     let (steps, end) = match clocked {
         Some(n) => (n, start + n * dt),
         None if sim.time.running() => (steps, sim.time.planned_end(dt)),
@@ -109,7 +110,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     let writes = match case.control.write_control {
         WriteControl::TimeStep => steps / case.control.write_interval.max(1.0),
         WriteControl::ClockTime => seconds / case.control.write_interval,
-        WriteControl::CpuTime => seconds * threads as f64 / case.control.write_interval,
+        WriteControl::CpuTime => seconds * timed.cpu_rate / case.control.write_interval,
         WriteControl::RunTime | WriteControl::AdjustableRunTime => {
             (end - start) / case.control.write_interval
         }
@@ -179,16 +180,17 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
 }
 
 /// With `stopAt nextWrite` and a `clockTime` or `cpuTime` write, the run ends at its first
-/// write: after `writeInterval` seconds of wall-clock time, or of CPU time on all `threads`,
-/// at the timed `step` seconds a step. `None` with other controls.
-fn steps_to_clocked_write(sim: &Simulation, step: f64, threads: usize) -> Option<f64> {
+/// write: after `writeInterval` seconds of wall-clock time, or of CPU time at the timed
+/// steps' `cpu_rate` (CPU seconds per second), at the timed `step` seconds a step. `None`
+/// with other controls.
+fn steps_to_clocked_write(sim: &Simulation, step: f64, cpu_rate: f64) -> Option<f64> {
     let time = &sim.time;
     if time.stop_at != StopAt::NextWrite {
         return None;
     }
     let seconds_per_step = match time.write_control {
         WriteControl::ClockTime => step,
-        WriteControl::CpuTime => step * threads as f64,
+        WriteControl::CpuTime => step * cpu_rate,
         _ => return None,
     };
     let steps = time.write_interval / seconds_per_step.max(f64::MIN_POSITIVE);
@@ -230,6 +232,8 @@ fn settling_step(case: &Case, sim: &Simulation) -> Option<SettlingStep> {
 struct TimedSteps {
     seconds: Vec<f64>,
     phases: PhaseTimes,
+    /// The process's CPU seconds per wall-clock second over the timed steps.
+    cpu_rate: f64,
 }
 
 impl TimedSteps {
@@ -256,7 +260,9 @@ fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
     let mut timed = TimedSteps {
         seconds: Vec::with_capacity(TIMED_STEPS),
         phases: PhaseTimes::default(),
+        cpu_rate: 0.0,
     };
+    let cpu = cpu_time_seconds();
     let clock = Instant::now();
     while sim.time.running()
         && timed.seconds.len() < TIMED_STEPS
@@ -270,5 +276,6 @@ fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
         timed.phases.coupling += sim.phase_times.coupling;
         timed.phases.particles += sim.phase_times.particles;
     }
+    timed.cpu_rate = (cpu_time_seconds() - cpu) / clock.elapsed().as_secs_f64();
     Ok(timed)
 }

@@ -103,6 +103,24 @@ fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
         "{plan}"
     );
     assert!(!plan.contains("Steps   : about 1 of"), "{plan}");
+
+    // and at a CPU-time write, at the CPU time the timed steps took
+    let case = cavity(
+        &scratch,
+        "nextWriteCpu",
+        &[
+            ("stopAt", "nextWrite"),
+            ("writeControl", "cpuTime"),
+            ("writeInterval", "2"),
+        ],
+    );
+    let plan = fsim(&case, &["-dry-run", "-threads", "1"]);
+    let plan = String::from_utf8_lossy(&plan.stdout);
+    assert!(
+        plan.contains("after 2 s of CPU time on all threads"),
+        "{plan}"
+    );
+    assert!(!plan.contains("Steps   : about 1 of"), "{plan}");
 }
 
 /// fsimFoam running on a case in the background, its log and messages into files of the

@@ -199,28 +199,23 @@ fn format_duration(seconds: f64) -> String {
     }
 }
 
-/// CPU time of this process, all threads, user + system, in seconds.
-///
-/// Read from `/proc/self/stat` (fields 14 and 15, in clock ticks of `USER_HZ`, which Linux
-/// fixes at 100 for this interface on every architecture). Where `/proc` is absent the wall
-/// time since the first call stands in for it.
+/// CPU time of this process, all threads, user + system, in seconds: `getrusage`'s, to the
+/// microsecond (the ticks of `/proc/self/stat` are 10 ms, too coarse to time a few steps).
+/// Where it fails the wall time since the first call stands in for it.
 pub fn cpu_time_seconds() -> f64 {
-    const USER_HZ: f64 = 100.0;
-    let from_proc = std::fs::read_to_string("/proc/self/stat")
-        .ok()
-        .and_then(|stat| {
-            // The command name (field 2) is in parentheses and may hold spaces: split after it.
-            let after_name = &stat[stat.rfind(')')? + 1..];
-            let fields: Vec<&str> = after_name.split_whitespace().collect();
-            // after_name starts at field 3, so fields 14 and 15 are at indices 11 and 12.
-            let utime: f64 = fields.get(11)?.parse().ok()?;
-            let stime: f64 = fields.get(12)?.parse().ok()?;
-            Some((utime + stime) / USER_HZ)
-        });
-    from_proc.unwrap_or_else(|| {
-        static FIRST: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
-        FIRST.get_or_init(Instant::now).elapsed().as_secs_f64()
-    })
+    // SAFETY: getrusage only writes the struct it is handed, which is zeroed and owned here.
+    let usage = unsafe {
+        let mut usage: libc::rusage = std::mem::zeroed();
+        (libc::getrusage(libc::RUSAGE_SELF, &mut usage) == 0).then_some(usage)
+    };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    match usage {
+        Some(u) => seconds(u.ru_utime) + seconds(u.ru_stime),
+        None => {
+            static FIRST: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+            FIRST.get_or_init(Instant::now).elapsed().as_secs_f64()
+        }
+    }
 }
 
 /// Peak resident set size of this process (`VmHWM` of `/proc/self/status`), in bytes.
@@ -325,6 +320,22 @@ mod tests {
         assert!(x > 0.0);
         let spent = cpu_time_seconds() - before;
         assert!((0.05..1.0).contains(&spent), "cpu time {spent}");
+    }
+
+    /// The CPU clock ticks finely enough to time a few short steps (`/proc`'s ticked by
+    /// 10 ms).
+    #[test]
+    fn cpu_time_ticks_by_less_than_a_millisecond() {
+        let start = Instant::now();
+        let before = cpu_time_seconds();
+        let mut after = before;
+        while after == before && start.elapsed() < Duration::from_secs(20) {
+            after = cpu_time_seconds();
+        }
+        assert!(
+            after > before && after - before < 1e-3,
+            "{before} -> {after}"
+        );
     }
 
     #[test]
