@@ -83,7 +83,14 @@ impl ControlDictWatch {
     /// on: create it before the case is read, so that no change made while the run starts up
     /// is missed.
     pub fn new(case_dir: &Path) -> Self {
-        let path = case_dir.join("system/controlDict");
+        // A compressed controlDict is watched when it is the one there (as the case reads it).
+        let plain = case_dir.join("system/controlDict");
+        let gz = case_dir.join("system/controlDict.gz");
+        let path = if !plain.exists() && gz.exists() {
+            gz
+        } else {
+            plain
+        };
         let mut watch = ControlDictWatch {
             case_dir: case_dir.to_path_buf(),
             files: vec![WatchedFile::new(path)],
@@ -291,6 +298,31 @@ mod tests {
             std::thread::sleep(SETTLE);
             assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 11.0);
         }
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A case whose controlDict is compressed, as OpenFOAM may write it, is watched too.
+    #[test]
+    fn a_compressed_control_dict_is_watched() {
+        use std::io::Write;
+        let dir = std::env::temp_dir().join(format!("fsim-watch-gz-{}", std::process::id()));
+        fs::create_dir_all(dir.join("system")).unwrap();
+        let path = dir.join("system/controlDict.gz");
+        let gzip = |text: &str| {
+            let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+            enc.write_all(text.as_bytes()).unwrap();
+            enc.finish().unwrap()
+        };
+        fs::write(&path, gzip(CONTROL)).unwrap();
+        let file = fs::File::options().write(true).open(&path).unwrap();
+        file.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(1_000))
+            .unwrap();
+        let mut watch = ControlDictWatch::new(&dir);
+        assert!(watch.changed().is_none());
+        fs::write(&path, gzip(&CONTROL.replace("endTime 1", "endTime 5"))).unwrap();
+        file.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(1_001))
+            .unwrap();
+        assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 5.0);
         fs::remove_dir_all(&dir).unwrap();
     }
 }
