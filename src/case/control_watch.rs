@@ -174,25 +174,31 @@ mod tests {
 
     const CONTROL: &str = "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 10;";
 
-    /// Writes `text` as the controlDict with a modification time `seconds` after the epoch
-    /// (long settled).
-    fn write(path: &Path, text: &str, seconds: u64) {
-        fs::write(path, text).unwrap();
+    /// Writes `contents` at `path` with a modification time `seconds` after the epoch (long
+    /// settled).
+    fn write(path: &Path, contents: impl AsRef<[u8]>, seconds: u64) {
+        fs::write(path, contents).unwrap();
         let file = fs::File::options().write(true).open(path).unwrap();
         file.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(seconds))
             .unwrap();
     }
 
+    /// A scratch case directory with its `system` folder, named after the test.
+    fn scratch_case(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("fsim-watch-{name}-{}", std::process::id()));
+        fs::create_dir_all(dir.join("system")).unwrap();
+        dir
+    }
+
     #[test]
     fn a_changed_file_is_read_once_and_a_broken_one_reports_its_place() {
-        let dir = std::env::temp_dir().join(format!("fsim-watch-{}", std::process::id()));
-        fs::create_dir_all(dir.join("system")).unwrap();
+        let dir = scratch_case("changed");
         let path = dir.join("system/controlDict");
         write(&path, CONTROL, 1_000);
         let mut watch = ControlDictWatch::new(&dir);
         assert!(watch.changed().is_none());
 
-        write(&path, &CONTROL.replace("endTime 1", "endTime 2"), 1_001);
+        write(&path, CONTROL.replace("endTime 1", "endTime 2"), 1_001);
         let (control, notes) = watch.changed().expect("a change").expect("a valid file");
         assert_eq!(control.end_time, 2.0);
         assert!(notes.is_empty());
@@ -209,12 +215,12 @@ mod tests {
         assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 4.0);
         assert!(watch.changed().is_none());
 
-        write(&path, &format!("{CONTROL}\nstopAt now;"), 1_002);
+        write(&path, format!("{CONTROL}\nstopAt now;"), 1_002);
         let e = watch.changed().expect("a change").unwrap_err();
         assert_eq!((e.line, e.col), (2, 8), "{e}");
 
         // the notes of the reading come with the settings
-        write(&path, &CONTROL.replace("10;", "10; purgeWrite -2;"), 1_003);
+        write(&path, CONTROL.replace("10;", "10; purgeWrite -2;"), 1_003);
         let (_, notes) = watch.changed().unwrap().unwrap();
         assert_eq!(notes.len(), 1, "{notes:?}");
 
@@ -230,7 +236,7 @@ mod tests {
 
         fs::remove_file(&path).unwrap();
         assert!(watch.changed().is_none(), "a missing file is no change");
-        write(&path, &format!("{CONTROL} stopAt writeNow;"), 1_004);
+        write(&path, format!("{CONTROL} stopAt writeNow;"), 1_004);
         let (control, _) = watch.changed().unwrap().unwrap();
         assert_eq!(control.stop_at, crate::case::StopAt::WriteNow);
         fs::remove_dir_all(&dir).unwrap();
@@ -240,15 +246,14 @@ mod tests {
     /// no longer included is no longer watched, and a newly included one is.
     #[test]
     fn included_files_are_watched_while_they_are_included() {
-        let dir = std::env::temp_dir().join(format!("fsim-watch-include-{}", std::process::id()));
-        fs::create_dir_all(dir.join("system")).unwrap();
+        let dir = scratch_case("include");
         let path = dir.join("system/controlDict");
         let times = dir.join("system/times");
         let other = dir.join("system/other");
         write(&times, "endTime 1;", 1_000);
         write(&other, "endTime 7;", 1_000);
         let base = "deltaT 0.01; writeControl timeStep; writeInterval 10;";
-        write(&path, &format!("#include \"times\"\n{base}"), 1_000);
+        write(&path, format!("#include \"times\"\n{base}"), 1_000);
         let mut watch = ControlDictWatch::new(&dir);
         assert!(watch.changed().is_none());
 
@@ -263,7 +268,7 @@ mod tests {
         assert!(e.to_string().contains("times"), "{e}");
         assert_eq!((e.line, e.col), (2, 8), "{e}");
 
-        write(&path, &format!("#include \"other\"\n{base}"), 1_003);
+        write(&path, format!("#include \"other\"\n{base}"), 1_003);
         assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 7.0);
         write(&times, "endTime 4;", 1_004);
         assert!(watch.changed().is_none(), "no longer included");
@@ -273,7 +278,7 @@ mod tests {
         // An include named before its file is written: an error, then the file's creation
         // is read.
         let late = dir.join("system/late");
-        write(&path, &format!("#include \"late\"\n{base}"), 1_005);
+        write(&path, format!("#include \"late\"\n{base}"), 1_005);
         let e = watch.changed().expect("a change").unwrap_err();
         assert!(e.message.contains("file not found"), "{e}");
         write(&late, "endTime 9;", 1_006);
@@ -282,14 +287,14 @@ mod tests {
         // A newly included file that does not read: its mending is read.
         let fresh = dir.join("system/fresh");
         write(&fresh, "endTime 10", 1_007);
-        write(&path, &format!("#include \"fresh\"\n{base}"), 1_007);
+        write(&path, format!("#include \"fresh\"\n{base}"), 1_007);
         assert!(watch.changed().expect("a change").is_err());
         write(&fresh, "endTime 10;", 1_008);
         assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 10.0);
 
         // A file newly included while it is being written: read once it has settled.
         let newest = dir.join("system/newest");
-        write(&path, &format!("#include \"newest\"\n{base}"), 1_009);
+        write(&path, format!("#include \"newest\"\n{base}"), 1_009);
         let written = std::time::Instant::now();
         fs::write(&newest, "endTime 11;").unwrap();
         let early = watch.changed();
@@ -305,23 +310,21 @@ mod tests {
     #[test]
     fn a_compressed_control_dict_is_watched() {
         use std::io::Write;
-        let dir = std::env::temp_dir().join(format!("fsim-watch-gz-{}", std::process::id()));
-        fs::create_dir_all(dir.join("system")).unwrap();
+        let dir = scratch_case("gz");
         let path = dir.join("system/controlDict.gz");
         let gzip = |text: &str| {
             let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
             enc.write_all(text.as_bytes()).unwrap();
             enc.finish().unwrap()
         };
-        fs::write(&path, gzip(CONTROL)).unwrap();
-        let file = fs::File::options().write(true).open(&path).unwrap();
-        file.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(1_000))
-            .unwrap();
+        write(&path, gzip(CONTROL), 1_000);
         let mut watch = ControlDictWatch::new(&dir);
         assert!(watch.changed().is_none());
-        fs::write(&path, gzip(&CONTROL.replace("endTime 1", "endTime 5"))).unwrap();
-        file.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(1_001))
-            .unwrap();
+        write(
+            &path,
+            gzip(&CONTROL.replace("endTime 1", "endTime 5")),
+            1_001,
+        );
         assert_eq!(watch.changed().unwrap().unwrap().0.end_time, 5.0);
         fs::remove_dir_all(&dir).unwrap();
     }
