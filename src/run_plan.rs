@@ -52,9 +52,10 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     let timed = time_steps(sim)?;
     let count = timed.seconds.len();
     let step = timed.representative();
-    let (steps, dt, why) = if !sim.time.running() {
+    let (steps, dt, why, end) = if !sim.time.running() {
         let dt = (sim.time.time - start) / count as f64;
-        (count as f64, dt, ", all of them timed below".to_string())
+        let why = ", all of them timed below".to_string();
+        (count as f64, dt, why, sim.time.time)
     } else {
         // The run's next step fails here as it would in the run (a fixed step beyond the
         // bound, a collapsing Courant step).
@@ -66,9 +67,6 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         let bound = sim.stability_bound();
         let settling = settling_step(case, sim).filter(|s| s.dt < allowed);
         let dt = settling.as_ref().map_or(allowed, |s| s.dt);
-        let left = ((sim.time.planned_end(dt) - sim.time.time) / dt)
-            .ceil()
-            .max(0.0);
         let why = match &settling {
             Some(s) => format!(
                 ": the Courant step at maxCo {} once the fluid moves at {SETTLING_SPEED} times \
@@ -82,27 +80,25 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
             ),
             None => format!(" (deltaT; stability bound {bound:.3e} s)"),
         };
-        (count as f64 + left, dt, why)
-    };
-    // endTime, or where stopAt ends the run
-    let clocked = steps_to_clocked_write(sim, step, timed.cpu_rate).filter(|_| sim.time.running());
-    let (steps, end) = match clocked {
-        Some(n) => (n, start + n * dt),
-        None if sim.time.running() => (steps, sim.time.planned_end(dt)),
-        None => (steps, sim.time.time),
-    };
-    let why = match clocked {
-        Some(_) => format!(
-            "{why}; stopAt nextWrite: to the first write, after {} s of {} at the timed \
-             steps' cost",
-            sim.time.write_interval,
-            if sim.time.write_control == WriteControl::ClockTime {
-                "wall-clock time"
-            } else {
-                "CPU time on all threads"
-            }
-        ),
-        None => why,
+        // endTime, or where stopAt ends the run
+        let (end, why) = match steps_to_clocked_write(sim, step, timed.cpu_rate) {
+            Some(n) => (
+                start + n * dt,
+                format!(
+                    "{why}; stopAt nextWrite: to the first write, after {} s of {} at the \
+                     timed steps' cost",
+                    sim.time.write_interval,
+                    if sim.time.write_control == WriteControl::ClockTime {
+                        "wall-clock time"
+                    } else {
+                        "CPU time on all threads"
+                    }
+                ),
+            ),
+            None => (sim.time.planned_end(dt), why),
+        };
+        let left = ((end - sim.time.time) / dt).ceil().max(0.0);
+        (count as f64 + left, dt, why, end)
     };
     println!("Steps   : about {steps} of {dt:.3e} s from t = {start} to {end} s{why}");
     // the run's wall time, and its CPU time on every thread

@@ -52,15 +52,11 @@ impl WatchedFile {
         }
     }
 
-    /// Whether the file was modified less than [`SETTLE`] ago (it may be half-written).
-    fn settling(&self) -> bool {
-        modified(&self.path).is_some_and(|stamp| age(stamp) < SETTLE)
-    }
-
-    /// Takes the file's present text; whether it differs from the text last taken. A
-    /// missing file, or one unchanged and long settled, is no change.
-    fn take_change(&mut self) -> bool {
-        let Some(stamp) = modified(&self.path) else {
+    /// Takes the file's present text, `stamp` its modification time now; whether it
+    /// differs from the text last taken. A missing file, or one unchanged and long settled,
+    /// is no change.
+    fn take_change(&mut self, stamp: Option<SystemTime>) -> bool {
+        let Some(stamp) = stamp else {
             return false;
         };
         if self.seen == Some(stamp) && age(stamp) >= RECENT {
@@ -108,14 +104,17 @@ impl ControlDictWatch {
     /// a second ago, or while the controlDict is missing for a moment (an editor replacing
     /// it).
     pub fn changed(&mut self) -> Option<ControlChange> {
-        modified(&self.files[0].path)?;
-        if self.files.iter().any(WatchedFile::settling) {
+        // One look at each file's time, which both the wait and the taking go by.
+        let stamps: Vec<Option<SystemTime>> =
+            self.files.iter().map(|f| modified(&f.path)).collect();
+        stamps[0]?;
+        if stamps.iter().flatten().any(|&stamp| settling(stamp)) {
             return None;
         }
         // every file's change taken, not only the first one's
         let mut any = std::mem::take(&mut self.put_off);
-        for file in &mut self.files {
-            any |= file.take_change();
+        for (file, stamp) in self.files.iter_mut().zip(stamps) {
+            any |= file.take_change(stamp);
         }
         if !any {
             return None;
@@ -148,7 +147,7 @@ impl ControlDictWatch {
                 Some(k) => old.swap_remove(k),
                 None => {
                     let file = WatchedFile::new(path.clone());
-                    settling |= file.settling();
+                    settling |= file.seen.is_some_and(self::settling);
                     file
                 }
             };
@@ -156,6 +155,12 @@ impl ControlDictWatch {
         }
         settling
     }
+}
+
+/// Whether a file modified at `stamp` changed less than [`SETTLE`] ago (it may be
+/// half-written).
+fn settling(stamp: SystemTime) -> bool {
+    age(stamp) < SETTLE
 }
 
 /// Time since `stamp` (a time in the future, a clock's skew, counts as old).
