@@ -5,7 +5,7 @@ mod support;
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 use support::*;
 
@@ -29,6 +29,14 @@ fn cavity(scratch: &Scratch, name: &str, entries: &[(&str, &str)]) -> PathBuf {
     case
 }
 
+/// Runs `case` to its end, which must succeed.
+fn completed(case: &Path) -> Output {
+    let out = fsim(case, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    out
+}
+
 #[test]
 fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
     let scratch = Scratch::new("stop-at");
@@ -37,23 +45,13 @@ fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
     let plan = fsim(&case, &["-dry-run"]);
     let plan = String::from_utf8_lossy(&plan.stdout);
     assert!(plan.contains("Steps   : about 1 of"), "{plan}");
-    let out = fsim(&case, &[]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    completed(&case);
     assert_eq!(times(&case), [0.0, 0.005]);
     assert!(case.join("0.005/restart.bin").exists());
 
     // noWriteNow: one step, not written
     let case = cavity(&scratch, "noWriteNow", &[("stopAt", "noWriteNow")]);
-    let out = fsim(&case, &[]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = completed(&case);
     assert_eq!(times(&case), [0.0]);
     let log = String::from_utf8_lossy(&out.stdout);
     assert!(
@@ -71,12 +69,7 @@ fn stop_at_in_the_file_ends_the_run_after_one_step_or_at_the_next_write() {
             ("writeInterval", "0.05"),
         ],
     );
-    let out = fsim(&case, &[]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    completed(&case);
     assert_eq!(times(&case), [0.0, 0.05]);
 
     // nextWrite at a wall-clock write: the plan counts the steps to it at its timed cost
@@ -355,13 +348,8 @@ fn clock_time_writes_every_interval_of_wall_time() {
         ],
     );
     let start = Instant::now();
-    let out = fsim(&case, &[]);
+    completed(&case);
     let wall = start.elapsed().as_secs_f64();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     // 4,000 steps: at least a few tenths of a second on any machine
     let t = times(&case);
     assert_eq!((t[0], *t.last().unwrap()), (0.0, 20.0));
@@ -378,13 +366,13 @@ fn a_run_stopped_by_write_now_continues_bit_for_bit() {
     let entries = [("endTime", "0.1"), ("writeInterval", "0.05")];
     let whole = cavity(&scratch, "whole", &entries);
     let split = cavity(&scratch, "split", &entries);
-    assert!(fsim(&whole, &[]).status.success());
+    completed(&whole);
     change(&split, "stopAt", "writeNow");
-    assert!(fsim(&split, &[]).status.success());
+    completed(&split);
     assert_eq!(times(&split), [0.0, 0.005]);
     change(&split, "stopAt", "endTime");
     change(&split, "startFrom", "latestTime");
-    assert!(fsim(&split, &[]).status.success());
+    completed(&split);
     for file in ["restart.bin", "fluid.vtk"] {
         let a = fs::read(whole.join("0.1").join(file)).unwrap();
         let b = fs::read(split.join("0.1").join(file)).unwrap();

@@ -391,6 +391,17 @@ mod tests {
     use super::*;
     use crate::case::parse_dict;
 
+    /// `text` read as a controlDict, its notes into `notes`.
+    fn read_with(text: &str, notes: &mut Vec<String>) -> Result<ControlDict, CaseError> {
+        let d = parse_dict(text, "system/controlDict").unwrap();
+        ControlDict::from_dict(&d, notes)
+    }
+
+    /// `text` read as a controlDict.
+    fn read(text: &str) -> Result<ControlDict, CaseError> {
+        read_with(text, &mut Vec::new())
+    }
+
     #[test]
     fn time_names_match_cpp_general_format() {
         assert_eq!(time_name(0.0, 6), "0");
@@ -406,39 +417,25 @@ mod tests {
 
     #[test]
     fn defaults_and_choices() {
-        let d = parse_dict(
+        let mut notes = Vec::new();
+        let c = read_with(
             "endTime 1; deltaT 0.01; writeControl runTime; writeInterval 0.1; writeFormat binary;",
-            "system/controlDict",
+            &mut notes,
         )
         .unwrap();
-        let mut notes = Vec::new();
-        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
         // OpenFOAM's default start (Time::setControls)
         assert_eq!(c.start_from, StartFrom::LatestTime);
         assert_eq!(c.write_control, WriteControl::RunTime);
         assert_eq!(c.time_precision, 6);
         assert_eq!(c.max_co, 1.0);
         assert_eq!(notes.len(), 1);
-        let d = parse_dict(
-            "endTime 1; deltaT 0.01; writeControl adjustable; writeInterval 0.1;",
-            "system/controlDict",
-        )
-        .unwrap();
-        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        let c =
+            read("endTime 1; deltaT 0.01; writeControl adjustable; writeInterval 0.1;").unwrap();
         assert_eq!(c.write_control, WriteControl::AdjustableRunTime);
-        let d = parse_dict(
-            "endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;",
-            "system/controlDict",
-        )
-        .unwrap();
-        let c = ControlDict::from_dict(&d, &mut notes).unwrap();
+        let c = read("endTime 1; deltaT 0.01; writeControl clockTime; writeInterval 1;").unwrap();
         assert_eq!(c.write_control, WriteControl::ClockTime);
-        let d = parse_dict(
-            "endTime 1; deltaT 0.01; writeControl wallTime; writeInterval 1;",
-            "system/controlDict",
-        )
-        .unwrap();
-        let e = ControlDict::from_dict(&d, &mut notes).unwrap_err();
+        let e =
+            read("endTime 1; deltaT 0.01; writeControl wallTime; writeInterval 1;").unwrap_err();
         assert_eq!((e.line, e.col), (1, 38));
         assert!(e
             .message
@@ -447,10 +444,6 @@ mod tests {
 
     #[test]
     fn stop_at_and_run_time_modifiable() {
-        let read = |text: &str| {
-            let d = parse_dict(text, "system/controlDict").unwrap();
-            ControlDict::from_dict(&d, &mut Vec::new())
-        };
         let base = "deltaT 0.01; writeControl timeStep; writeInterval 10;";
         let c = read(&format!("{base} endTime 1;")).unwrap();
         assert_eq!(c.stop_at, StopAt::EndTime);
@@ -480,12 +473,8 @@ mod tests {
 
     #[test]
     fn write_frequency_a_fractional_step_count_and_a_negative_purge_as_openfoam_reads_them() {
-        let read = |text: &str, notes: &mut Vec<String>| {
-            let d = parse_dict(text, "system/controlDict").unwrap();
-            ControlDict::from_dict(&d, notes)
-        };
         let mut notes = Vec::new();
-        let c = read(
+        let c = read_with(
             "endTime 1; deltaT 0.01; writeControl runTime; writeFrequency 0.1;",
             &mut notes,
         )
@@ -493,7 +482,7 @@ mod tests {
         assert_eq!(c.write_interval, 0.1);
         assert!(notes.is_empty());
         // label(writeInterval) steps, with a note
-        let c = read(
+        let c = read_with(
             "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 2.5; purgeWrite -1;",
             &mut notes,
         )
@@ -506,7 +495,7 @@ mod tests {
         );
         assert!(notes[1].contains("purgeWrite -1 is negative"), "{notes:?}");
         // below one step is still refused, at the value
-        let e = read(
+        let e = read_with(
             "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 0.5;",
             &mut notes,
         )
@@ -517,19 +506,18 @@ mod tests {
                 .contains("at least 1 for 'writeInterval', found 0.5"),
             "{e}"
         );
-        let e = read("endTime 1; deltaT 0.01; writeControl timeStep;", &mut notes).unwrap_err();
+        let e =
+            read_with("endTime 1; deltaT 0.01; writeControl timeStep;", &mut notes).unwrap_err();
         assert!(e.message.contains("writeInterval"), "{e}");
     }
 
     #[test]
     fn signal_switches_as_openfoam_names_them() {
         let read = |switches: &str| {
-            let text = format!(
+            read(&format!(
                 "endTime 1; deltaT 0.01; writeControl timeStep; writeInterval 1; \
                  OptimisationSwitches {{ {switches} }}"
-            );
-            let d = parse_dict(&text, "system/controlDict").unwrap();
-            ControlDict::from_dict(&d, &mut Vec::new())
+            ))
         };
         let c = read("writeNowSignal 12; stopAtWriteNowSignal 10;").unwrap();
         assert_eq!(
