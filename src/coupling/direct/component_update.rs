@@ -3,7 +3,7 @@
 //! spheres, the candidate forcing faces next to them, and each forcing face's stencil.
 
 use super::face_lattice::FaceLattice;
-use super::forced_face::{ForcingFace, ForcingLine, InteriorFace, FLUID, FORCING};
+use super::forced_face::{ForcingFace, ForcingLine, GapFace, InteriorFace, FLUID, FORCING};
 use super::rigid_sphere::RigidSphere;
 use rayon::prelude::*;
 
@@ -23,6 +23,7 @@ pub(super) struct ComponentUpdate<'a> {
     pub(super) touched: &'a mut Vec<u32>,
     pub(super) interior: &'a mut Vec<InteriorFace>,
     pub(super) forcing: &'a mut Vec<ForcingFace>,
+    pub(super) gaps: &'a mut Vec<GapFace>,
     pub(super) candidates: &'a mut Vec<Candidate>,
     pub(super) sites: &'a mut Vec<[i32; 3]>,
     /// Per sphere, where its interior faces start in the lists (and their total last).
@@ -37,11 +38,15 @@ impl ComponentUpdate<'_> {
         self.touched.clear();
         self.interior.clear();
         self.forcing.clear();
+        self.gaps.clear();
         self.sites.clear();
         self.candidates.clear();
         self.mark_interior(spheres);
         self.mark_candidates();
         self.build_forcing(spheres, quadratic);
+        if quadratic {
+            self.find_gaps(spheres);
+        }
     }
 
     /// Faces inside a sphere (the first sphere in order that holds them). The spheres'
@@ -132,6 +137,19 @@ impl ComponentUpdate<'_> {
                 .par_iter()
                 .with_min_len(CHUNK)
                 .map(|candidate| forcing_face(lat, labels, sites, candidate, spheres, quadratic)),
+        );
+    }
+
+    /// The forcing faces whose linear stencil is a gap's (see [`GapFace`]), in list order.
+    fn find_gaps(&mut self, spheres: &[RigidSphere]) {
+        let (lat, labels, forcing) = (&self.lattice, &self.labels[..], &self.forcing[..]);
+        const CHUNK: usize = 1024;
+        self.gaps.par_extend(
+            forcing
+                .par_iter()
+                .enumerate()
+                .with_min_len(CHUNK)
+                .filter_map(|(i, f)| gap_face(lat, labels, spheres, i, f)),
         );
     }
 }
@@ -275,7 +293,14 @@ fn forcing_face(
             [lat.cells(s1), lat.cells(s2)],
             [2.0 * t / (t + h), -t / (t + 2.0 * h)],
         ),
-        (Some((n1, s1)), _) => ([n1, n1], [lat.cells(s1); 2], [t / (t + h), 0.0]),
+        (Some((n1, s1)), _) => {
+            let gap = quadratic.then(|| far_wall(lat, labels, spheres, s1, line));
+            let weight = match gap.flatten() {
+                Some((_, distance)) => GapFace::weights(t, distance, h).0,
+                None => t / (t + h),
+            };
+            ([n1, n1], [lat.cells(s1); 2], [weight, 0.0])
+        }
         (None, _) => ([slot, slot], [cells, cells], [0.0, 0.0]),
     };
     ForcingFace {
@@ -287,4 +312,64 @@ fn forcing_face(
         wall,
         line: line.pack(),
     }
+}
+
+/// The sphere a forcing face's line enters beyond a gap (see [`GapFace`]): past the face's
+/// fluid face `outer`, the next face is forced and the one after inside a sphere. That
+/// sphere and the distance from the face to where the line enters it.
+fn far_wall(
+    lat: &FaceLattice,
+    labels: &[u32],
+    spheres: &[RigidSphere],
+    outer: [usize; 3],
+    line: ForcingLine,
+) -> Option<(usize, f64)> {
+    let away = -line.step;
+    let forced = lat.adjacent(outer, line.d, away)?;
+    if labels[lat.layout.index(forced[0], forced[1], forced[2])] != FORCING {
+        return None;
+    }
+    let inside = lat.adjacent(forced, line.d, away);
+    let k = inside_at(lat, labels, inside)?;
+    // From the face inside (three faces out): its nearest image of the sphere is the one
+    // the line enters, where the face's own may be another (a sphere facing its own image).
+    let h = lat.grid.h[line.d];
+    let mut rel = lat.relative(lat.site_position(inside?), &spheres[k]);
+    rel[line.d] -= away as f64 * 3.0 * h;
+    let distance = FaceLattice::entry_distance(rel, spheres[k].radius, line.d, away)?;
+    // The line enters the sphere beyond the forced face, two cells out or more; the guard
+    // keeps the weights bounded whatever the rounding.
+    (distance > 1.5 * h).then_some((k, distance))
+}
+
+/// The gap term of forcing face `index` (`f`), if its stencil is a gap's: the same search
+/// as [`forcing_face`]'s, from the same position.
+fn gap_face(
+    lat: &FaceLattice,
+    labels: &[u32],
+    spheres: &[RigidSphere],
+    index: usize,
+    f: &ForcingFace,
+) -> Option<GapFace> {
+    if f.neighbours[0] != f.neighbours[1] || f.neighbours[0] == f.slot {
+        return None;
+    }
+    let line = ForcingLine::unpack(f.line);
+    let site = lat.slot_site(f.slot as usize);
+    let outer = lat.adjacent(site, line.d, -line.step)?;
+    let x = lat.site_position(site);
+    let (k, distance) = far_wall(lat, labels, spheres, outer, line)?;
+    let t = lat.surface_distance(x, &spheres[line.sphere], line);
+    let far = ForcingLine {
+        sphere: k,
+        d: line.d,
+        step: -line.step,
+    };
+    Some(GapFace {
+        face: index as u32,
+        sphere: k as u32,
+        distance,
+        weight: GapFace::weights(t, distance, lat.grid.h[line.d]).1,
+        wall: lat.velocity_beyond(x, distance, far, &spheres[k]),
+    })
 }

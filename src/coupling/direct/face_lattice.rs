@@ -30,9 +30,15 @@ impl FaceLattice<'_> {
     /// Position of the sample at padded slot `slot` (its lattice index wrapped into the box).
     #[inline]
     pub(super) fn slot_position(&self, slot: usize) -> [f64; 3] {
+        self.site_position(self.slot_site(slot))
+    }
+
+    /// Padded indices of padded slot `slot`.
+    #[inline]
+    pub(super) fn slot_site(&self, slot: usize) -> [usize; 3] {
         let dims = self.layout.dims;
         let column = slot / dims[0];
-        self.site_position([slot - column * dims[0], column % dims[1], column / dims[1]])
+        [slot - column * dims[0], column % dims[1], column / dims[1]]
     }
 
     /// Rigid velocity (this component) of `sphere` at the face in slot `slot`.
@@ -56,6 +62,31 @@ impl FaceLattice<'_> {
         let q = rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] - sphere.radius * sphere.radius;
         let disc = (b * b - q).max(0.0);
         (-b - disc.sqrt()).clamp(0.0, self.grid.h[line.d])
+    }
+
+    /// Distance along `step e_d` from a point at `rel` from a sphere's centre, outside it, to
+    /// where the line enters the sphere (the nearer root of `|rel + s step e_d| = radius`),
+    /// if it does.
+    #[inline]
+    pub(super) fn entry_distance(rel: [f64; 3], radius: f64, d: usize, step: isize) -> Option<f64> {
+        let b = step as f64 * rel[d];
+        let q = rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] - radius * radius;
+        let disc = b * b - q;
+        (disc >= 0.0 && b < 0.0).then(|| -b - disc.sqrt())
+    }
+
+    /// Rigid velocity (this component) of `sphere` at `t` along `line` from `x`, taken at the
+    /// periodic image of the sphere nearest that point (a far wall: [`super::GapFace`]).
+    #[inline]
+    pub(super) fn velocity_beyond(
+        &self,
+        mut x: [f64; 3],
+        t: f64,
+        line: ForcingLine,
+        sphere: &RigidSphere,
+    ) -> f64 {
+        x[line.d] += line.step as f64 * t;
+        sphere.velocity_at(self.relative(x, sphere))[self.c]
     }
 
     /// Rigid velocity (this component) of `sphere` at `t` from the face at `x` along its line.

@@ -30,13 +30,55 @@ pub struct ForcingFace {
     pub neighbours: [u32; 2],
     pub neighbour_cells: [[u32; 2]; 2],
     /// Interpolation weights: linear `[δ/(δ+h), 0]`, quadratic
-    /// `[2δ/(δ+h), −δ/(δ+2h)]`; `[0, 0]` for the staircase fallback.
+    /// `[2δ/(δ+h), −δ/(δ+2h)]`, a gap's `[L₁, 0]` ([`GapFace`]); `[0, 0]` for the staircase
+    /// fallback.
     pub weights: [f64; 2],
     /// Rigid velocity (this component) where the line crosses the surface, m/s.
     pub wall: f64,
     /// The sphere the line crosses and the line's direction from the face, packed by
     /// `ForcingLine` (fills the padding: the face stays 64 bytes).
     pub line: u32,
+}
+
+/// A forcing face in a gap: beyond its fluid face `f₁` the next face is forced and the one
+/// after lies inside a sphere (the same or another), so the quadratic stencil has no second
+/// fluid face. Instead of falling back to linear, the face takes the quadratic through its
+/// own wall (at `−δ` along the line), `f₁` (at `h`) and the far wall (at `s`, where the line
+/// enters the other sphere):
+///
+/// ```text
+///   u_f = L_w w + L₁ u₁ + L_s w_s,   L₁ = δ s / ((h + δ)(s − h)),   L_s = −δ h / ((s + δ)(s − h))
+/// ```
+///
+/// exact for the parabolic profile of flow through a narrow gap, where the linear stencil
+/// sets the face too slow (it over-resists the gap). The face keeps `L₁` as its stencil
+/// weight; this adds `L_s (w_s − w)` after it. `s − h` is at least `h` (the far wall lies
+/// beyond the forced face `f₂`), so the weights stay bounded: `0 ≤ L₁ ≤ 1`, `−⅓ ≤ L_s ≤ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GapFace {
+    /// The face's index in its component's forcing list.
+    pub face: u32,
+    /// The sphere the line enters beyond the gap.
+    pub sphere: u32,
+    /// Distance `s` from the face along the line, away from its own sphere, to that
+    /// sphere's surface, m.
+    pub distance: f64,
+    /// `L_s`.
+    pub weight: f64,
+    /// Rigid velocity (this component) of that sphere where the line enters it, m/s.
+    pub wall: f64,
+}
+
+impl GapFace {
+    /// `(L₁, L_s)` for a face at `delta` from its own wall and `distance` from the far one,
+    /// on a line of spacing `h`.
+    pub(super) fn weights(delta: f64, distance: f64, h: f64) -> (f64, f64) {
+        let beyond = distance - h;
+        (
+            delta * distance / ((h + delta) * beyond),
+            -delta * h / ((distance + delta) * beyond),
+        )
+    }
 }
 
 /// The interpolation line of a [`ForcingFace`]: the sphere it crosses and its direction
@@ -80,3 +122,27 @@ pub struct ClosedCell {
 pub(super) const FLUID: u32 = 0;
 /// Label of a forcing face (inside faces hold `sphere index + 1`).
 pub(super) const FORCING: u32 = u32::MAX;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gap_weights_are_the_quadratic_through_both_walls_and_the_fluid_face() {
+        let mut rng = crate::particles::SplitMix64::new(17);
+        let h = 0.37;
+        for _ in 0..200 {
+            let delta = h * rng.next_f64();
+            let distance = h * (2.0 + rng.next_f64());
+            let (fluid, far) = GapFace::weights(delta, distance, h);
+            let own = 1.0 - fluid - far;
+            let [a, b, c] = [0; 3].map(|_| 2.0 * rng.next_f64() - 1.0);
+            let q = |s: f64| a + b * s + c * s * s;
+            let value = own * q(-delta) + fluid * q(h) + far * q(distance);
+            assert!((value - q(0.0)).abs() < 1e-12, "δ {delta}, s {distance}");
+            assert!((0.0..=1.0).contains(&fluid) && (-1.0 / 3.0..=0.0).contains(&far));
+        }
+        // On its own wall the face is the wall's.
+        assert_eq!(GapFace::weights(0.0, 2.5 * h, h), (0.0, -0.0));
+    }
+}

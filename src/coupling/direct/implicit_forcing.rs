@@ -195,6 +195,10 @@ impl ImplicitForcing {
                 let current = u[f.slot as usize] - a1 * u[n1] - a2 * u[n2];
                 self.rhs.push(target - current);
             }
+            for g in boundary.gap_faces(c) {
+                let f = &faces[g.face as usize];
+                self.rhs[g.face as usize] += g.weight * (g.wall - f.wall);
+            }
             self.field = stage.lend_box(c);
             self.field.clear();
             self.field.resize(stage.box_len(c), 0.0);
