@@ -905,17 +905,9 @@ mod tests {
                 );
                 // the rigid velocity of the moved sphere at the face
                 let s = &spheres[now.sphere as usize];
-                let l = PaddedLayout::new([24; 3]);
-                let slot = now.slot as usize;
-                let padded = [
-                    slot % l.dims[0],
-                    (slot / l.dims[0]) % l.dims[1],
-                    slot / l.plane_len(),
-                ];
+                let x = face_position(&PaddedLayout::new([24; 3]), &grid, c, now.slot);
                 let rel: [f64; 3] = std::array::from_fn(|d| {
-                    let offset = if d == c { 0.0 } else { 0.5 };
-                    let x = grid.origin[d] + (padded[d] as f64 - 1.0 + offset) * h;
-                    let r = x - s.centre[d];
+                    let r = x[d] - s.centre[d];
                     r - 2.4 * (r / 2.4).round()
                 });
                 assert!((now.target - s.velocity_at(rel)[c]).abs() < 1e-12);
@@ -970,6 +962,20 @@ mod tests {
         assert!((u[0][f.slot as usize] - (1.0 + 0.2 * 0.5 / h)).abs() < 1e-12);
     }
 
+    /// Position of the component-`c` face at padded slot `slot`, computed afresh.
+    fn face_position(layout: &PaddedLayout, grid: &Grid, c: usize, slot: u32) -> [f64; 3] {
+        let slot = slot as usize;
+        let padded = [
+            slot % layout.dims[0],
+            (slot / layout.dims[0]) % layout.dims[1],
+            slot / layout.plane_len(),
+        ];
+        std::array::from_fn(|d| {
+            let offset = if d == c { 0.0 } else { 0.5 };
+            grid.origin[d] + (padded[d] as f64 - 1.0 + offset) * grid.h[d]
+        })
+    }
+
     /// Distance from `x` along `step e_d` to where the line enters `sphere` (box `length`).
     fn entry(x: [f64; 3], sphere: &RigidSphere, d: usize, step: f64, length: f64) -> f64 {
         let rel: [f64; 3] = std::array::from_fn(|k| {
@@ -990,6 +996,7 @@ mod tests {
         let (h, n) = (0.1, 32);
         let length = n as f64 * h;
         let mut ib = periodic_boundary(n, h);
+        let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
         let a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
         let mut b = RigidSphere::fixed([1.013 + 1.2 + 0.26, 1.607, 1.594], 0.6);
         b.velocity = [0.4, 1.5, -0.5];
@@ -1012,15 +1019,7 @@ mod tests {
                     let f = &ib.forcing_faces(c)[g.face as usize];
                     let line = ForcingLine::unpack(f.line);
                     let slot = f.slot as usize;
-                    let padded = [
-                        slot % layout.dims[0],
-                        (slot / layout.dims[0]) % layout.dims[1],
-                        slot / layout.plane_len(),
-                    ];
-                    let x: [f64; 3] = std::array::from_fn(|d| {
-                        let offset = if d == c { 0.0 } else { 0.5 };
-                        (padded[d] as f64 - 1.0 + offset) * h
-                    });
+                    let x = face_position(&layout, &grid, c, f.slot);
                     let (own, far) = (&spheres[line.sphere], &spheres[g.sphere as usize]);
                     let step = line.step as f64;
                     let delta = entry(x, own, line.d, step, length);
