@@ -214,11 +214,12 @@ fn fsimfoam_semi_implicit_schemes_step_by_the_courant_number() {
 /// fluid face, while the forcing faces' constraints hold to the GMRES tolerance (here 1e-12,
 /// so that re-imposing the forcing faces afterwards changes them by round-off only); and
 /// the correction is not small (the unconstrained solve had smeared them). With and without
-/// the warm start.
+/// the warm start, and for a sphere that faces its own periodic image across gaps of 2.5
+/// cells (r/h = 6.75), whose forcing faces there carry the far wall's term (`GapFace`).
 #[test]
 fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
     use fsim::fluid::PredictedVelocity;
-    for warm_start in [false, true] {
+    for (warm_start, radius) in [(false, 0.25), (true, 0.25), (false, 0.421875)] {
         let n = 16;
         let h = 1.0 / n as f64;
         let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
@@ -229,10 +230,12 @@ fn the_constrained_solve_keeps_the_helmholtz_rows_on_fluid_faces() {
         let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
         coupling.implicit_forcing_mut().warm_start = warm_start;
         coupling.implicit_forcing_mut().tolerance = 1e-12;
-        let mut sphere = RigidSphere::fixed([0.51, 0.47, 0.53], 0.25);
+        let mut sphere = RigidSphere::fixed([0.51, 0.47, 0.53], radius);
         sphere.velocity = [0.3, -0.2, 0.1];
         sphere.angular_velocity = [0.0, 0.0, 2.0];
         coupling.set_spheres(&[sphere], &[0]);
+        let gaps: usize = (0..3).map(|c| coupling.boundary().gap_faces(c).len()).sum();
+        assert_eq!(gaps > 0, radius > 0.4, "{gaps} faces in gaps");
         let layout = fluid.layout().clone();
         let dt = 5.0 * h * h; // 30 times RK3's viscous bound
         let mut worst_row: f64 = 0.0;
