@@ -336,10 +336,11 @@ fn far_wall(
     let h = lat.grid.h[line.d];
     let mut rel = lat.relative(lat.site_position(inside?), &spheres[k]);
     rel[line.d] -= away as f64 * 3.0 * h;
+    // It enters between the forced face and the face inside, two to three cells out (the
+    // forced face lies outside every sphere, and a sphere is convex); the floor at 2h holds
+    // the weights' bounds against rounding.
     let distance = FaceLattice::entry_distance(rel, spheres[k].radius, line.d, away)?;
-    // The line enters the sphere beyond the forced face, two cells out or more; the guard
-    // keeps the weights bounded whatever the rounding.
-    (distance > 1.5 * h).then_some((k, distance))
+    Some((k, distance.max(2.0 * h)))
 }
 
 /// The gap term of forcing face `index` (`f`), if its stencil is a gap's: the same search

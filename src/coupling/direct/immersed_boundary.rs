@@ -989,17 +989,19 @@ mod tests {
 
     #[test]
     fn a_face_in_a_gap_takes_the_quadratic_through_both_walls() {
-        // Two spheres facing each other along x across a gap of 2.6 cells: one at rest, the
-        // other translating. The fluid is at rest, so a face in the gap gets only the walls'
-        // share of the quadratic through its own wall (−δ), its fluid face (h) and the far
-        // wall (s).
+        // Two spheres facing each other along x across a gap of 2.6 cells: one spinning, the
+        // other translating and spinning. The fluid is at rest, so a face in the gap gets only
+        // the walls' share of the quadratic through its own wall (−δ), its fluid face (h) and
+        // the far wall (s).
         let (h, n) = (0.1, 32);
         let length = n as f64 * h;
         let mut ib = periodic_boundary(n, h);
         let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
-        let a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
+        let mut a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
+        a.angular_velocity = [0.5, -1.0, 0.8];
         let mut b = RigidSphere::fixed([1.013 + 1.2 + 0.26, 1.607, 1.594], 0.6);
         b.velocity = [0.4, 1.5, -0.5];
+        b.angular_velocity = [-2.0, 0.3, 1.1];
         ib.update(&[a, b]);
         let built: Vec<Vec<GapFace>> = (0..3).map(|c| ib.gap_faces(c).to_vec()).collect();
         ib.refresh(&[a, b]);
@@ -1030,7 +1032,17 @@ mod tests {
                     );
                     let own_weight = h * s / ((h + delta) * (s + delta));
                     let far_weight = -delta * h / ((s + delta) * (s - h));
-                    let expected = own_weight * own.velocity[c] + far_weight * far.velocity[c];
+                    // The walls' rigid velocities where the line crosses them.
+                    let wall = |sphere: &RigidSphere, along: f64| {
+                        let rel: [f64; 3] = std::array::from_fn(|k| {
+                            let point = x[k] + if k == line.d { along } else { 0.0 };
+                            let r = point - sphere.centre[k];
+                            r - length * (r / length).round()
+                        });
+                        sphere.velocity_at(rel)[c]
+                    };
+                    let expected =
+                        own_weight * wall(own, step * delta) + far_weight * wall(far, -step * s);
                     assert!(
                         (u[c][slot] - expected).abs() < 1e-12,
                         "{} {expected}",

@@ -27,7 +27,8 @@ pub struct SteadyStokesFlow {
 /// component an FFT Poisson solve `−ν∇²v = f − ⟨f⟩`, then the projection of `v`; on a
 /// periodic MAC grid the Laplacian commutes with the discrete gradient and divergence, so
 /// this is the exact discrete Stokes solve). The forced faces' rows (`u = target` inside,
-/// `u = w + a (u₂ − w)` on forcing faces) form a non-symmetric system for `f`, solved by
+/// `u = w + a (u₂ − w)` on forcing faces, plus a far wall's term in a gap) form a
+/// non-symmetric system for `f`, solved by
 /// GMRES; the driving gradient is `G = −⟨f⟩` (the forces on the spheres balance it).
 /// The steady state this finds is the one the time-stepped explicit schemes converge to
 /// with the same forced faces ([`ImmersedBoundary`]), reached in tens of solves instead of
@@ -55,6 +56,8 @@ struct Row {
     neighbours: [usize; 2],
     weights: [f64; 2],
     target: f64,
+    /// A face in a gap: its far wall's term `L_s (w_s − w)` ([`super::GapFace`]).
+    gap: f64,
 }
 
 impl PeriodicStokesArray {
@@ -89,16 +92,24 @@ impl PeriodicStokesArray {
                     neighbours: [cell; 2],
                     weights: [0.0; 2],
                     target: f.target,
+                    gap: 0.0,
                 });
             }
-            for f in boundary.forcing_faces(c) {
+            let first = rows.len();
+            let forcing = boundary.forcing_faces(c);
+            for f in forcing {
                 rows.push(Row {
                     component: c,
                     cell: unpad(f.slot),
                     neighbours: f.neighbours.map(unpad),
                     weights: f.weights,
                     target: f.wall,
+                    gap: 0.0,
                 });
+            }
+            for g in boundary.gap_faces(c) {
+                let f = &forcing[g.face as usize];
+                rows[first + g.face as usize].gap = g.weight * (g.wall - f.wall);
             }
         }
         let poisson = SpectralPoisson::new(grid.n, grid.h, [AxisKind::Periodic; 3]);
@@ -212,7 +223,10 @@ impl PeriodicStokesArray {
         let rhs: Vec<f64> = self
             .rows
             .iter()
-            .map(|r| (1.0 - r.weights[0] - r.weights[1]) * (r.target - mean_velocity[r.component]))
+            .map(|r| {
+                (1.0 - r.weights[0] - r.weights[1]) * (r.target - mean_velocity[r.component])
+                    + r.gap
+            })
             .collect();
         let mut forces = vec![0.0; rhs.len()];
         let rows = self.rows.clone();
