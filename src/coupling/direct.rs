@@ -48,7 +48,7 @@ pub use direct_settings::DirectSettings;
 pub use field_brick::FieldBrick;
 pub use field_sampler::{FieldSampler, Interpolation};
 pub use field_view::{periodic_directions, FieldView};
-pub use forced_face::{ClosedCell, ForcingFace, GapFace, InteriorFace};
+pub use forced_face::{ClosedCell, ForcingFace, GapFace, InteriorFace, ThroatFace};
 pub use gmres::{gmres, GmresReport, GmresWorkspace};
 pub use immersed_boundary::ImmersedBoundary;
 pub use implicit_forcing::{ImplicitForcing, ImplicitForcingReport};

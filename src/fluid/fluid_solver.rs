@@ -53,6 +53,9 @@ pub struct PredictedVelocity<'a> {
     pub layout: &'a PaddedLayout,
     /// Time at the end of the stage.
     pub time: f64,
+    /// The body force on the fluid in this stage (its settings' plus the
+    /// `meanVelocityForce` gradient), m/s².
+    pub body_force: [f64; 3],
     /// The stage's projection weight: the projection subtracts `tau ∇p`.
     pub tau: f64,
     /// The pressure the coming projection will subtract `tau ∇` of, as last solved
@@ -62,9 +65,10 @@ pub struct PredictedVelocity<'a> {
     /// subtracts an increment that vanishes at steady state (compensating with the last
     /// increment there makes the step unstable).
     pub pressure: &'a [f64],
-    /// The incremental schemes (`EulerRKC`, `EulerCN`, `RK3CN`; empty with the others, and
-    /// on the calls that hand no mass source): the pressure `p` to which the coming
-    /// projection adds its increment `φ`, `∇²φ = (∇·u* − q)/τ`. A hook that sets `q` in a
+    /// The incremental schemes (`EulerRKC`, `EulerCN`, `RK3CN`, on every call; empty with
+    /// the others): the pressure `p` to which the coming projection adds its increment
+    /// `φ`, `∇²φ = (∇·u* − q)/τ` (`EulerRKC`'s stages hand the `p` of its one projection at
+    /// the step's end). A hook that sets `q` in a
     /// cell whose faces it fixes all adds `τ∇²p` there (the projection's discrete
     /// Laplacian), so that the new pressure is harmonic there as a full projection makes
     /// it; else the increment leaves the Laplacian the cell had when it closed in `p` for

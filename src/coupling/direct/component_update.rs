@@ -3,7 +3,9 @@
 //! spheres, the candidate forcing faces next to them, and each forcing face's stencil.
 
 use super::face_lattice::FaceLattice;
-use super::forced_face::{ForcingFace, ForcingLine, GapFace, InteriorFace, FLUID, FORCING};
+use super::forced_face::{
+    ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace, FLUID, FORCING,
+};
 use super::rigid_sphere::RigidSphere;
 use rayon::prelude::*;
 
@@ -24,6 +26,9 @@ pub(super) struct ComponentUpdate<'a> {
     pub(super) interior: &'a mut Vec<InteriorFace>,
     pub(super) forcing: &'a mut Vec<ForcingFace>,
     pub(super) gaps: &'a mut Vec<GapFace>,
+    pub(super) throats: &'a mut Vec<ThroatFace>,
+    /// Scratch: the throats' targets of the last build by slot.
+    pub(super) carried: &'a mut Vec<(u32, f64)>,
     pub(super) candidates: &'a mut Vec<Candidate>,
     pub(super) sites: &'a mut Vec<[i32; 3]>,
     /// Per sphere, where its interior faces start in the lists (and their total last).
@@ -36,9 +41,18 @@ impl ComponentUpdate<'_> {
             self.labels[slot as usize] = FLUID;
         }
         self.touched.clear();
+        self.carried.clear();
+        let forcing = &self.forcing[..];
+        self.carried.extend(
+            self.throats
+                .iter()
+                .map(|t| (forcing[t.face as usize].slot, t.target)),
+        );
+        self.carried.sort_unstable_by_key(|&(slot, _)| slot);
         self.interior.clear();
         self.forcing.clear();
         self.gaps.clear();
+        self.throats.clear();
         self.sites.clear();
         self.candidates.clear();
         self.mark_interior(spheres);
@@ -47,6 +61,7 @@ impl ComponentUpdate<'_> {
         if quadratic {
             self.find_gaps(spheres);
         }
+        self.find_throats(spheres);
     }
 
     /// Faces inside a sphere (the first sphere in order that holds them). The spheres'
@@ -152,6 +167,90 @@ impl ComponentUpdate<'_> {
                 .filter_map(|(i, f)| gap_face(lat, labels, spheres, i, f)),
         );
     }
+}
+
+impl ComponentUpdate<'_> {
+    /// The staircase forcing faces in throats (see [`ThroatFace`]), in list order, each
+    /// with its target of the last build if it was in a throat then.
+    fn find_throats(&mut self, spheres: &[RigidSphere]) {
+        let (lat, labels, forcing) = (&self.lattice, &self.labels[..], &self.forcing[..]);
+        const CHUNK: usize = 1024;
+        self.throats.par_extend(
+            forcing
+                .par_iter()
+                .enumerate()
+                .with_min_len(CHUNK)
+                .filter_map(|(i, f)| throat_face(lat, labels, spheres, i, f)),
+        );
+        let carried = &self.carried[..];
+        for t in self.throats.iter_mut() {
+            let slot = forcing[t.face as usize].slot;
+            if let Ok(k) = carried.binary_search_by_key(&slot, |&(s, _)| s) {
+                t.target = carried[k].1;
+            }
+        }
+    }
+}
+
+/// The throat term of staircase forcing face `index` (`f`), if the far wall lies within two
+/// faces along its line.
+fn throat_face(
+    lat: &FaceLattice,
+    labels: &[u32],
+    spheres: &[RigidSphere],
+    index: usize,
+    f: &ForcingFace,
+) -> Option<ThroatFace> {
+    if f.neighbours[0] != f.slot {
+        return None;
+    }
+    let line = ForcingLine::unpack(f.line);
+    let away = -line.step;
+    let site = lat.slot_site(f.slot as usize);
+    let first = lat.adjacent(site, line.d, away)?;
+    let h = lat.grid.h[line.d];
+    let (k, inside, faces) = match inside_at(lat, labels, Some(first)) {
+        Some(k) => (k, first, 1.0),
+        None => {
+            if labels[lat.layout.index(first[0], first[1], first[2])] != FORCING {
+                return None;
+            }
+            let second = lat.adjacent(first, line.d, away)?;
+            (inside_at(lat, labels, Some(second))?, second, 2.0)
+        }
+    };
+    // From the face inside: its nearest image of the sphere is the one the line enters.
+    let mut rel = lat.relative(lat.site_position(inside), &spheres[k]);
+    rel[line.d] -= away as f64 * faces * h;
+    let distance = FaceLattice::entry_distance(rel, spheres[k].radius, line.d, away)?;
+    let x = lat.site_position(site);
+    let delta = lat.surface_distance(x, &spheres[line.sphere], line);
+    let far = ForcingLine {
+        sphere: k,
+        d: line.d,
+        step: away,
+    };
+    // The lubrication profile across the gap: the distances to both surfaces through the
+    // face, and this component's share across the gap (along the line of centres).
+    let own = lat.relative(x, &spheres[line.sphere]);
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let (r_own, r_far) = (norm(own), norm(rel));
+    let axis: [f64; 3] = std::array::from_fn(|d| own[d] / r_own - rel[d] / r_far);
+    let darcy = ThroatFace::darcy(
+        (r_own - spheres[line.sphere].radius).max(0.0),
+        (r_far - spheres[k].radius).max(0.0),
+        axis[lat.c] / norm(axis).max(f64::MIN_POSITIVE),
+        h,
+    );
+    Some(ThroatFace {
+        face: index as u32,
+        sphere: k as u32,
+        distance,
+        share: delta / (delta + distance).max(f64::MIN_POSITIVE),
+        darcy,
+        wall: lat.velocity_beyond(x, distance, far, &spheres[k]),
+        target: f64::NAN,
+    })
 }
 
 /// Calls `visit(m, site)` for every advanced face inside sphere `s`, in a fixed order: `m`

@@ -84,9 +84,13 @@ impl DirectCoupling {
     pub fn new(fluid: &mut FluidSolver, settings: DirectSettings) -> Self {
         fluid.mass_source_mut();
         let grid = fluid.grid();
+        let mut boundary = ImmersedBoundary::new(grid, fluid.boundary_conditions());
+        if !settings.rigid_throats {
+            boundary.set_throat_viscosity(fluid.settings().nu);
+        }
         DirectCoupling {
             settings,
-            boundary: ImmersedBoundary::new(grid, fluid.boundary_conditions()),
+            boundary,
             h: grid.h.iter().cloned().fold(0.0, f64::max),
             origin: grid.origin,
             length: grid.length(),
@@ -316,8 +320,22 @@ impl DirectCoupling {
             mass_source,
             implicit,
             components,
+            body_force,
             ..
         } = stage;
+        // The throats' flow is driven by the last projection's pressure: the explicit
+        // schemes hand it as `pressure`, `EulerRKC` as the pressure its increment adds to.
+        // The semi-implicit schemes' throats take the walls' line only: driven, with
+        // moving spheres, they diverged (docs/direct_model.md, "Throats").
+        let driving = if implicit.is_some() {
+            None
+        } else if pressure.is_empty() {
+            Some(incremental_pressure)
+        } else {
+            Some(pressure)
+        };
+        self.boundary
+            .set_throat_targets(components, driving, body_force, tau);
         if let Some(mut implicit) = implicit {
             assert_eq!(
                 components, [true; 3],

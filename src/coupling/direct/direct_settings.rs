@@ -18,6 +18,9 @@ use crate::case::{CaseError, Coupling};
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)
 ///     rebuildDistance 0;      // cells a sphere may move before its forced faces are
 ///                             // rebuilt (between builds they follow it); 0: every step
+///     rigidThroats    no;     // yes: faces between walls under two cells apart move with
+///                             // their sphere (the staircase) instead of carrying the
+///                             // lubrication flow ([`super::ThroatFace`])
 /// }
 /// ```
 ///
@@ -32,14 +35,18 @@ pub struct DirectSettings {
     /// Distance (cells) a sphere may move from where its forced faces were built before
     /// they are rebuilt ([`super::ImmersedBoundary::follow`]).
     pub rebuild_distance: f64,
+    /// Hold the faces of throats rigid (the staircase) rather than give them the
+    /// lubrication profile ([`super::ThroatFace`]).
+    pub rigid_throats: bool,
 }
 
-const KEYWORDS: [&str; 5] = [
+const KEYWORDS: [&str; 6] = [
     "surfaceOffset",
     "interpolation",
     "quadrangles",
     "fixedParticles",
     "rebuildDistance",
+    "rigidThroats",
 ];
 
 /// The largest `rebuildDistance`, cells: beyond half a cell a face's role would lag the
@@ -88,6 +95,7 @@ impl DirectSettings {
             settings.integral.quadrangles = (n > 0).then_some(n);
         }
         settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
+        settings.rigid_throats = d.get_bool_or("rigidThroats", false)?;
         if let Some(distance) = d.opt_scalar("rebuildDistance")? {
             if !(0.0..=MAX_REBUILD_DISTANCE).contains(&distance) {
                 let loc = d.get_entry("rebuildDistance")?.value_loc();
@@ -122,9 +130,10 @@ mod tests {
         assert_eq!(s.integral.surface_offset, 3.0);
         let s = settings(
             "model direct; direct { surfaceOffset 2; interpolation linear; quadrangles 600; \
-             fixedParticles yes; rebuildDistance 0.1; }",
+             fixedParticles yes; rebuildDistance 0.1; rigidThroats yes; }",
         )
         .unwrap();
+        assert!(s.rigid_throats);
         assert_eq!(s.rebuild_distance, 0.1);
         assert_eq!(s.integral.surface_offset, 2.0);
         assert_eq!(s.integral.interpolation, Interpolation::Linear);

@@ -46,7 +46,7 @@
 
 use super::component_update::{Candidate, ComponentUpdate};
 use super::face_lattice::FaceLattice;
-use super::forced_face::{ClosedCell, ForcingFace, ForcingLine, GapFace, InteriorFace};
+use super::forced_face::{ClosedCell, ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace};
 use super::forced_face::{FLUID, FORCING};
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout, SharedSamples};
@@ -73,6 +73,14 @@ pub struct ImmersedBoundary {
     forcing: [Vec<ForcingFace>; 3],
     /// The forcing faces in gaps, with their far walls (quadratic stencil only).
     gaps: [Vec<GapFace>; 3],
+    /// The staircase forcing faces in throats, with their far walls and targets.
+    throats: [Vec<ThroatFace>; 3],
+    /// Scratch of [`Self::update`]: each component's throat targets by slot, carried
+    /// through the build.
+    carried: [Vec<(u32, f64)>; 3],
+    /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, the
+    /// staircase).
+    throat_viscosity: f64,
     /// Cells with every face forced, and those of the previous update (their mass source
     /// is cleared at the next imposition).
     closed: Vec<ClosedCell>,
@@ -119,6 +127,9 @@ impl ImmersedBoundary {
             interior: Default::default(),
             forcing: Default::default(),
             gaps: Default::default(),
+            throats: Default::default(),
+            carried: Default::default(),
+            throat_viscosity: 0.0,
             closed: Vec::new(),
             previous_closed: Vec::new(),
             closed_sources: Vec::new(),
@@ -132,6 +143,49 @@ impl ImmersedBoundary {
             offsets: Default::default(),
             quadratic: true,
             built: Vec::new(),
+        }
+    }
+
+    /// The kinematic viscosity (m²/s) of the pressure-driven flow through throats
+    /// ([`ThroatFace`]); 0 holds the throats' faces rigid (the staircase).
+    pub fn set_throat_viscosity(&mut self, nu: f64) {
+        self.throat_viscosity = nu;
+    }
+
+    /// Component `c`'s forcing faces in throats (indices into [`Self::forcing_faces`]).
+    pub fn throat_faces(&self, c: usize) -> &[ThroatFace] {
+        &self.throats[c]
+    }
+
+    /// Sets the targets of the throats' faces of `components` for the coming stage
+    /// ([`ThroatFace::target`]): the lubrication profile driven by `body_force` less the
+    /// gradient of `pressure` (kinematic, the last projection's), relaxed toward it at the
+    /// gain [`ThroatFace::RELAXED_GAIN`]; without a pressure, the walls' line alone.
+    pub fn set_throat_targets(
+        &mut self,
+        components: [bool; 3],
+        pressure: Option<&[f64]>,
+        body_force: [f64; 3],
+        tau: f64,
+    ) {
+        let nu = if pressure.is_some() {
+            self.throat_viscosity
+        } else {
+            0.0
+        };
+        let pressure = pressure.unwrap_or_default();
+        for c in (0..3).filter(|&c| components[c]) {
+            let h = self.grid.h[c];
+            let forcing = &self.forcing[c];
+            for t in self.throats[c].iter_mut() {
+                let f = &forcing[t.face as usize];
+                let gradient = if pressure.is_empty() {
+                    0.0
+                } else {
+                    (pressure[f.cells[1] as usize] - pressure[f.cells[0] as usize]) / h
+                };
+                t.target = t.relaxed(f.wall, body_force[c] - gradient, nu, tau);
+            }
         }
     }
 
@@ -270,6 +324,17 @@ impl ImmersedBoundary {
                 let x = lattice.slot_position(f.slot as usize);
                 g.wall = lattice.velocity_beyond(x, g.distance, far, &spheres[far.sphere]);
             }
+            for g in self.throats[c].iter_mut() {
+                let f = &forcing[g.face as usize];
+                let line = ForcingLine::unpack(f.line);
+                let far = ForcingLine {
+                    sphere: g.sphere as usize,
+                    d: line.d,
+                    step: -line.step,
+                };
+                let x = lattice.slot_position(f.slot as usize);
+                g.wall = lattice.velocity_beyond(x, g.distance, far, &spheres[far.sphere]);
+            }
         }
     }
 
@@ -292,6 +357,8 @@ impl ImmersedBoundary {
         let [i0, i1, i2] = &mut self.interior;
         let [f0, f1, f2] = &mut self.forcing;
         let [g0, g1, g2] = &mut self.gaps;
+        let [h0, h1, h2] = &mut self.throats;
+        let [k0, k1, k2] = &mut self.carried;
         let [c0, c1, c2] = &mut self.candidates;
         let [s0, s1, s2] = &mut self.sites;
         let [o0, o1, o2] = &mut self.offsets;
@@ -312,6 +379,8 @@ impl ImmersedBoundary {
                 interior: i0,
                 forcing: f0,
                 gaps: g0,
+                throats: h0,
+                carried: k0,
                 candidates: c0,
                 sites: s0,
                 offsets: o0,
@@ -323,6 +392,8 @@ impl ImmersedBoundary {
                 interior: i1,
                 forcing: f1,
                 gaps: g1,
+                throats: h1,
+                carried: k1,
                 candidates: c1,
                 sites: s1,
                 offsets: o1,
@@ -334,6 +405,8 @@ impl ImmersedBoundary {
                 interior: i2,
                 forcing: f2,
                 gaps: g2,
+                throats: h2,
+                carried: k2,
                 candidates: c2,
                 sites: s2,
                 offsets: o2,
@@ -631,6 +704,11 @@ impl ImmersedBoundary {
                 let f = &self.forcing[c][g.face as usize];
                 let slot = f.slot as usize;
                 u.write(slot, u.read(slot) + g.weight * (g.wall - f.wall));
+            }
+            // The throats' faces, at the targets of this stage (they read no face).
+            for t in &self.throats[c] {
+                let f = &self.forcing[c][t.face as usize];
+                u.write(f.slot as usize, t.target + correction(f.cells));
             }
         }
         if let Some(q) = mass_source {
@@ -1056,5 +1134,46 @@ mod tests {
             b.velocity = [-0.3, 0.7, 2.0];
             ib.refresh(&[a, b]);
         }
+    }
+
+    #[test]
+    fn a_throat_keeps_its_target_through_a_rebuild_and_moves_its_walls_between() {
+        // Two spheres along x across a gap of 1.3 cells: faces between them have no fluid face
+        // before the far wall.
+        let (h, n) = (0.1, 32);
+        let mut ib = periodic_boundary(n, h);
+        ib.set_throat_viscosity(1e-2);
+        let a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
+        let mut b = RigidSphere::fixed([1.013 + 1.2 + 0.13, 1.607, 1.594], 0.6);
+        b.velocity = [0.0, 0.7, 0.0];
+        ib.update(&[a, b]);
+        let count: usize = (0..3).map(|c| ib.throat_faces(c).len()).sum();
+        assert!(count > 20, "{count} throat faces");
+        // Targets for a pressure rising along y and z and a body force along y.
+        let mut p = vec![0.0; n * n * n];
+        for (cell, v) in p.iter_mut().enumerate() {
+            *v = 0.3 * ((cell / n) % n) as f64 * h + 0.1 * (cell / (n * n)) as f64 * h;
+        }
+        ib.set_throat_targets([true; 3], Some(&p), [0.0, 2.0, 0.0], 1e-3);
+        let slots = |ib: &ImmersedBoundary, c: usize| -> Vec<(u32, f64)> {
+            let f = ib.forcing_faces(c);
+            ib.throat_faces(c)
+                .iter()
+                .map(|t| (f[t.face as usize].slot, t.target))
+                .collect()
+        };
+        let before: Vec<_> = (0..3).map(|c| slots(&ib, c)).collect();
+        assert!(before.iter().flatten().all(|&(_, t)| t.is_finite()));
+        // y-faces move with the far sphere's 0.7 on their walls' line, and the drive adds
+        // to it: some y-target above the own wall's 0.
+        assert!(before[1].iter().any(|&(_, t)| t > 0.01));
+        ib.update(&[a, b]);
+        assert_eq!((0..3).map(|c| slots(&ib, c)).collect::<Vec<_>>(), before);
+        // Between builds the far wall follows its sphere; the targets stay until the next
+        // stage sets them.
+        b.velocity = [0.0, 0.0, 0.0];
+        ib.refresh(&[a, b]);
+        assert!(ib.throat_faces(1).iter().all(|t| t.wall == 0.0));
+        assert_eq!((0..3).map(|c| slots(&ib, c)).collect::<Vec<_>>(), before);
     }
 }

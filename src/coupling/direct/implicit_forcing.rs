@@ -199,6 +199,11 @@ impl ImplicitForcing {
                 let f = &faces[g.face as usize];
                 self.rhs[g.face as usize] += g.weight * (g.wall - f.wall);
             }
+            // A throat's face holds its stage target (its row's weights are the staircase's).
+            for t in boundary.throat_faces(c) {
+                let f = &faces[t.face as usize];
+                self.rhs[t.face as usize] += t.target - f.wall;
+            }
             self.field = stage.lend_box(c);
             self.field.clear();
             self.field.resize(stage.box_len(c), 0.0);

@@ -62,6 +62,7 @@ impl FluidSolver {
             add_scaled(&mut self.u, &self.q, b, &self.layout, &self.momentum_ranges);
             let tau = b * dt;
             hook(PredictedVelocity {
+                body_force: force,
                 grid: &self.grid,
                 layout: &self.layout,
                 time: t0 + c_end * dt,
@@ -153,6 +154,7 @@ impl FluidSolver {
             );
             let tau = 2.0 * alpha * dt;
             hook(PredictedVelocity {
+                body_force: force,
                 grid: &self.grid,
                 layout: &self.layout,
                 time: t0 + c_end * dt,
@@ -256,12 +258,13 @@ impl FluidSolver {
                 // momentum faces only): the hook may read them.
                 std::mem::swap(&mut self.u[c], &mut work.register);
                 hook(PredictedVelocity {
+                    body_force: force,
                     grid: &self.grid,
                     layout: &self.layout,
                     time: t0 + stage.time * dt,
                     tau: dt,
                     pressure: &[],
-                    incremental_pressure: &[],
+                    incremental_pressure: &self.p,
                     velocity: &mut self.u,
                     mass_source: None,
                     implicit: None,
@@ -273,6 +276,7 @@ impl FluidSolver {
         // Only the last stage's velocity is projected: its mass source.
         if let Some(mass_source) = self.mass_source.as_deref_mut() {
             hook(PredictedVelocity {
+                body_force: force,
                 grid: &self.grid,
                 layout: &self.layout,
                 time: t0 + dt,
