@@ -4,7 +4,7 @@
 
 use super::face_lattice::FaceLattice;
 use super::forced_face::{
-    ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace, FLUID, FORCING,
+    ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace, FLUID, FORCING, THROAT,
 };
 use super::rigid_sphere::RigidSphere;
 use rayon::prelude::*;
@@ -36,7 +36,7 @@ pub(super) struct ComponentUpdate<'a> {
 }
 
 impl ComponentUpdate<'_> {
-    pub(super) fn run(&mut self, spheres: &[RigidSphere], quadratic: bool) {
+    pub(super) fn run(&mut self, spheres: &[RigidSphere], quadratic: bool, open_throats: bool) {
         for &slot in self.touched.iter() {
             self.labels[slot as usize] = FLUID;
         }
@@ -62,6 +62,11 @@ impl ComponentUpdate<'_> {
             self.find_gaps(spheres);
         }
         self.find_throats(spheres);
+        if open_throats && std::env::var("FSIM_CLOSED_THROATS").is_err() {
+            for t in self.throats.iter() {
+                self.labels[self.forcing[t.face as usize].slot as usize] = THROAT;
+            }
+        }
     }
 
     /// Faces inside a sphere (the first sphere in order that holds them). The spheres'

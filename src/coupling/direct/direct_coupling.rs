@@ -85,7 +85,8 @@ impl DirectCoupling {
         fluid.mass_source_mut();
         let grid = fluid.grid();
         let mut boundary = ImmersedBoundary::new(grid, fluid.boundary_conditions());
-        if !settings.rigid_throats {
+        // The semi-implicit schemes hold the throats to the walls' line (see `impose`).
+        if !settings.rigid_throats && !fluid.settings().scheme.is_semi_implicit() {
             boundary.set_throat_viscosity(fluid.settings().nu);
         }
         DirectCoupling {
@@ -321,6 +322,7 @@ impl DirectCoupling {
             implicit,
             components,
             body_force,
+            time,
             ..
         } = stage;
         // The throats' flow is driven by the last projection's pressure: the explicit
@@ -335,7 +337,7 @@ impl DirectCoupling {
             Some(pressure)
         };
         self.boundary
-            .set_throat_targets(components, driving, body_force, tau);
+            .set_throat_targets(components, driving, body_force, tau, time);
         if let Some(mut implicit) = implicit {
             assert_eq!(
                 components, [true; 3],

@@ -120,21 +120,22 @@ pub struct ThroatFace {
 
 impl ThroatFace {
     /// The pressure a face reads is the last projection's, so the throat and the
-    /// projection form a loop whose gain per stage is `k / (ν τ)`; at 1 `RK3` diverges
-    /// (φ = 0.343, r/h = 3.9), at ½ every scheme holds. Above ½ the face relaxes toward its
-    /// profile by `ν τ / (2 k)` a stage: the steady state is the profile's, whatever `τ`.
+    /// projection form a loop whose gain is `k / (ν τ)` for a projection of weight `τ`: at
+    /// 1 `RK3` diverged (φ = 0.343, r/h = 3.9), at ½ every scheme held. Where the gain
+    /// would pass ½, the face relaxes toward its profile at the rate `ν / (2k)` over the
+    /// time its stages span (so `EulerRKC`'s several stages per projection relax it once):
+    /// the steady state is the profile's, whatever the step.
     pub const RELAXED_GAIN: f64 = 0.5;
 
-    /// The target for a stage of projection weight `tau`: the profile for the own wall
-    /// velocity `wall` and driving `drive` (body force less pressure gradient), relaxed
-    /// from the last target (a face new to the throats starts from the walls' line, its
-    /// rigid value: the relaxation is then the gap's viscous start-up, over about
-    /// `2k/ν`).
-    pub fn relaxed(&self, wall: f64, drive: f64, nu: f64, tau: f64) -> f64 {
+    /// The target for stages spanning `span` (s) since the last: the profile for the own
+    /// wall velocity `wall` and driving `drive` (body force less pressure gradient),
+    /// relaxed from the last target (a face new to the throats starts from the walls'
+    /// line: the relaxation is then the gap's viscous start-up, over about `2k/ν`).
+    pub fn relaxed(&self, wall: f64, drive: f64, nu: f64, span: f64) -> f64 {
         let couette = wall + self.share * (self.wall - wall);
         let k = if nu > 0.0 { self.darcy / nu } else { 0.0 };
         let profile = couette + k * drive;
-        let limit = Self::RELAXED_GAIN * tau;
+        let limit = Self::RELAXED_GAIN * span;
         let beta = if k > limit { limit / k } else { 1.0 };
         let last = if self.target.is_nan() {
             couette
@@ -197,6 +198,10 @@ pub struct ClosedCell {
 pub(super) const FLUID: u32 = 0;
 /// Label of a forcing face (inside faces hold `sphere index + 1`).
 pub(super) const FORCING: u32 = u32::MAX;
+/// Label of a forcing face in a throat whose flow the pressure drives, set once the build's
+/// searches are done: such a face does not close a cell (its flux answers the pressure, so
+/// continuity holds there; [`ThroatFace`]).
+pub(super) const THROAT: u32 = u32::MAX - 1;
 
 #[cfg(test)]
 mod tests {

@@ -47,7 +47,7 @@
 use super::component_update::{Candidate, ComponentUpdate};
 use super::face_lattice::FaceLattice;
 use super::forced_face::{ClosedCell, ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace};
-use super::forced_face::{FLUID, FORCING};
+use super::forced_face::{FLUID, FORCING, THROAT};
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout, SharedSamples};
 use crate::grid::{nearest_image, Grid};
@@ -78,6 +78,8 @@ pub struct ImmersedBoundary {
     /// Scratch of [`Self::update`]: each component's throat targets by slot, carried
     /// through the build.
     carried: [Vec<(u32, f64)>; 3],
+    /// Time of each component's last stage that set the throats' targets (NaN before).
+    throat_clock: [f64; 3],
     /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, the
     /// staircase).
     throat_viscosity: f64,
@@ -129,6 +131,7 @@ impl ImmersedBoundary {
             gaps: Default::default(),
             throats: Default::default(),
             carried: Default::default(),
+            throat_clock: [f64::NAN; 3],
             throat_viscosity: 0.0,
             closed: Vec::new(),
             previous_closed: Vec::new(),
@@ -157,16 +160,18 @@ impl ImmersedBoundary {
         &self.throats[c]
     }
 
-    /// Sets the targets of the throats' faces of `components` for the coming stage
-    /// ([`ThroatFace::target`]): the lubrication profile driven by `body_force` less the
-    /// gradient of `pressure` (kinematic, the last projection's), relaxed toward it at the
-    /// gain [`ThroatFace::RELAXED_GAIN`]; without a pressure, the walls' line alone.
+    /// Sets the targets of the throats' faces of `components` for the stage ending at
+    /// `time` ([`ThroatFace::target`]): the lubrication profile driven by `body_force` less
+    /// the gradient of `pressure` (kinematic, the last projection's), relaxed toward it over
+    /// the time since the component's last stage (`tau` at its first) at the gain
+    /// [`ThroatFace::RELAXED_GAIN`]; without a pressure, the walls' line alone.
     pub fn set_throat_targets(
         &mut self,
         components: [bool; 3],
         pressure: Option<&[f64]>,
         body_force: [f64; 3],
         tau: f64,
+        time: f64,
     ) {
         let nu = if pressure.is_some() {
             self.throat_viscosity
@@ -175,6 +180,8 @@ impl ImmersedBoundary {
         };
         let pressure = pressure.unwrap_or_default();
         for c in (0..3).filter(|&c| components[c]) {
+            let last = std::mem::replace(&mut self.throat_clock[c], time);
+            let span = if time > last { time - last } else { tau };
             let h = self.grid.h[c];
             let forcing = &self.forcing[c];
             for t in self.throats[c].iter_mut() {
@@ -184,7 +191,7 @@ impl ImmersedBoundary {
                 } else {
                     (pressure[f.cells[1] as usize] - pressure[f.cells[0] as usize]) / h
                 };
-                t.target = t.relaxed(f.wall, body_force[c] - gradient, nu, tau);
+                t.target = t.relaxed(f.wall, body_force[c] - gradient, nu, span);
             }
         }
     }
@@ -225,7 +232,7 @@ impl ImmersedBoundary {
     /// Whether the face of component `c` at padded index `slot` lies inside a sphere.
     pub fn is_inside(&self, c: usize, slot: usize) -> bool {
         let l = self.labels[c][slot];
-        l != FLUID && l != FORCING
+        l != FLUID && l != FORCING && l != THROAT
     }
 
     /// The spheres the forced faces were last built for ([`Self::update`]).
@@ -412,8 +419,9 @@ impl ImmersedBoundary {
                 offsets: o2,
             },
         ];
+        let open_throats = self.throat_viscosity > 0.0;
         jobs.par_iter_mut()
-            .for_each(|job| job.run(spheres, quadratic));
+            .for_each(|job| job.run(spheres, quadratic, open_throats));
         self.find_closed_cells();
     }
 
@@ -582,8 +590,10 @@ impl ImmersedBoundary {
             .sum()
     }
 
+    /// Whether the face's value is fixed by the forcing (a throat's answers the pressure).
     fn forced(&self, c: usize, slot: usize) -> bool {
-        self.labels[c][slot] != FLUID
+        let l = self.labels[c][slot];
+        l != FLUID && l != THROAT
     }
 
     /// Grid indices `(i, j, k)` of an unpadded cell index (the one division per cell of the
@@ -705,10 +715,16 @@ impl ImmersedBoundary {
                 let slot = f.slot as usize;
                 u.write(slot, u.read(slot) + g.weight * (g.wall - f.wall));
             }
-            // The throats' faces, at the targets of this stage (they read no face).
+            // The throats' faces, at the targets of this stage (they read no face); the
+            // walls' line where no stage has set one.
             for t in &self.throats[c] {
                 let f = &self.forcing[c][t.face as usize];
-                u.write(f.slot as usize, t.target + correction(f.cells));
+                let target = if t.target.is_nan() {
+                    t.relaxed(f.wall, 0.0, 0.0, tau)
+                } else {
+                    t.target
+                };
+                u.write(f.slot as usize, target + correction(f.cells));
             }
         }
         if let Some(q) = mass_source {
@@ -1149,12 +1165,23 @@ mod tests {
         ib.update(&[a, b]);
         let count: usize = (0..3).map(|c| ib.throat_faces(c).len()).sum();
         assert!(count > 20, "{count} throat faces");
+        // Imposed before any stage has set their targets, they take the walls' line.
+        let layout = PaddedLayout::new([n; 3]);
+        let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; layout.len]);
+        ib.impose(&mut u, [true; 3], &[], 0.0, None, &[]);
+        for c in 0..3 {
+            for t in ib.throat_faces(c) {
+                let f = &ib.forcing_faces(c)[t.face as usize];
+                let line = f.wall + t.share * (t.wall - f.wall);
+                assert_eq!(u[c][f.slot as usize], line);
+            }
+        }
         // Targets for a pressure rising along y and z and a body force along y.
         let mut p = vec![0.0; n * n * n];
         for (cell, v) in p.iter_mut().enumerate() {
             *v = 0.3 * ((cell / n) % n) as f64 * h + 0.1 * (cell / (n * n)) as f64 * h;
         }
-        ib.set_throat_targets([true; 3], Some(&p), [0.0, 2.0, 0.0], 1e-3);
+        ib.set_throat_targets([true; 3], Some(&p), [0.0, 2.0, 0.0], 1e-3, 1e-3);
         let slots = |ib: &ImmersedBoundary, c: usize| -> Vec<(u32, f64)> {
             let f = ib.forcing_faces(c);
             ib.throat_faces(c)

@@ -27,7 +27,8 @@ pub struct SteadyStokesFlow {
 /// component an FFT Poisson solve `−ν∇²v = f − ⟨f⟩`, then the projection of `v`; on a
 /// periodic MAC grid the Laplacian commutes with the discrete gradient and divergence, so
 /// this is the exact discrete Stokes solve). The forced faces' rows (`u = target` inside,
-/// `u = w + a (u₂ − w)` on forcing faces, plus a far wall's term in a gap) form a
+/// `u = w + a (u₂ − w)` on forcing faces, plus a far wall's term in a gap, and in a throat
+/// the walls' line plus `(k/ν)(G − ∂p)`) form a
 /// non-symmetric system for `f`, solved by
 /// GMRES; the driving gradient is `G = −⟨f⟩` (the forces on the spheres balance it).
 /// The steady state this finds is the one the time-stepped explicit schemes converge to
@@ -56,8 +57,13 @@ struct Row {
     neighbours: [usize; 2],
     weights: [f64; 2],
     target: f64,
-    /// A face in a gap: its far wall's term `L_s (w_s − w)` ([`super::GapFace`]).
+    /// A face in a gap: its far wall's term `L_s (w_s − w)` ([`super::GapFace`]); in a
+    /// throat, the walls' line `δ/(δ+s) (w_s − w)` ([`super::ThroatFace`]).
     gap: f64,
+    /// A face in a throat: `k` (m², 0 elsewhere) and its cells below and above along its
+    /// component, for the flow the pressure drives, `(k/ν)(G − ∂p)`.
+    darcy: f64,
+    cells: [usize; 2],
 }
 
 impl PeriodicStokesArray {
@@ -68,9 +74,24 @@ impl PeriodicStokesArray {
 
     /// As [`Self::new`], with the quadratic (`true`) or linear forcing stencil.
     pub fn with_stencil(grid: Grid, nu: f64, spheres: &[RigidSphere], quadratic: bool) -> Self {
+        Self::with_options(grid, nu, spheres, quadratic, false)
+    }
+
+    /// As [`Self::with_stencil`], with the faces of throats rigid (`rigid_throats`, the
+    /// staircase) or carrying the lubrication profile ([`super::ThroatFace`]).
+    pub fn with_options(
+        grid: Grid,
+        nu: f64,
+        spheres: &[RigidSphere],
+        quadratic: bool,
+        rigid_throats: bool,
+    ) -> Self {
         let bc = BoundaryConditions::periodic();
         let mut boundary = ImmersedBoundary::new(&grid, &bc);
         boundary.set_quadratic(quadratic);
+        if !rigid_throats {
+            boundary.set_throat_viscosity(nu);
+        }
         boundary.update(spheres);
         let layout = PaddedLayout::new(grid.n);
         let unpad = |slot: u32| {
@@ -93,6 +114,8 @@ impl PeriodicStokesArray {
                     weights: [0.0; 2],
                     target: f.target,
                     gap: 0.0,
+                    darcy: 0.0,
+                    cells: [0; 2],
                 });
             }
             let first = rows.len();
@@ -105,11 +128,22 @@ impl PeriodicStokesArray {
                     weights: f.weights,
                     target: f.wall,
                     gap: 0.0,
+                    darcy: 0.0,
+                    cells: [0; 2],
                 });
             }
             for g in boundary.gap_faces(c) {
                 let f = &forcing[g.face as usize];
                 rows[first + g.face as usize].gap = g.weight * (g.wall - f.wall);
+            }
+            if !rigid_throats {
+                for t in boundary.throat_faces(c) {
+                    let f = &forcing[t.face as usize];
+                    let row = &mut rows[first + t.face as usize];
+                    row.gap = t.share * (t.wall - f.wall);
+                    row.darcy = t.darcy;
+                    row.cells = f.cells.map(|cell| cell as usize);
+                }
             }
         }
         let poisson = SpectralPoisson::new(grid.n, grid.h, [AxisKind::Periodic; 3]);
@@ -232,12 +266,19 @@ impl PeriodicStokesArray {
         let rows = self.rows.clone();
         let report = gmres(
             &mut |f, out| {
-                self.stokes(f);
+                let mean = self.stokes(f);
+                let (nu, h, divergence) = (self.nu, self.grid.h, &self.divergence);
                 for (o, r) in out.iter_mut().zip(&rows) {
                     let field = &self.fields[r.component];
                     *o = field[r.cell]
                         - r.weights[0] * field[r.neighbours[0]]
                         - r.weights[1] * field[r.neighbours[1]];
+                    if r.darcy > 0.0 {
+                        // −(k/ν)(G − ∂p) with G = −⟨f⟩ and p = −ν ∇²φ.
+                        let [lo, hi] = r.cells;
+                        *o += r.darcy / nu * mean[r.component]
+                            - r.darcy * (divergence[hi] - divergence[lo]) / h[r.component];
+                    }
                 }
             },
             &rhs,
