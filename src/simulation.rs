@@ -177,6 +177,7 @@ impl Simulation {
         }
         let mut direct_shell: Option<Vec<f64>> = None;
         let mut direct_build: Option<Vec<f64>> = None;
+        let mut direct_throats: Option<Vec<f64>> = None;
         let mut motion_state: Option<Vec<f64>> = None;
         match restart {
             Some(entry) => {
@@ -187,6 +188,9 @@ impl Simulation {
                     .map(|a| a.to_vec());
                 direct_build = state
                     .array(DirectCoupling::BUILD_RESTART_NAME)
+                    .map(|a| a.to_vec());
+                direct_throats = state
+                    .array(DirectCoupling::THROAT_RESTART_NAME)
                     .map(|a| a.to_vec());
                 motion_state = state
                     .array(ParticleMotion::RESTART_NAME)
@@ -266,6 +270,11 @@ impl Simulation {
             if let Some(build) = direct_build {
                 direct
                     .restore_build_state(&build)
+                    .map_err(FsimError::input)?;
+            }
+            if let Some(throats) = direct_throats {
+                direct
+                    .restore_throat_state(&throats)
                     .map_err(FsimError::input)?;
             }
             sim.direct = Some(direct);

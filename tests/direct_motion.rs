@@ -414,21 +414,43 @@ fn tutorials_validate_at_dry_run() {
 /// momentum and the moving spheres' state (virtual-mass velocities, drive correction); with
 /// the tutorial's scheme and with `EulerRKC`, whose incremental pressure is state too; and
 /// with a `rebuildDistance` (2e-5 cells, so that the faces are both kept and rebuilt after
-/// the restart), where the spheres' positions at the last build are state.
+/// the restart), where the spheres' positions at the last build are state; and with two
+/// spheres 1.2 cells apart under `EulerRKC`, whose throats' relaxed targets and stage clocks
+/// are state (`direct.throats`).
 #[test]
 fn continued_settling_run_is_bit_identical() {
-    for (scheme, rebuild) in [(None, 0.0), (Some("EulerRKC"), 0.0), (None, 2e-5)] {
-        continued_run_is_bit_identical(scheme, rebuild);
+    for (scheme, rebuild, pair) in [
+        (None, 0.0, false),
+        (Some("EulerRKC"), 0.0, false),
+        (None, 2e-5, false),
+        (Some("EulerRKC"), 0.0, true),
+    ] {
+        continued_run_is_bit_identical(scheme, rebuild, pair);
     }
 }
 
-fn continued_run_is_bit_identical(scheme: Option<&str>, rebuild_distance: f64) {
+fn continued_run_is_bit_identical(scheme: Option<&str>, rebuild_distance: f64, pair: bool) {
     let s = Scratch::new(&format!(
-        "direct-restart-{}-{rebuild_distance}",
+        "direct-restart-{}-{rebuild_distance}-{pair}",
         scheme.unwrap_or("tutorial")
     ));
     let setup = |name: &str| {
         let case = copy_tutorial("settlingSphere", &s.0, name);
+        if pair {
+            // Spheres of 1 mm side by side along x, 0.15 mm (1.2 cells) apart.
+            let positions = case.join("constant/kinematicCloudPositions");
+            let text = fs::read_to_string(&positions).unwrap();
+            let start = text.rfind('(').unwrap();
+            let start = text[..start].rfind('(').unwrap();
+            fs::write(
+                &positions,
+                format!(
+                    "{}(\n(0.0011 0.00225 0.00222)\n(0.00325 0.00225 0.00222)\n)\n",
+                    &text[..start]
+                ),
+            )
+            .unwrap();
+        }
         let coupling = case.join("constant/couplingProperties");
         let text = fs::read_to_string(&coupling).unwrap();
         fs::write(

@@ -42,6 +42,7 @@ impl Simulation {
             .unwrap_or_default();
         let shell = self.direct.as_ref().map(|d| d.shell_state());
         let build = self.direct.as_ref().map(|d| d.build_state());
+        let throats = self.direct.as_ref().map(|d| d.throat_state());
         let motion = self.motion.as_ref().map(|m| m.restart_state());
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
@@ -50,6 +51,9 @@ impl Simulation {
         }
         if let Some(build) = &build {
             arrays.push((DirectCoupling::BUILD_RESTART_NAME, build.as_slice()));
+        }
+        if let Some(throats) = &throats {
+            arrays.push((DirectCoupling::THROAT_RESTART_NAME, throats.as_slice()));
         }
         if let Some(motion) = &motion {
             arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));

@@ -62,7 +62,8 @@ impl ComponentUpdate<'_> {
             self.find_gaps(spheres);
         }
         self.find_throats(spheres);
-        if open_throats && std::env::var("FSIM_CLOSED_THROATS").is_err() {
+        // Driven, a throat's face answers the pressure: it leaves its cells open.
+        if open_throats {
             for t in self.throats.iter() {
                 self.labels[self.forcing[t.face as usize].slot as usize] = THROAT;
             }

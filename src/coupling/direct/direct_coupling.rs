@@ -74,6 +74,8 @@ pub struct DirectCoupling {
     /// Where the forced faces of a restarted run were built ([`Self::build_state`]), until
     /// the first [`Self::set_spheres`] builds them there.
     restored_build: Option<Vec<f64>>,
+    /// The throats' state of a restarted run, applied to the restored build.
+    restored_throats: Option<Vec<f64>>,
     /// The constrained viscous solve of `RK3CN` stages.
     implicit_forcing: ImplicitForcing,
 }
@@ -113,6 +115,7 @@ impl DirectCoupling {
             built: false,
             last_rebuilt: false,
             restored_build: None,
+            restored_throats: None,
             implicit_forcing: ImplicitForcing::new(),
         }
     }
@@ -269,6 +272,24 @@ impl DirectCoupling {
         Ok(())
     }
 
+    /// Name of the restart array of [`Self::throat_state`].
+    pub const THROAT_RESTART_NAME: &'static str = "direct.throats";
+
+    /// The throats' stage clocks and targets, for a bit-identical restart
+    /// ([`ImmersedBoundary::throat_state`]).
+    pub fn throat_state(&self) -> Vec<f64> {
+        self.boundary.throat_state()
+    }
+
+    /// Restores what [`Self::throat_state`] saved, onto the faces that the restored build
+    /// ([`Self::restore_build_state`]) makes.
+    pub fn restore_throat_state(&mut self, data: &[f64]) -> Result<(), String> {
+        ImmersedBoundary::check_throat_state(data)
+            .map_err(|e| format!("{}: {e}", Self::THROAT_RESTART_NAME))?;
+        self.restored_throats = Some(data.to_vec());
+        Ok(())
+    }
+
     /// Builds the forced faces where a restart says they were built, with the current
     /// spheres' velocities; false (nothing built) if the restart names other particles.
     fn build_where_restored(&mut self) -> bool {
@@ -291,6 +312,9 @@ impl DirectCoupling {
             })
             .collect();
         self.boundary.update(&built);
+        if let Some(throats) = self.restored_throats.take() {
+            self.boundary.restore_throat_state(&throats);
+        }
         true
     }
 

@@ -184,8 +184,9 @@ impl ForcingLine {
     }
 }
 
-/// A cell all of whose six faces are forced: its divergence is set by the forcing, not by
-/// the projection (it gets a mass source).
+/// A cell all of whose six faces are forced (a driven throat's face is not: its flux answers
+/// the pressure), or that no path of free faces joins to the open fluid: its divergence is
+/// set by the forcing, not by the projection (it gets a mass source).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ClosedCell {
     /// Unpadded cell index.

@@ -196,13 +196,65 @@ impl ImmersedBoundary {
         }
     }
 
+    /// What a bit-identical restart needs of the throats: the components' stage clocks,
+    /// then per throat face `component, slot, target`.
+    pub fn throat_state(&self) -> Vec<f64> {
+        let mut out = self.throat_clock.to_vec();
+        for c in 0..3 {
+            for t in &self.throats[c] {
+                let slot = self.forcing[c][t.face as usize].slot;
+                out.extend([c as f64, f64::from(slot), t.target]);
+            }
+        }
+        out
+    }
+
+    /// Checks the shape of a [`Self::throat_state`].
+    pub fn check_throat_state(data: &[f64]) -> Result<(), String> {
+        if data.len() < 3 || !(data.len() - 3).is_multiple_of(3) {
+            return Err(format!(
+                "expected 3 clocks and rows of 3 values, got {} values",
+                data.len()
+            ));
+        }
+        match data[3..]
+            .chunks_exact(3)
+            .position(|row| !(0.0..3.0).contains(&row[0]))
+        {
+            Some(k) => Err(format!("row {k} names component {}", data[3 + 3 * k])),
+            None => Ok(()),
+        }
+    }
+
+    /// Restores a [`Self::throat_state`] (checked) onto the throats of the current build,
+    /// face by slot; faces it does not name keep theirs.
+    pub fn restore_throat_state(&mut self, data: &[f64]) {
+        self.throat_clock = [data[0], data[1], data[2]];
+        for c in 0..3 {
+            let forcing = &self.forcing[c];
+            let mut saved: Vec<(u32, f64)> = data[3..]
+                .chunks_exact(3)
+                .filter(|row| row[0] as usize == c)
+                .map(|row| (row[1] as u32, row[2]))
+                .collect();
+            saved.sort_unstable_by_key(|&(slot, _)| slot);
+            for t in self.throats[c].iter_mut() {
+                let slot = forcing[t.face as usize].slot;
+                if let Ok(k) = saved.binary_search_by_key(&slot, |&(s, _)| s) {
+                    t.target = saved[k].1;
+                }
+            }
+        }
+    }
+
     /// Chooses the forcing stencil: quadratic through the wall and two fluid faces
     /// (default), or linear through the wall and one; applies from the next update.
     pub fn set_quadratic(&mut self, quadratic: bool) {
         self.quadratic = quadratic;
     }
 
-    /// Cells whose six faces are all forced.
+    /// Cells whose six faces are all forced, or that only such faces join to them (a
+    /// driven throat's face is not forced: its flux answers the pressure).
     pub fn closed_cells(&self) -> &[ClosedCell] {
         &self.closed
     }
@@ -907,15 +959,19 @@ mod tests {
 
     /// The closed cells are the cells next to forced faces that no path of free faces joins
     /// to a cell with no forced face (six forced faces, or a pocket): a plain search over
-    /// the whole grid agrees, on overlapping spheres that leave pockets between them.
+    /// the whole grid agrees, on overlapping spheres that leave pockets between them, with
+    /// the throats' faces held (forced) and driven (free: fewer closed cells).
     #[test]
     fn closed_cells_are_those_no_free_path_reaches() {
         let (n, h) = (16, 0.1);
         let mut ib = periodic_boundary(n, h);
         let cells = n * n * n;
         let mut pockets = 0;
-        for seed in 0..4 {
+        let mut closed = [0; 2];
+        for (seed, driven) in (0..4).flat_map(|seed| [(seed, false), (seed, true)]) {
+            ib.set_throat_viscosity(if driven { 1e-3 } else { 0.0 });
             ib.update(&overlapping_spheres(40, n as f64 * h, 0.22, 100 + seed));
+            closed[usize::from(driven)] += ib.closed_cells().len();
             let faces: Vec<[[usize; 2]; 3]> = (0..cells)
                 .map(|cell| ib.cell_faces(cell).unwrap())
                 .collect();
@@ -953,6 +1009,10 @@ mod tests {
                 .count();
         }
         assert!(pockets > 0, "the configurations hold pockets");
+        assert!(
+            closed[1] < closed[0],
+            "driven throats open cells: {closed:?}"
+        );
     }
 
     fn lists(ib: &ImmersedBoundary) -> Vec<(Vec<InteriorFace>, Vec<ForcingFace>)> {
@@ -1202,5 +1262,21 @@ mod tests {
         ib.refresh(&[a, b]);
         assert!(ib.throat_faces(1).iter().all(|t| t.wall == 0.0));
         assert_eq!((0..3).map(|c| slots(&ib, c)).collect::<Vec<_>>(), before);
+        // The restart state: onto a fresh build (targets NaN), the targets come back by slot
+        // and the clocks with them.
+        let state = ib.throat_state();
+        assert_eq!(state.len(), 3 + 3 * count);
+        assert_eq!(ImmersedBoundary::check_throat_state(&state), Ok(()));
+        let mut fresh = periodic_boundary(n, h);
+        fresh.update(&[a, b]);
+        assert!(fresh.throat_faces(0).iter().all(|t| t.target.is_nan()));
+        fresh.restore_throat_state(&state);
+        assert_eq!((0..3).map(|c| slots(&fresh, c)).collect::<Vec<_>>(), before);
+        assert_eq!(fresh.throat_state(), state);
+        assert!(ImmersedBoundary::check_throat_state(&state[..4]).is_err());
+        let mut wrong = state.clone();
+        wrong[3] = 3.0;
+        let e = ImmersedBoundary::check_throat_state(&wrong).unwrap_err();
+        assert!(e.contains("component 3"), "{e}");
     }
 }

@@ -77,8 +77,9 @@ impl PeriodicStokesArray {
         Self::with_options(grid, nu, spheres, quadratic, false)
     }
 
-    /// As [`Self::with_stencil`], with the faces of throats rigid (`rigid_throats`, the
-    /// staircase) or carrying the lubrication profile ([`super::ThroatFace`]).
+    /// As [`Self::with_stencil`], with the faces of throats held to the walls' line
+    /// (`rigid_throats`; the staircase for spheres at rest) or carrying the lubrication
+    /// profile ([`super::ThroatFace`]).
     pub fn with_options(
         grid: Grid,
         nu: f64,
@@ -136,11 +137,12 @@ impl PeriodicStokesArray {
                 let f = &forcing[g.face as usize];
                 rows[first + g.face as usize].gap = g.weight * (g.wall - f.wall);
             }
-            if !rigid_throats {
-                for t in boundary.throat_faces(c) {
-                    let f = &forcing[t.face as usize];
-                    let row = &mut rows[first + t.face as usize];
-                    row.gap = t.share * (t.wall - f.wall);
+            // Held rigid, a throat's face keeps the walls' line, as the time steps hold it.
+            for t in boundary.throat_faces(c) {
+                let f = &forcing[t.face as usize];
+                let row = &mut rows[first + t.face as usize];
+                row.gap = t.share * (t.wall - f.wall);
+                if !rigid_throats {
                     row.darcy = t.darcy;
                     row.cells = f.cells.map(|cell| cell as usize);
                 }
