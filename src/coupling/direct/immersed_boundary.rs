@@ -371,28 +371,24 @@ impl ImmersedBoundary {
                     let t = lattice.surface_distance(x, &built[line.sphere], line);
                     f.wall = lattice.wall_velocity(x, t, line, &spheres[line.sphere]);
                 });
+            // A far wall (a gap's or a throat's) at `distance` along the face's line, beyond it.
             let forcing = &self.forcing[c];
+            let far_wall = |face: u32, sphere: u32, distance: f64| {
+                let f = &forcing[face as usize];
+                let line = ForcingLine::unpack(f.line);
+                let far = ForcingLine {
+                    sphere: sphere as usize,
+                    d: line.d,
+                    step: -line.step,
+                };
+                let x = lattice.slot_position(f.slot as usize);
+                lattice.velocity_beyond(x, distance, far, &spheres[far.sphere])
+            };
             for g in self.gaps[c].iter_mut() {
-                let f = &forcing[g.face as usize];
-                let line = ForcingLine::unpack(f.line);
-                let far = ForcingLine {
-                    sphere: g.sphere as usize,
-                    d: line.d,
-                    step: -line.step,
-                };
-                let x = lattice.slot_position(f.slot as usize);
-                g.wall = lattice.velocity_beyond(x, g.distance, far, &spheres[far.sphere]);
+                g.wall = far_wall(g.face, g.sphere, g.distance);
             }
-            for g in self.throats[c].iter_mut() {
-                let f = &forcing[g.face as usize];
-                let line = ForcingLine::unpack(f.line);
-                let far = ForcingLine {
-                    sphere: g.sphere as usize,
-                    d: line.d,
-                    step: -line.step,
-                };
-                let x = lattice.slot_position(f.slot as usize);
-                g.wall = lattice.velocity_beyond(x, g.distance, far, &spheres[far.sphere]);
+            for t in self.throats[c].iter_mut() {
+                t.wall = far_wall(t.face, t.sphere, t.distance);
             }
         }
     }
