@@ -173,9 +173,7 @@ impl ComponentUpdate<'_> {
                 .filter_map(|(i, f)| gap_face(lat, labels, spheres, i, f)),
         );
     }
-}
 
-impl ComponentUpdate<'_> {
     /// The staircase forcing faces in throats (see [`ThroatFace`]), in list order, each
     /// with its target of the last build if it was in a throat then.
     fn find_throats(&mut self, spheres: &[RigidSphere]) {
