@@ -64,7 +64,11 @@ fn throats_of_one_to_two_cells_carry_the_flow_of_dense_arrays() {
     let cases = [(0.343, 9), (0.3, 8)]; // r/h 3.91 and 3.32; gaps 1.18 and 1.36 cells
     for (phi, n) in cases {
         let reference = reference_k(phi);
-        for (scheme, factor) in [(TimeScheme::EulerRKC, 2.0), (TimeScheme::RK3, 0.9)] {
+        for (scheme, factor) in [
+            (TimeScheme::EulerRKC, 2.0),
+            (TimeScheme::RK3, 0.9),
+            (TimeScheme::RK3CN, 2.0),
+        ] {
             let k = time_stepped_k(phi, n, (scheme, factor, 0.4), false);
             let error = k / reference - 1.0;
             eprintln!(

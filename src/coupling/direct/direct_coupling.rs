@@ -10,6 +10,7 @@ use super::direct_settings::DirectSettings;
 use super::field_brick::FieldBrick;
 use super::field_sampler::{FieldSampler, Interpolation};
 use super::field_view::{periodic_directions, FieldView};
+use super::forced_face::ThroatFace;
 use super::immersed_boundary::ImmersedBoundary;
 use super::implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 use super::rigid_sphere::RigidSphere;
@@ -87,9 +88,11 @@ impl DirectCoupling {
         fluid.mass_source_mut();
         let grid = fluid.grid();
         let mut boundary = ImmersedBoundary::new(grid, fluid.boundary_conditions());
-        // The semi-implicit schemes hold the throats to the walls' line (see `impose`).
-        if !settings.rigid_throats && !fluid.settings().scheme.is_semi_implicit() {
+        if !settings.rigid_throats {
             boundary.set_throat_viscosity(fluid.settings().nu);
+        }
+        if fluid.settings().scheme.is_semi_implicit() {
+            boundary.set_throat_gain(ThroatFace::SEMI_IMPLICIT_GAIN);
         }
         DirectCoupling {
             settings,
@@ -350,15 +353,12 @@ impl DirectCoupling {
             ..
         } = stage;
         // The throats' flow is driven by the last projection's pressure: the explicit
-        // schemes hand it as `pressure`, `EulerRKC` as the pressure its increment adds to.
-        // The semi-implicit schemes' throats take the walls' line only: driven, with
-        // moving spheres, they diverged (docs/direct_model.md, "Throats").
-        let driving = if implicit.is_some() {
-            None
-        } else if pressure.is_empty() {
-            Some(incremental_pressure)
+        // schemes hand it as `pressure`, the incremental ones as the pressure their
+        // increment adds to.
+        let driving = if pressure.is_empty() {
+            incremental_pressure
         } else {
-            Some(pressure)
+            pressure
         };
         self.boundary
             .set_throat_targets(components, driving, body_force, tau, time);

@@ -80,6 +80,8 @@ pub struct ImmersedBoundary {
     carried: [Vec<(u32, f64)>; 3],
     /// Time of each component's last stage that set the throats' targets (NaN before).
     throat_clock: [f64; 3],
+    /// The loop gain of the throats' relaxation ([`ThroatFace::RELAXED_GAIN`]).
+    throat_gain: f64,
     /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, the
     /// staircase).
     throat_viscosity: f64,
@@ -132,6 +134,7 @@ impl ImmersedBoundary {
             throats: Default::default(),
             carried: Default::default(),
             throat_clock: [f64::NAN; 3],
+            throat_gain: ThroatFace::RELAXED_GAIN,
             throat_viscosity: 0.0,
             closed: Vec::new(),
             previous_closed: Vec::new(),
@@ -155,6 +158,12 @@ impl ImmersedBoundary {
         self.throat_viscosity = nu;
     }
 
+    /// The loop gain of the throats' relaxation: [`ThroatFace::RELAXED_GAIN`] (default)
+    /// or, for the semi-implicit schemes, [`ThroatFace::SEMI_IMPLICIT_GAIN`].
+    pub fn set_throat_gain(&mut self, gain: f64) {
+        self.throat_gain = gain;
+    }
+
     /// Component `c`'s forcing faces in throats (indices into [`Self::forcing_faces`]).
     pub fn throat_faces(&self, c: usize) -> &[ThroatFace] {
         &self.throats[c]
@@ -163,25 +172,21 @@ impl ImmersedBoundary {
     /// Sets the targets of the throats' faces of `components` for the stage ending at
     /// `time` ([`ThroatFace::target`]): the lubrication profile driven by `body_force` less
     /// the gradient of `pressure` (kinematic, the last projection's), relaxed toward it over
-    /// the time since the component's last stage (`tau` at its first) at the gain
-    /// [`ThroatFace::RELAXED_GAIN`]; without a pressure, the walls' line alone.
+    /// the time since the component's last stage (`tau` at its first) at the loop gain
+    /// ([`Self::set_throat_gain`]); an empty `pressure` drives by the body force alone.
     pub fn set_throat_targets(
         &mut self,
         components: [bool; 3],
-        pressure: Option<&[f64]>,
+        pressure: &[f64],
         body_force: [f64; 3],
         tau: f64,
         time: f64,
     ) {
-        let nu = if pressure.is_some() {
-            self.throat_viscosity
-        } else {
-            0.0
-        };
-        let pressure = pressure.unwrap_or_default();
+        let nu = self.throat_viscosity;
         for c in (0..3).filter(|&c| components[c]) {
             let last = std::mem::replace(&mut self.throat_clock[c], time);
             let span = if time > last { time - last } else { tau };
+            let reach = self.throat_gain * span;
             let h = self.grid.h[c];
             let forcing = &self.forcing[c];
             for t in self.throats[c].iter_mut() {
@@ -191,7 +196,7 @@ impl ImmersedBoundary {
                 } else {
                     (pressure[f.cells[1] as usize] - pressure[f.cells[0] as usize]) / h
                 };
-                t.target = t.relaxed(f.wall, body_force[c] - gradient, nu, span);
+                t.target = t.relaxed(f.wall, body_force[c] - gradient, nu, reach);
             }
         }
     }
@@ -768,7 +773,7 @@ impl ImmersedBoundary {
             for t in &self.throats[c] {
                 let f = &self.forcing[c][t.face as usize];
                 let target = if t.target.is_nan() {
-                    t.relaxed(f.wall, 0.0, 0.0, tau)
+                    t.relaxed(f.wall, 0.0, 0.0, 0.0)
                 } else {
                     t.target
                 };
@@ -1237,7 +1242,7 @@ mod tests {
         for (cell, v) in p.iter_mut().enumerate() {
             *v = 0.3 * ((cell / n) % n) as f64 * h + 0.1 * (cell / (n * n)) as f64 * h;
         }
-        ib.set_throat_targets([true; 3], Some(&p), [0.0, 2.0, 0.0], 1e-3, 1e-3);
+        ib.set_throat_targets([true; 3], &p, [0.0, 2.0, 0.0], 1e-3, 1e-3);
         let slots = |ib: &ImmersedBoundary, c: usize| -> Vec<(u32, f64)> {
             let f = ib.forcing_faces(c);
             ib.throat_faces(c)
