@@ -186,13 +186,7 @@ impl ComponentUpdate<'_> {
                 .with_min_len(CHUNK)
                 .filter_map(|(i, f)| throat_face(lat, labels, spheres, i, f)),
         );
-        let carried = &self.carried[..];
-        for t in self.throats.iter_mut() {
-            let slot = forcing[t.face as usize].slot;
-            if let Ok(k) = carried.binary_search_by_key(&slot, |&(s, _)| s) {
-                t.target = carried[k].1;
-            }
-        }
+        ThroatFace::take_targets(self.throats, forcing, self.carried);
     }
 }
 

@@ -149,6 +149,22 @@ impl ThroatFace {
         last + beta * (profile - last)
     }
 
+    /// Gives each of `throats` (faces of `forcing`) the target `by_slot` holds for its
+    /// face's slot (sorted by slot), if any: the targets carried through a rebuild or a
+    /// restart.
+    pub(super) fn take_targets(
+        throats: &mut [ThroatFace],
+        forcing: &[ForcingFace],
+        by_slot: &[(u32, f64)],
+    ) {
+        for t in throats {
+            let slot = forcing[t.face as usize].slot;
+            if let Ok(k) = by_slot.binary_search_by_key(&slot, |&(s, _)| s) {
+                t.target = by_slot[k].1;
+            }
+        }
+    }
+
     /// `k` for a face `gap_own` and `gap_far` from the two surfaces, on a grid of
     /// spacing `h` across the gap, for a component whose share across the gap is `normal`
     /// (`n_c`).

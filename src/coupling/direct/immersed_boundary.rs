@@ -82,8 +82,8 @@ pub struct ImmersedBoundary {
     throat_clock: [f64; 3],
     /// The loop gain of the throats' relaxation ([`ThroatFace::RELAXED_GAIN`]).
     throat_gain: f64,
-    /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, the
-    /// staircase).
+    /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, held to
+    /// the walls' line).
     throat_viscosity: f64,
     /// Cells with every face forced, and those of the previous update (their mass source
     /// is cleared at the next imposition).
@@ -153,7 +153,7 @@ impl ImmersedBoundary {
     }
 
     /// The kinematic viscosity (m²/s) of the pressure-driven flow through throats
-    /// ([`ThroatFace`]); 0 holds the throats' faces rigid (the staircase).
+    /// ([`ThroatFace`]); 0 holds the throats' faces to the walls' line.
     pub fn set_throat_viscosity(&mut self, nu: f64) {
         self.throat_viscosity = nu;
     }
@@ -236,19 +236,16 @@ impl ImmersedBoundary {
     pub fn restore_throat_state(&mut self, data: &[f64]) {
         self.throat_clock = [data[0], data[1], data[2]];
         for c in 0..3 {
-            let forcing = &self.forcing[c];
-            let mut saved: Vec<(u32, f64)> = data[3..]
-                .chunks_exact(3)
-                .filter(|row| row[0] as usize == c)
-                .map(|row| (row[1] as u32, row[2]))
-                .collect();
+            let saved = &mut self.carried[c];
+            saved.clear();
+            saved.extend(
+                data[3..]
+                    .chunks_exact(3)
+                    .filter(|row| row[0] as usize == c)
+                    .map(|row| (row[1] as u32, row[2])),
+            );
             saved.sort_unstable_by_key(|&(slot, _)| slot);
-            for t in self.throats[c].iter_mut() {
-                let slot = forcing[t.face as usize].slot;
-                if let Ok(k) = saved.binary_search_by_key(&slot, |&(s, _)| s) {
-                    t.target = saved[k].1;
-                }
-            }
+            ThroatFace::take_targets(&mut self.throats[c], &self.forcing[c], saved);
         }
     }
 
