@@ -43,7 +43,7 @@ mod sphere_quadrature;
 mod stress_integral;
 
 pub use close_pairs::{ClosePairs, PeriodicBox};
-pub use direct_coupling::DirectCoupling;
+pub use direct_coupling::{wall_interpolation, wall_surface_offset, DirectCoupling};
 pub use direct_settings::DirectSettings;
 pub use field_brick::FieldBrick;
 pub use field_sampler::{FieldSampler, Interpolation};

@@ -40,11 +40,12 @@ pub struct DirectCoupling {
     origin: [f64; 3],
     length: [f64; 3],
     periodic: [bool; 3],
-    /// Scratch of [`Self::surface_offsets`]: the pair search, the spheres' nearest gaps and
-    /// the offsets.
+    /// Scratch of [`Self::surface_offsets`]: the pair search, the spheres' nearest gaps, the
+    /// offsets and each sphere's interpolation.
     pairs: ClosePairs,
     gaps: Vec<f64>,
     offsets: Vec<f64>,
+    interpolations: Vec<Interpolation>,
     /// Scratch of [`Self::compute_loads`]: each sphere's load and shell momentum, in the
     /// order of [`Self::spatial_order`].
     sphere_results: Vec<(HydrodynamicLoad, ShellMomentum)>,
@@ -104,6 +105,7 @@ impl DirectCoupling {
             pairs: ClosePairs::default(),
             gaps: Vec::new(),
             offsets: Vec::new(),
+            interpolations: Vec::new(),
             sphere_results: Vec::new(),
             particle_spheres: Vec::new(),
             spheres: Vec::new(),
@@ -405,7 +407,7 @@ impl DirectCoupling {
         let integral = self.settings.integral;
         let with_shell = integral.surface_offset > 0.0;
         self.surface_offsets();
-        let offsets = &self.offsets;
+        let (offsets, interpolations) = (&self.offsets, &self.interpolations);
         let quadratures = &self.quadratures;
         // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
         // the tricubic ones, 64 samples a field, copying it cost as much as it saved
@@ -430,6 +432,7 @@ impl DirectCoupling {
             let (q, shell_rules) = &quadratures[&s.radius.to_bits()];
             let integral = StressIntegral {
                 surface_offset: offset,
+                interpolation: interpolations[k],
                 ..integral
             };
             let shell = with_shell.then_some(shell_rules);
@@ -448,9 +451,10 @@ impl DirectCoupling {
             .resize(self.spheres.len(), HydrodynamicLoad::default());
         for (&k, &(mut load, shell)) in self.spatial_order.iter().zip(&results) {
             let id = self.ids[k];
-            if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
+            let surface = surface_key(offsets[k], interpolations[k], integral.interpolation);
+            if let Some((t0, key, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
-                if span > 0.0 && *offset == offsets[k] {
+                if span > 0.0 && *key == surface {
                     for i in 0..3 {
                         load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
                         load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
@@ -458,7 +462,7 @@ impl DirectCoupling {
                 }
             }
             if with_shell {
-                self.previous_shell.insert(id, (time, offsets[k], shell));
+                self.previous_shell.insert(id, (time, surface, shell));
             }
             self.loads[self.order[k]] = load;
         }
@@ -492,12 +496,20 @@ impl DirectCoupling {
     /// so that the surface encloses neither the neighbour nor its forcing layer:
     /// `min(offset, max(1, gap/h − 1))`. Below a gap of two cells the integral sees the
     /// neighbour's forcing (the lubrication range, handled by the particle model).
+    ///
+    /// Near a bounding face (a wall, an inlet or an outlet) the surface stays inside the
+    /// flow, [`wall_surface_offset`], and is read with [`wall_interpolation`]
+    /// (`Self::interpolations`).
     pub fn surface_offsets(&mut self) -> &[f64] {
         let h = self.h;
         let nominal = self.settings.integral.surface_offset;
+        let interpolation = self.settings.integral.interpolation;
         self.offsets.clear();
+        self.interpolations.clear();
         if nominal == 0.0 {
             self.offsets.resize(self.spheres.len(), 0.0);
+            self.interpolations
+                .resize(self.spheres.len(), interpolation);
             return &self.offsets;
         }
         let spheres = &self.spheres;
@@ -533,12 +545,30 @@ impl DirectCoupling {
                 gaps[j] = gaps[j].min(dist - rj - ri);
             },
         );
-        self.offsets.extend(
-            self.gaps
-                .iter()
-                .map(|&gap| nominal.min((gap / h - 1.0).max(1.0))),
-        );
+        let (lo, length, periodic) = (self.origin, self.length, self.periodic);
+        for (&gap, s) in self.gaps.iter().zip(spheres) {
+            let wall_gap = (0..3)
+                .filter(|&d| !periodic[d])
+                .map(|d| {
+                    let centre = s.centre[d] - lo[d];
+                    centre.min(length[d] - centre) - s.radius
+                })
+                .fold(f64::INFINITY, f64::min)
+                / h;
+            let offset = nominal
+                .min((gap / h - 1.0).max(1.0))
+                .min(wall_surface_offset(wall_gap));
+            self.offsets.push(offset);
+            self.interpolations
+                .push(wall_interpolation(wall_gap - offset, interpolation));
+        }
         &self.offsets
+    }
+
+    /// The interpolation each sphere's integral reads the fields with (set by
+    /// [`Self::surface_offsets`]): the setting, or trilinear next to a wall.
+    pub fn interpolations(&self) -> &[Interpolation] {
+        &self.interpolations
     }
 
     /// Name of the restart array of [`Self::shell_state`].
@@ -546,7 +576,8 @@ impl DirectCoupling {
 
     /// The shell momenta the next [`Self::compute_loads`] differences against, for a
     /// bit-identical restart: per particle (sorted by id) `id, time, offset, linear (3),
-    /// angular (3)`.
+    /// angular (3)`; the offset negative where a wall made the integral trilinear
+    /// ([`wall_interpolation`]).
     pub fn shell_state(&self) -> Vec<f64> {
         let mut ids: Vec<&u64> = self.previous_shell.keys().collect();
         ids.sort_unstable();
@@ -578,6 +609,48 @@ impl DirectCoupling {
     /// The loads of the last [`Self::compute_loads`].
     pub fn loads(&self) -> &[HydrodynamicLoad] {
         &self.loads
+    }
+}
+
+/// The largest integration surface offset (cells) for a sphere whose surface lies `gap`
+/// cells from a bounding face: the surface stays inside the flow, in whole half cells (at
+/// least one), `max(1, ⌊2 gap⌋ / 2)`.
+///
+/// A surface beyond a wall encloses a patch of it, whose traction then enters the balance:
+/// a sphere approaching a wall pushes it with the pressure in the gap, so the patch takes
+/// part of the sphere's resistance and the sphere is drawn in (a sphere settling onto a
+/// floor at r/h = 4 sped up from 0.6 to 8 mm/s as its gap closed). Pulled toward the wall
+/// at r/h = 4 against the same at r/h = 8 (docs/direct_model.md, "Walls"): at gaps of 2.5
+/// and 2 cells the surface three cells out gave −1.9 % and −40 %, held inside −0.7 % and
+/// −0.3 %. Whole half cells, so that a sphere
+/// drifting along a wall keeps its surface, and its shell term (a changed surface has no
+/// rate), most steps.
+pub fn wall_surface_offset(gap: f64) -> f64 {
+    ((2.0 * gap).floor() / 2.0).max(1.0)
+}
+
+/// The interpolation of an integration surface `clearance` cells from a bounding face:
+/// `nominal`, but trilinear closer than 1.5 cells. There a tricubic stencil reaches the
+/// ghost layer beyond the wall or is shifted inside the stored samples, and the integral of
+/// a moving sphere drifts: a sphere settling toward a floor at r/h = 4 sped up from 0.67 to
+/// 0.80 mm/s, then to 3.5 mm/s as its gap closed from 3 to 2.3 cells, the more the
+/// smaller the step; read trilinearly it slowed from 0.675 to 0.623 mm/s, as the same
+/// sphere at r/h = 8 did from 0.687 to 0.642 (docs/direct_model.md, "Walls").
+pub fn wall_interpolation(clearance: f64, nominal: Interpolation) -> Interpolation {
+    if clearance < 1.5 {
+        Interpolation::Linear
+    } else {
+        nominal
+    }
+}
+
+/// What a sphere's shell momentum is comparable under from one step to the next: its
+/// surface offset, negative where a wall changed the interpolation from the setting.
+fn surface_key(offset: f64, interpolation: Interpolation, nominal: Interpolation) -> f64 {
+    if interpolation == nominal {
+        offset
+    } else {
+        -offset
     }
 }
 
@@ -655,6 +728,42 @@ mod tests {
         let reversed = coupling.compute_loads(&fluid, 1.0).to_vec();
         assert_eq!(reversed, vec![forward[1], forward[0]]);
         assert!(forward[0] != forward[1]);
+    }
+
+    /// Next to a wall the surface stays inside the flow, in half cells; along a periodic
+    /// direction a face is no wall.
+    #[test]
+    fn surface_offsets_stay_inside_the_flow_next_to_a_wall() {
+        for (gap, offset) in [(0.2, 1.0), (1.0, 1.0), (1.49, 1.0), (1.5, 1.5), (2.3, 2.0)] {
+            assert_eq!(wall_surface_offset(gap), offset, "gap {gap}");
+        }
+        let (cubic, linear) = (Interpolation::Cubic, Interpolation::Linear);
+        for (clearance, expected) in [(-0.5, linear), (1.49, linear), (1.5, cubic)] {
+            assert_eq!(wall_interpolation(clearance, cubic), expected);
+        }
+        assert_eq!(wall_interpolation(3.0, linear), linear);
+        let h = 0.1;
+        let wall = crate::fluid::FaceCondition::Wall { velocity: [0.0; 3] };
+        let mut bc = BoundaryConditions::periodic();
+        bc.faces[2] = wall.clone();
+        bc.faces[3] = wall;
+        let grid = Grid::new([40, 16, 20], [h; 3], [0.5, -1.0, 0.0]);
+        let mut fluid = FluidSolver::new(grid, bc, FluidSettings::new(0.1)).unwrap();
+        let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+        let r = 0.3;
+        let spheres = [
+            // 1.7 cells above the lower wall at y = −1, near the periodic x faces
+            RigidSphere::fixed([0.5 + 0.05, -1.0 + r + 0.17, 1.0], r),
+            // 2.6 cells below the upper wall at y = 0.6
+            RigidSphere::fixed([1.9, 0.6 - r - 0.26, 1.0], r),
+            // midway: 5 cells from either wall
+            RigidSphere::fixed([3.2, -0.2, 1.0], r),
+        ];
+        coupling.set_spheres(&spheres, &[0, 1, 2]);
+        let offsets = coupling.surface_offsets().to_vec();
+        assert_eq!(offsets, vec![1.5, 2.5, 3.0]);
+        // the first two surfaces come within 0.2 and 0.1 cells of a wall, the third 2 cells
+        assert_eq!(coupling.interpolations(), [linear, linear, cubic]);
     }
 
     /// The linked-cell search gives every sphere the offset that comparing it with all
