@@ -1,0 +1,197 @@
+//! The direct model between plane walls, the long version of `tests/direct_walls.rs`.
+//!
+//! ```text
+//! cargo run --release --example wall_slit_drag -- faxen   # midway, against Faxén
+//! cargo run --release --example wall_slit_drag -- near    # parallel, near one wall
+//! cargo run --release --example wall_slit_drag -- approach R L LAT FROM TO DT EVERY [U]
+//! ```
+//!
+//! `faxen`: a sphere held still between walls `2l` apart that move at `−U` (the sphere's
+//! frame of one moving parallel to them), periodic along x and z with period `L`;
+//! λ = a/l = 1/4 and 1/3 at r/h = 4 and 8, each at two periods extrapolated as `K∞ + c/L²`,
+//! against Faxén's `1/(1 − 1.004λ + 0.418λ³ + 0.21λ⁴ − 0.169λ⁵)` (Happel & Brenner 1965,
+//! eq. 7-4.39). `near`: the same with the sphere's surface 0.375–1 radius from the lower
+//! wall at r/h = 4 and 8 (L = 16 a). `approach`: a sphere of `R` cells pulled toward the
+//! lower of two resting walls `2L` cells apart (period `LAT`) at `U` (default 10⁻³) from a
+//! surface gap of `FROM` to `TO` cells at step `DT`, the normal drag printed every `EVERY`
+//! cells. h = 1, ν = 1; minutes per run.
+
+use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
+use fsim::fluid::{
+    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme,
+};
+use fsim::grid::Grid;
+
+fn faxen_midway(lambda: f64) -> f64 {
+    1.0 / (1.0 - 1.004 * lambda + 0.418 * lambda.powi(3) + 0.21 * lambda.powi(4)
+        - 0.169 * lambda.powi(5))
+}
+
+/// Drag over `6πμaU` of a sphere of `radius` cells, walls `2l` cells apart, period
+/// `lateral` cells, its surface `gap` cells above the lower wall (midway if `None`); h = 1,
+/// ν = 1, U = 0.01, `EulerRKC` at `dt` until the drag changes by less than 1e-6 a step.
+fn slit_drag(radius: f64, l: usize, lateral: usize, gap: Option<f64>, dt: f64) -> f64 {
+    let (nu, speed) = (1.0, 0.01);
+    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
+    let wall = FaceCondition::Wall {
+        velocity: [-speed, 0.0, 0.0],
+    };
+    let periodic = FaceCondition::Periodic;
+    let bc = BoundaryConditions {
+        faces: [
+            periodic.clone(),
+            periodic.clone(),
+            wall.clone(),
+            wall,
+            periodic.clone(),
+            periodic,
+        ],
+    };
+    let settings = FluidSettings {
+        nu,
+        scheme: TimeScheme::EulerRKC,
+        body_force: [0.0; 3],
+    };
+    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
+    fluid
+        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, -speed, 1.0)))
+        .unwrap();
+    fluid.set_velocity(|c, _| if c == 0 { -speed } else { 0.0 });
+    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+    let sphere = RigidSphere::fixed(
+        [
+            0.5 * lateral as f64 + 0.13,
+            gap.map_or(l as f64, |g| radius + g),
+            0.5 * lateral as f64 + 0.21,
+        ],
+        radius,
+    );
+    coupling.set_spheres(&[sphere], &[0]);
+    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
+    let mut last = f64::INFINITY;
+    loop {
+        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
+        let k = -coupling.compute_loads(&fluid, 1.0)[0].force[0] / stokes;
+        if (k - last).abs() < 1e-6 {
+            return k;
+        }
+        last = k;
+    }
+}
+
+fn faxen() {
+    println!("| λ | r/h | K(L₁) | K(L₂) | K∞ | Faxén | error |");
+    println!("|---|---|---|---|---|---|---|");
+    for (lambda_inverse, r) in [(4, 4), (3, 4), (3, 8)] {
+        let l = lambda_inverse * r;
+        let lateral = [8 * l, 32 * l / 3];
+        let dt = r as f64 / 4.0;
+        let k = lateral.map(|lat| slit_drag(r as f64, l, lat, None, dt));
+        let [a, b] = lateral.map(|x| (x * x) as f64);
+        let extrapolated = (b * k[1] - a * k[0]) / (b - a);
+        let exact = faxen_midway(1.0 / lambda_inverse as f64);
+        println!(
+            "| 1/{lambda_inverse} | {r} | {:.5} (L = {}) | {:.5} (L = {}) | {extrapolated:.5} | {exact:.5} | {:+.2} % |",
+            k[0],
+            lateral[0],
+            k[1],
+            lateral[1],
+            100.0 * (extrapolated / exact - 1.0)
+        );
+    }
+}
+
+fn near() {
+    println!("| gap / a | r/h = 4 | r/h = 8 | difference |");
+    println!("|---|---|---|---|");
+    for gap_over_radius in [0.375, 0.4375, 0.5, 0.625, 0.75, 1.0] {
+        let coarse = slit_drag(4.0, 12, 64, Some(4.0 * gap_over_radius), 1.0);
+        let fine = slit_drag(8.0, 24, 128, Some(8.0 * gap_over_radius), 2.0);
+        println!(
+            "| {gap_over_radius} | {coarse:.5} | {fine:.5} | {:+.2} % |",
+            100.0 * (coarse / fine - 1.0)
+        );
+    }
+}
+
+/// A sphere of `radius` cells pulled toward the lower wall at `speed` (walls at rest, `2l`
+/// cells apart, period `lateral`), from a surface gap of `from` to `to` cells; prints the
+/// normal drag over `6πμaU` against the gap every `every` cells.
+fn approach(
+    radius: f64,
+    l: usize,
+    lateral: usize,
+    [from, to]: [f64; 2],
+    dt: f64,
+    every: f64,
+    speed: f64,
+) {
+    let nu = 1.0;
+    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
+    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+    let periodic = FaceCondition::Periodic;
+    let bc = BoundaryConditions {
+        faces: [
+            periodic.clone(),
+            periodic.clone(),
+            wall.clone(),
+            wall,
+            periodic.clone(),
+            periodic,
+        ],
+    };
+    let settings = FluidSettings {
+        nu,
+        scheme: TimeScheme::EulerRKC,
+        body_force: [0.0; 3],
+    };
+    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
+    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
+    let steps = ((from - to) / speed / dt).round() as usize;
+    let mut next = from;
+    for step in 0..=steps {
+        let gap = from - speed * dt * step as f64;
+        let sphere = RigidSphere {
+            centre: [
+                0.5 * lateral as f64 + 0.13,
+                radius + gap,
+                0.5 * lateral as f64 + 0.21,
+            ],
+            radius,
+            velocity: [0.0, -speed, 0.0],
+            angular_velocity: [0.0; 3],
+        };
+        coupling.set_spheres(&[sphere], &[0]);
+        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
+        let k = coupling.compute_loads(&fluid, 1.0)[0].force[1] / stokes;
+        if gap <= next + 1e-9 {
+            println!("gap/a {:.4}  K {k:.4}", gap / radius);
+            next -= every;
+        }
+    }
+}
+
+fn main() {
+    match std::env::args().nth(1).as_deref() {
+        Some("faxen") => faxen(),
+        Some("near") => near(),
+        Some("approach") => {
+            let a: Vec<f64> = std::env::args()
+                .skip(2)
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let speed = a.get(7).copied().unwrap_or(1e-3);
+            approach(
+                a[0],
+                a[1] as usize,
+                a[2] as usize,
+                [a[3], a[4]],
+                a[5],
+                a[6],
+                speed,
+            );
+        }
+        _ => eprintln!("usage: wall_slit_drag faxen | near"),
+    }
+}
