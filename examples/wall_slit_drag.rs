@@ -16,68 +16,10 @@
 //! surface gap of `FROM` to `TO` cells at step `DT`, the normal drag printed every `EVERY`
 //! cells. h = 1, ν = 1; minutes per run.
 
-use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
-use fsim::fluid::{
-    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme,
-};
-use fsim::grid::Grid;
+#[path = "../tests/support/slit.rs"]
+mod slit;
 
-fn faxen_midway(lambda: f64) -> f64 {
-    1.0 / (1.0 - 1.004 * lambda + 0.418 * lambda.powi(3) + 0.21 * lambda.powi(4)
-        - 0.169 * lambda.powi(5))
-}
-
-/// Drag over `6πμaU` of a sphere of `radius` cells, walls `2l` cells apart, period
-/// `lateral` cells, its surface `gap` cells above the lower wall (midway if `None`); h = 1,
-/// ν = 1, U = 0.01, `EulerRKC` at `dt` until the drag changes by less than 1e-6 a step.
-fn slit_drag(radius: f64, l: usize, lateral: usize, gap: Option<f64>, dt: f64) -> f64 {
-    let (nu, speed) = (1.0, 0.01);
-    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
-    let wall = FaceCondition::Wall {
-        velocity: [-speed, 0.0, 0.0],
-    };
-    let periodic = FaceCondition::Periodic;
-    let bc = BoundaryConditions {
-        faces: [
-            periodic.clone(),
-            periodic.clone(),
-            wall.clone(),
-            wall,
-            periodic.clone(),
-            periodic,
-        ],
-    };
-    let settings = FluidSettings {
-        nu,
-        scheme: TimeScheme::EulerRKC,
-        body_force: [0.0; 3],
-    };
-    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
-    fluid
-        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, -speed, 1.0)))
-        .unwrap();
-    fluid.set_velocity(|c, _| if c == 0 { -speed } else { 0.0 });
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    let sphere = RigidSphere::fixed(
-        [
-            0.5 * lateral as f64 + 0.13,
-            gap.map_or(l as f64, |g| radius + g),
-            0.5 * lateral as f64 + 0.21,
-        ],
-        radius,
-    );
-    coupling.set_spheres(&[sphere], &[0]);
-    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
-    let mut last = f64::INFINITY;
-    loop {
-        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        let k = -coupling.compute_loads(&fluid, 1.0)[0].force[0] / stokes;
-        if (k - last).abs() < 1e-6 {
-            return k;
-        }
-        last = k;
-    }
-}
+use slit::{approach_drag, faxen_midway, slit_drag, without_images};
 
 fn faxen() {
     println!("| λ | r/h | K(L₁) | K(L₂) | K∞ | Faxén | error |");
@@ -86,9 +28,8 @@ fn faxen() {
         let l = lambda_inverse * r;
         let lateral = [8 * l, 32 * l / 3];
         let dt = r as f64 / 4.0;
-        let k = lateral.map(|lat| slit_drag(r as f64, l, lat, None, dt));
-        let [a, b] = lateral.map(|x| (x * x) as f64);
-        let extrapolated = (b * k[1] - a * k[0]) / (b - a);
+        let k = lateral.map(|lat| slit_drag(r as f64, l, lat, None, dt, None));
+        let extrapolated = without_images(k, lateral);
         let exact = faxen_midway(1.0 / lambda_inverse as f64);
         println!(
             "| 1/{lambda_inverse} | {r} | {:.5} (L = {}) | {:.5} (L = {}) | {extrapolated:.5} | {exact:.5} | {:+.2} % |",
@@ -105,8 +46,8 @@ fn near() {
     println!("| gap / a | r/h = 4 | r/h = 8 | difference |");
     println!("|---|---|---|---|");
     for gap_over_radius in [0.375, 0.4375, 0.5, 0.625, 0.75, 1.0] {
-        let coarse = slit_drag(4.0, 12, 64, Some(4.0 * gap_over_radius), 1.0);
-        let fine = slit_drag(8.0, 24, 128, Some(8.0 * gap_over_radius), 2.0);
+        let coarse = slit_drag(4.0, 12, 64, Some(4.0 * gap_over_radius), 1.0, None);
+        let fine = slit_drag(8.0, 24, 128, Some(8.0 * gap_over_radius), 2.0, None);
         println!(
             "| {gap_over_radius} | {coarse:.5} | {fine:.5} | {:+.2} % |",
             100.0 * (coarse / fine - 1.0)
@@ -114,9 +55,9 @@ fn near() {
     }
 }
 
-/// A sphere of `radius` cells pulled toward the lower wall at `speed` (walls at rest, `2l`
-/// cells apart, period `lateral`), from a surface gap of `from` to `to` cells; prints the
-/// normal drag over `6πμaU` against the gap every `every` cells.
+/// The normal drag of a sphere of `radius` cells pulled toward the lower wall at `speed`
+/// (walls at rest, `2l` cells apart, period `lateral`) from a surface gap of `from` to `to`
+/// cells, printed every `every` cells.
 fn approach(
     radius: f64,
     l: usize,
@@ -126,49 +67,11 @@ fn approach(
     every: f64,
     speed: f64,
 ) {
-    let nu = 1.0;
-    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
-    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
-    let periodic = FaceCondition::Periodic;
-    let bc = BoundaryConditions {
-        faces: [
-            periodic.clone(),
-            periodic.clone(),
-            wall.clone(),
-            wall,
-            periodic.clone(),
-            periodic,
-        ],
-    };
-    let settings = FluidSettings {
-        nu,
-        scheme: TimeScheme::EulerRKC,
-        body_force: [0.0; 3],
-    };
-    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
-    let steps = ((from - to) / speed / dt).round() as usize;
-    let mut next = from;
-    for step in 0..=steps {
-        let gap = from - speed * dt * step as f64;
-        let sphere = RigidSphere {
-            centre: [
-                0.5 * lateral as f64 + 0.13,
-                radius + gap,
-                0.5 * lateral as f64 + 0.21,
-            ],
-            radius,
-            velocity: [0.0, -speed, 0.0],
-            angular_velocity: [0.0; 3],
-        };
-        coupling.set_spheres(&[sphere], &[0]);
-        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        let k = coupling.compute_loads(&fluid, 1.0)[0].force[1] / stokes;
-        if gap <= next + 1e-9 {
-            println!("gap/a {:.4}  K {k:.4}", gap / radius);
-            next -= every;
-        }
+    let count = ((from - to) / every).round() as usize;
+    let gaps: Vec<f64> = (1..=count).map(|i| from - every * i as f64).collect();
+    let drag = approach_drag([radius, speed, dt], l, lateral, from, &gaps);
+    for (gap, k) in gaps.iter().zip(drag) {
+        println!("gap/a {:.4}  K {k:.4}", gap / radius);
     }
 }
 

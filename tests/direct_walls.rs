@@ -1,8 +1,7 @@
-//! The direct model between plane walls: a sphere moving parallel to two no-slip walls.
+//! The direct model between plane walls (tests/support/slit.rs): a sphere midway between
+//! two walls against Faxén's drag, and one pulled toward a wall at two resolutions.
 //!
-//! In the sphere's frame the walls and the far fluid move at `−U` along x (walls at y = 0
-//! and y = 2l, periodic along x and z with period `L`, the bulk velocity held at `−U` by
-//! `meanVelocityForce`, so that the sphere drives no net flow). Midway between the walls the
+//! Midway, in the sphere's frame the walls and the far fluid move at `−U` along x, and the
 //! drag over Stokes' is Faxén's (Happel & Brenner, *Low Reynolds number hydrodynamics*,
 //! 1965, eq. 7-4.39, λ = a/l):
 //!
@@ -13,83 +12,16 @@
 //! The lateral images add `c/L²` (a confined Stokeslet's far field is a two-dimensional
 //! dipole): two periods extrapolate it away.
 
-use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
-use fsim::fluid::{
-    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme,
-};
-use fsim::grid::Grid;
+mod support;
 
-/// Faxén's drag factor for a sphere midway between two walls, `λ = a/l`.
-fn faxen_midway(lambda: f64) -> f64 {
-    1.0 / (1.0 - 1.004 * lambda + 0.418 * lambda.powi(3) + 0.21 * lambda.powi(4)
-        - 0.169 * lambda.powi(5))
-}
-
-/// A sphere of `radius` cells held still between walls `2 l` cells apart (periodic period
-/// `lateral` cells along x and z) that move at `−U`; its surface `gap` cells from the lower
-/// wall (midway when `None`). Returns the drag over `6πμaU` at `t_end` (h = 1, ν = 1,
-/// `EulerRKC` at `dt`; Re = 2aU/ν ≤ 0.16).
-fn slit_drag(radius: f64, l: usize, lateral: usize, gap: Option<f64>, t_end: f64, dt: f64) -> f64 {
-    let (nu, speed) = (1.0, 0.01);
-    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
-    let wall = FaceCondition::Wall {
-        velocity: [-speed, 0.0, 0.0],
-    };
-    let bc = BoundaryConditions {
-        faces: [
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            wall.clone(),
-            wall,
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-        ],
-    };
-    let settings = FluidSettings {
-        nu,
-        scheme: TimeScheme::EulerRKC,
-        body_force: [0.0; 3],
-    };
-    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
-    fluid
-        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, -speed, 1.0)))
-        .unwrap();
-    fluid.set_velocity(|c, _| if c == 0 { -speed } else { 0.0 });
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    // off the grid's symmetry lines, as a sphere generally is
-    let centre = [
-        0.5 * lateral as f64 + 0.13,
-        gap.map_or(l as f64, |g| radius + g),
-        0.5 * lateral as f64 + 0.21,
-    ];
-    let sphere = RigidSphere {
-        centre,
-        radius,
-        velocity: [0.0; 3],
-        angular_velocity: [0.0; 3],
-    };
-    coupling.set_spheres(&[sphere], &[0]);
-    let steps = (t_end / dt).round() as usize;
-    for _ in 0..steps {
-        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        coupling.compute_loads(&fluid, 1.0);
-    }
-    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
-    -coupling.loads()[0].force[0] / stokes
-}
-
-/// `K(L)` at two lateral periods, extrapolated as `K∞ + c/L²`.
-fn without_images(k: [f64; 2], lateral: [usize; 2]) -> f64 {
-    let [a, b] = lateral.map(|l| (l * l) as f64);
-    (b * k[1] - a * k[0]) / (b - a)
-}
+use support::slit::{approach_drag, faxen_midway, slit_drag, without_images};
 
 /// Midway between walls six radii apart (λ = 1/3) at r/h = 4: within 3 % of Faxén once the
 /// lateral images are extrapolated away (measured +1.6 %; at r/h = 8, +0.7 %).
 #[test]
 fn a_sphere_midway_between_walls_feels_faxens_drag() {
     let lateral = [64, 96];
-    let k = lateral.map(|lat| slit_drag(4.0, 12, lat, None, 300.0, 1.0));
+    let k = lateral.map(|lat| slit_drag(4.0, 12, lat, None, 1.0, Some(300)));
     let drag = without_images(k, lateral);
     let exact = faxen_midway(1.0 / 3.0);
     eprintln!(
@@ -101,64 +33,6 @@ fn a_sphere_midway_between_walls_feels_faxens_drag() {
     // the images raise the drag, and fall away with the period
     assert!(k[0] > k[1] && k[1] > drag, "{k:?} → {drag}");
     assert!((drag / exact - 1.0).abs() < 0.03, "{drag} against {exact}");
-}
-
-/// A sphere of `radius` cells pulled toward the lower of two resting walls `2 l` cells
-/// apart (period `lateral` along x and z) at `speed` from a surface gap of `from` cells
-/// (h = 1, ν = 1, `EulerRKC` at `dt`); the normal drag over `6πμaU` as the gap reaches each
-/// of `at` (cells, descending).
-fn approach_drag(
-    [radius, speed, dt]: [f64; 3],
-    l: usize,
-    lateral: usize,
-    from: f64,
-    at: &[f64],
-) -> Vec<f64> {
-    let nu = 1.0;
-    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
-    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
-    let bc = BoundaryConditions {
-        faces: [
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            wall.clone(),
-            wall,
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-        ],
-    };
-    let settings = FluidSettings {
-        nu,
-        scheme: TimeScheme::EulerRKC,
-        body_force: [0.0; 3],
-    };
-    let mut fluid = FluidSolver::new(grid, bc, settings).unwrap();
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    let stokes = 6.0 * std::f64::consts::PI * nu * radius * speed;
-    let mut drag = Vec::with_capacity(at.len());
-    for step in 0.. {
-        let gap = from - speed * dt * step as f64;
-        let sphere = RigidSphere {
-            centre: [
-                0.5 * lateral as f64 + 0.13,
-                radius + gap,
-                0.5 * lateral as f64 + 0.21,
-            ],
-            radius,
-            velocity: [0.0, -speed, 0.0],
-            angular_velocity: [0.0; 3],
-        };
-        coupling.set_spheres(&[sphere], &[0]);
-        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        let k = coupling.compute_loads(&fluid, 1.0)[0].force[1] / stokes;
-        if gap <= at[drag.len()] + 1e-9 {
-            drag.push(k);
-            if drag.len() == at.len() {
-                return drag;
-            }
-        }
-    }
-    unreachable!("the loop returns once the last gap is reached")
 }
 
 /// A sphere pulled toward a wall at r/h = 4 against the same sphere at r/h = 8, at surface

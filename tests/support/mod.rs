@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod settler;
+pub mod slit;
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,124 @@
+//! A sphere between two plane no-slip walls (y = 0 and y = 2l, periodic along x and z with
+//! period `L`), in lattice units (h = 1, ν = 1, `EulerRKC`): for `tests/direct_walls.rs` and
+//! `examples/wall_slit_drag.rs`.
+#![allow(dead_code)]
+
+use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
+use fsim::fluid::{
+    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme,
+};
+use fsim::grid::Grid;
+
+/// Faxén's drag factor for a sphere midway between two walls, `λ = a/l` (Happel & Brenner,
+/// *Low Reynolds number hydrodynamics*, 1965, eq. 7-4.39).
+pub fn faxen_midway(lambda: f64) -> f64 {
+    1.0 / (1.0 - 1.004 * lambda + 0.418 * lambda.powi(3) + 0.21 * lambda.powi(4)
+        - 0.169 * lambda.powi(5))
+}
+
+/// `K(L)` at two lateral periods, extrapolated as `K∞ + c/L²` (a confined Stokeslet's far
+/// field is a two-dimensional dipole).
+pub fn without_images(k: [f64; 2], lateral: [usize; 2]) -> f64 {
+    let [a, b] = lateral.map(|l| (l * l) as f64);
+    (b * k[1] - a * k[0]) / (b - a)
+}
+
+/// The fluid between walls `2 l` cells apart moving at `wall_velocity` along x, period
+/// `lateral` cells along x and z.
+pub fn slit_fluid(l: usize, lateral: usize, wall_velocity: f64) -> FluidSolver {
+    let grid = Grid::new([lateral, 2 * l, lateral], [1.0; 3], [0.0; 3]);
+    let mut bc = BoundaryConditions::periodic();
+    for side in [2, 3] {
+        bc.faces[side] = FaceCondition::Wall {
+            velocity: [wall_velocity, 0.0, 0.0],
+        };
+    }
+    let settings = FluidSettings {
+        nu: 1.0,
+        scheme: TimeScheme::EulerRKC,
+        body_force: [0.0; 3],
+    };
+    FluidSolver::new(grid, bc, settings).unwrap()
+}
+
+/// A sphere of `radius` cells held still, off the grid's symmetry lines, with its surface
+/// `gap` cells above the lower wall (midway when `None`), the walls and the bulk moving at
+/// `−U` (`meanVelocityForce` holds it, so that the sphere drives no net flow; U = 0.01,
+/// Re = 2aU/ν ≤ 0.16). The drag over `6πμaU` after `steps` steps of `dt`, or, when `None`,
+/// once it changes by less than 10⁻⁶ a step.
+pub fn slit_drag(
+    radius: f64,
+    l: usize,
+    lateral: usize,
+    gap: Option<f64>,
+    dt: f64,
+    steps: Option<usize>,
+) -> f64 {
+    let speed = 0.01;
+    let mut fluid = slit_fluid(l, lateral, -speed);
+    fluid
+        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, -speed, 1.0)))
+        .unwrap();
+    fluid.set_velocity(|c, _| if c == 0 { -speed } else { 0.0 });
+    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+    let centre = [
+        0.5 * lateral as f64 + 0.13,
+        gap.map_or(l as f64, |g| radius + g),
+        0.5 * lateral as f64 + 0.21,
+    ];
+    coupling.set_spheres(&[RigidSphere::fixed(centre, radius)], &[0]);
+    let stokes = 6.0 * std::f64::consts::PI * radius * speed;
+    let mut last = f64::INFINITY;
+    for step in 1.. {
+        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
+        let k = -coupling.compute_loads(&fluid, 1.0)[0].force[0] / stokes;
+        let done = match steps {
+            Some(n) => step == n,
+            None => (k - last).abs() < 1e-6,
+        };
+        if done {
+            return k;
+        }
+        last = k;
+    }
+    unreachable!("the loop returns")
+}
+
+/// A sphere of `radius` cells pulled toward the lower of two resting walls `2 l` cells
+/// apart (period `lateral`) at `speed` from a surface gap of `from` cells, steps of `dt`;
+/// the normal drag over `6πμaU` as the gap reaches each of `at` (cells, descending).
+pub fn approach_drag(
+    [radius, speed, dt]: [f64; 3],
+    l: usize,
+    lateral: usize,
+    from: f64,
+    at: &[f64],
+) -> Vec<f64> {
+    let mut fluid = slit_fluid(l, lateral, 0.0);
+    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
+    let stokes = 6.0 * std::f64::consts::PI * radius * speed;
+    let mut drag = Vec::with_capacity(at.len());
+    for step in 0.. {
+        if drag.len() == at.len() {
+            break;
+        }
+        let gap = from - speed * dt * step as f64;
+        let sphere = RigidSphere {
+            centre: [
+                0.5 * lateral as f64 + 0.13,
+                radius + gap,
+                0.5 * lateral as f64 + 0.21,
+            ],
+            radius,
+            velocity: [0.0, -speed, 0.0],
+            angular_velocity: [0.0; 3],
+        };
+        coupling.set_spheres(&[sphere], &[0]);
+        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
+        let k = coupling.compute_loads(&fluid, 1.0)[0].force[1] / stokes;
+        if gap <= at[drag.len()] + 1e-9 {
+            drag.push(k);
+        }
+    }
+    drag
+}
