@@ -31,6 +31,7 @@ mod step_size;
 pub use case_settings::{boundary_conditions, continues, interstitial_inlets};
 use case_settings::{check_direct_resolution, drag_law, fluid_scheme, mean_velocity_force};
 use restart::restore_particles;
+use step_size::coupling_step_warning;
 
 /// How each step's size is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,7 +65,8 @@ pub struct Simulation {
     pub hydrodynamics: Option<HydrodynamicReport>,
     /// Freely moving spheres (`model direct`): lubrication, virtual mass, settling drive.
     pub motion: Option<ParticleMotion>,
-    /// What the grid does not resolve well (`model direct`), for `-dry-run` and the log.
+    /// What the grid does not resolve well and where the step is held (`model direct`), for
+    /// `-dry-run` and the log.
     pub warnings: Vec<String>,
     /// Wall time of the last step's phases.
     pub phase_times: PhaseTimes,
@@ -296,6 +298,8 @@ impl Simulation {
             }
             // periodic sedimentation: the mean pressure gradient that carries the mixture
             sim.fluid.set_body_force(motion.fluid_body_force());
+            sim.warnings
+                .extend(coupling_step_warning(sim.sizing, motion.step_bound()));
             sim.motion = Some(motion);
         }
         Ok(sim)

@@ -12,7 +12,8 @@
 //!   solved directly, for the porous-media validation (paper §3.1), and its references
 //!   [`sangani_acrivos_k`] (paper eq. 17) and [`ZICK_HOMSY_SIMPLE_CUBIC`];
 //! - [`ParticleMotion`]: freely moving spheres: [`Lubrication`] below the grid's reach, the
-//!   periodic-settling [`SettlingDrive`], the settling monitor;
+//!   periodic-settling [`SettlingDrive`], the settling monitor, and the step bound of their
+//!   explicit coupling ([`coupling_step_bound`]);
 //! - [`check_resolution`]: what the grid resolves (r/h, gaps), before the run.
 //!
 //! Method choices and measured accuracy: `docs/direct_model.md`.
@@ -37,6 +38,7 @@ mod particle_motion;
 mod periodic_stokes_array;
 mod porous_reference;
 mod resolution_check;
+mod response_time;
 mod rigid_sphere;
 mod settling_drive;
 mod sphere_quadrature;
@@ -61,6 +63,7 @@ pub use porous_reference::{reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUB
 pub use resolution_check::{
     check_resolution, ResolutionReport, MIN_CELLS_PER_RADIUS, RESOLVED_GAP_CELLS,
 };
+pub use response_time::{coupling_step_bound, shortest_response_time, RESPONSE_STEP_FRACTION};
 pub use rigid_sphere::RigidSphere;
 pub use settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
 pub use sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};

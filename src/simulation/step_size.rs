@@ -2,6 +2,7 @@
 //! stability bound, and the collapse of the Courant step by which a diverging run shows.
 
 use super::{Simulation, StepSizing};
+use crate::coupling::direct::RESPONSE_STEP_FRACTION;
 use crate::error::FsimError;
 use crate::fluid::{ChebyshevStages, TimeScheme};
 
@@ -107,8 +108,13 @@ impl Simulation {
                 .fluid
                 .courant_dt(previous, max_co, max_delta_t)
                 .min(self.stability_bound()),
-            // adaptive_dt holds the fluid's own bound already (3 passes over the field)
-            None => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
+            // adaptive_dt holds the fluid's own bound already (3 passes over the field); free
+            // spheres add their coupling's (coupling_step_bound)
+            None => self.fluid.adaptive_dt(previous, max_co, max_delta_t).min(
+                self.motion
+                    .as_ref()
+                    .map_or(f64::INFINITY, |m| m.step_bound()),
+            ),
         }
     }
 
@@ -140,5 +146,28 @@ impl Simulation {
             Some(drag) => drag.fluid.stability_bound(&self.fluid),
             None => self.fluid.stability_bound(),
         }
+    }
+}
+
+/// What the log and `-dry-run` say when the explicit coupling's bound on the step
+/// (`bound`, s: [`crate::coupling::direct::coupling_step_bound`]) is below what controlDict
+/// asks: a fixed `deltaT` above it is taken as given, with a warning; an adjustable step is
+/// held to it.
+pub(super) fn coupling_step_warning(sizing: StepSizing, bound: f64) -> Option<String> {
+    let response = bound / RESPONSE_STEP_FRACTION;
+    match sizing {
+        StepSizing::Fixed(dt) if dt > bound => Some(format!(
+            "system/controlDict: deltaT = {dt:e} s is {:.2} of the shortest response time of \
+             the free spheres, rho_p d^2/(18 mu) = {response:.3e} s; above {RESPONSE_STEP_FRACTION} \
+             of it their explicit coupling may oscillate (docs/direct_model.md, \"Known \
+             limits\"): lower deltaT to {bound:.3e} s or set adjustTimeStep yes",
+            dt / response
+        )),
+        StepSizing::Adaptive { max_delta_t, .. } if max_delta_t > bound => Some(format!(
+            "steps held to {bound:.3e} s, {RESPONSE_STEP_FRACTION} of the shortest response time \
+             of the free spheres (rho_p d^2/(18 mu) = {response:.3e} s), below maxDeltaT = \
+             {max_delta_t:e} s: above it their explicit coupling may oscillate"
+        )),
+        _ => None,
     }
 }

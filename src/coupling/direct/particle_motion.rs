@@ -68,6 +68,7 @@
 use std::collections::HashMap;
 
 use super::lubrication::{Lubrication, LubricationBox, LubricationReport};
+use super::response_time::coupling_step_bound;
 use super::settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
 use crate::case::{CaseError, Coupling};
 use crate::fluid::{BoundaryConditions, FaceCondition};
@@ -213,6 +214,8 @@ pub struct ParticleMotion {
     /// The drive's correction `b_c` (m/s²) and the mixture momentum after the last step.
     correction: Vec3,
     last_momentum: Option<Vec3>,
+    /// The largest step the explicit coupling takes, s ([`coupling_step_bound`]).
+    step_bound: f64,
 }
 
 impl ParticleMotion {
@@ -275,12 +278,19 @@ impl ParticleMotion {
             previous_dt: 0.0,
             correction: [0.0; 3],
             last_momentum: None,
+            step_bound: coupling_step_bound(p, rho * nu),
         })
     }
 
     /// The periodic-settling drive, when the box needs one.
     pub fn drive(&self) -> Option<&SettlingDrive> {
         self.drive.as_ref()
+    }
+
+    /// The largest step the explicit coupling of the free spheres takes, s (infinite when
+    /// every sphere is fixed): [`coupling_step_bound`].
+    pub fn step_bound(&self) -> f64 {
+        self.step_bound
     }
 
     /// The fluid's body force per unit mass, m/s² (the drive's with its correction, or zero).
