@@ -217,7 +217,7 @@ fn a_step_beyond_the_coupling_bound_warns() {
     let case = coarse_settling_sphere(&s, |control| {
         set_entry(control, "maxDeltaT", "1.6e-4");
     });
-    assert_dry_run_warns(&case, &["steps held to 1.111e-4 s"]);
+    assert_dry_run_warns(&case, &["steps held to at most 1.111e-4 s"]);
 }
 
 /// With `maxDeltaT` at 0.36 of the response time the sphere's velocity oscillated by
@@ -254,7 +254,8 @@ fn an_adjustable_step_is_held_to_the_coupling_bound() {
             }
         } else if let Some(dt) = line.strip_prefix("deltaT = ") {
             let dt: f64 = dt.trim().parse().unwrap();
-            assert!(dt <= 1.1112e-4, "a step of {dt} s");
+            // the last step before a write time may stretch by 1 % to land on it
+            assert!(dt <= 1.011 * 1.1111e-4, "a step of {dt} s");
         }
     }
     assert!(late.len() > 100, "{} steps after 30 ms", late.len());

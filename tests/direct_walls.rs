@@ -37,10 +37,10 @@ fn a_sphere_midway_between_walls_feels_faxens_drag() {
 
 /// A sphere pulled toward a wall at r/h = 4 against the same sphere at r/h = 8, at surface
 /// gaps of 11/16 to 1/2 radius (2.75 to 2 cells at r/h = 4), walls 4.5 radii apart, period
-/// 12 radii. The coarse sphere moves 10⁻⁴ cells a step (a settling sphere's order), the fine
-/// one 2·10⁻³. The resistance rises as the gap closes, and down to 2.5 cells agrees within
-/// 3 % (measured +2.6 % and −0.1 %; at 2.25 and 2 cells +4.1 % and +6.5 %, the limit:
-/// docs/direct_model.md, "Walls").
+/// 6 radii. The coarse sphere moves 10⁻⁴ cells a step (a settling sphere's order), the fine
+/// one 2·10⁻³. The resistance rises as the gap closes; down to 2.5 cells it agrees within
+/// 3 % (measured +2.6 % and −0.1 %), at 2.25 and 2 cells, the resolution's limit, within
+/// 10 % (measured +4.1 % and +6.5 %; docs/direct_model.md, "Walls").
 ///
 /// What failed before: three cells out, the coarse surface crossed the wall and enclosed a
 /// patch of it, whose pressure carried part of the resistance (−40 % at 2 cells); kept
@@ -64,10 +64,10 @@ fn approaching_a_wall_the_drag_rises_as_at_twice_the_resolution() {
     for k in [&coarse, &fine] {
         assert!(k.windows(2).all(|w| w[1] > w[0]), "not rising: {k:?}");
     }
-    for i in 0..2 {
+    for (i, bound) in [0.03, 0.03, 0.1, 0.1].into_iter().enumerate() {
         let error = coarse[i] / fine[i] - 1.0;
         assert!(
-            error.abs() < 0.03,
+            error.abs() < bound,
             "gap {}: {coarse:?} against {fine:?}",
             gaps[i]
         );

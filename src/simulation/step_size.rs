@@ -164,7 +164,7 @@ pub(super) fn coupling_step_warning(sizing: StepSizing, bound: f64) -> Option<St
             dt / response
         )),
         StepSizing::Adaptive { max_delta_t, .. } if max_delta_t > bound => Some(format!(
-            "steps held to {bound:.3e} s, {RESPONSE_STEP_FRACTION} of the shortest response time \
+            "steps held to at most {bound:.3e} s, {RESPONSE_STEP_FRACTION} of the shortest response time \
              of the free spheres (rho_p d^2/(18 mu) = {response:.3e} s), below maxDeltaT = \
              {max_delta_t:e} s: above it their explicit coupling may oscillate"
         )),

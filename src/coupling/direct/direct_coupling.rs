@@ -451,10 +451,9 @@ impl DirectCoupling {
             .resize(self.spheres.len(), HydrodynamicLoad::default());
         for (&k, &(mut load, shell)) in self.spatial_order.iter().zip(&results) {
             let id = self.ids[k];
-            let surface = surface_key(offsets[k], interpolations[k], integral.interpolation);
-            if let Some((t0, key, old)) = self.previous_shell.get(&id) {
+            if let Some((t0, offset, old)) = self.previous_shell.get(&id) {
                 let span = time - t0;
-                if span > 0.0 && *key == surface {
+                if span > 0.0 && *offset == offsets[k] {
                     for i in 0..3 {
                         load.force[i] -= rho * (shell.linear[i] - old.linear[i]) / span;
                         load.torque[i] -= rho * (shell.angular[i] - old.angular[i]) / span;
@@ -462,7 +461,7 @@ impl DirectCoupling {
                 }
             }
             if with_shell {
-                self.previous_shell.insert(id, (time, surface, shell));
+                self.previous_shell.insert(id, (time, offsets[k], shell));
             }
             self.loads[self.order[k]] = load;
         }
@@ -506,10 +505,26 @@ impl DirectCoupling {
         let interpolation = self.settings.integral.interpolation;
         self.offsets.clear();
         self.interpolations.clear();
+        let (lo, length, periodic) = (self.origin, self.length, self.periodic);
+        // the gap (cells) between a sphere's surface and the nearest bounding face
+        let wall_gap = |s: &RigidSphere| {
+            (0..3)
+                .filter(|&d| !periodic[d])
+                .map(|d| {
+                    let centre = s.centre[d] - lo[d];
+                    centre.min(length[d] - centre) - s.radius
+                })
+                .fold(f64::INFINITY, f64::min)
+                / h
+        };
         if nominal == 0.0 {
             self.offsets.resize(self.spheres.len(), 0.0);
-            self.interpolations
-                .resize(self.spheres.len(), interpolation);
+            let spheres = &self.spheres;
+            self.interpolations.extend(
+                spheres
+                    .iter()
+                    .map(|s| wall_interpolation(wall_gap(s), interpolation)),
+            );
             return &self.offsets;
         }
         let spheres = &self.spheres;
@@ -545,16 +560,8 @@ impl DirectCoupling {
                 gaps[j] = gaps[j].min(dist - rj - ri);
             },
         );
-        let (lo, length, periodic) = (self.origin, self.length, self.periodic);
         for (&gap, s) in self.gaps.iter().zip(spheres) {
-            let wall_gap = (0..3)
-                .filter(|&d| !periodic[d])
-                .map(|d| {
-                    let centre = s.centre[d] - lo[d];
-                    centre.min(length[d] - centre) - s.radius
-                })
-                .fold(f64::INFINITY, f64::min)
-                / h;
+            let wall_gap = wall_gap(s);
             let offset = nominal
                 .min((gap / h - 1.0).max(1.0))
                 .min(wall_surface_offset(wall_gap));
@@ -576,8 +583,7 @@ impl DirectCoupling {
 
     /// The shell momenta the next [`Self::compute_loads`] differences against, for a
     /// bit-identical restart: per particle (sorted by id) `id, time, offset, linear (3),
-    /// angular (3)`; the offset negative where a wall made the integral trilinear
-    /// ([`wall_interpolation`]).
+    /// angular (3)`.
     pub fn shell_state(&self) -> Vec<f64> {
         let mut ids: Vec<&u64> = self.previous_shell.keys().collect();
         ids.sort_unstable();
@@ -621,8 +627,8 @@ impl DirectCoupling {
 /// part of the sphere's resistance and the sphere is drawn in (a sphere settling onto a
 /// floor at r/h = 4 sped up from 0.6 to 8 mm/s as its gap closed). Pulled toward the wall
 /// at r/h = 4 against the same at r/h = 8 (docs/direct_model.md, "Walls"): at gaps of 2.5
-/// and 2 cells the surface three cells out gave −1.9 % and −40 %, held inside −0.7 % and
-/// −0.3 %. Whole half cells, so that a sphere
+/// and 2 cells the surface three cells out gave −1.9 % and −40 %; held inside (and read
+/// with [`wall_interpolation`]) −0.1 % and +6.5 %. Whole half cells, so that a sphere
 /// drifting along a wall keeps its surface, and its shell term (a changed surface has no
 /// rate), most steps.
 pub fn wall_surface_offset(gap: f64) -> f64 {
@@ -641,16 +647,6 @@ pub fn wall_interpolation(clearance: f64, nominal: Interpolation) -> Interpolati
         Interpolation::Linear
     } else {
         nominal
-    }
-}
-
-/// What a sphere's shell momentum is comparable under from one step to the next: its
-/// surface offset, negative where a wall changed the interpolation from the setting.
-fn surface_key(offset: f64, interpolation: Interpolation, nominal: Interpolation) -> f64 {
-    if interpolation == nominal {
-        offset
-    } else {
-        -offset
     }
 }
 
@@ -764,6 +760,15 @@ mod tests {
         assert_eq!(offsets, vec![1.5, 2.5, 3.0]);
         // the first two surfaces come within 0.2 and 0.1 cells of a wall, the third 2 cells
         assert_eq!(coupling.interpolations(), [linear, linear, cubic]);
+        // on the spheres themselves (offset 0): 1.7, 2.6 and 5 cells from a wall
+        let mut settings = DirectSettings::default();
+        settings.integral.surface_offset = 0.0;
+        let mut on_sphere = DirectCoupling::new(&mut fluid, settings);
+        let mut closer = spheres;
+        closer[1].centre[1] = 0.6 - r - 0.12; // 1.2 cells from the upper wall
+        on_sphere.set_spheres(&closer, &[0, 1, 2]);
+        assert_eq!(on_sphere.surface_offsets(), [0.0; 3]);
+        assert_eq!(on_sphere.interpolations(), [cubic, linear, cubic]);
     }
 
     /// The linked-cell search gives every sphere the offset that comparing it with all
