@@ -10,9 +10,9 @@
 //! `settling`: one sphere (r/h = 8, Re = 0.004) settling in a periodic box, v/U_Stokes ten
 //! times along the run, against the periodic-array value (paper eq. 17). `balance`: the same
 //! sphere held fixed while a uniform body force `b` drives the fluid; at steady state it
-//! carries all of it, `F = ρ b L³`. Defaults: RK3CN, 1e-4 s, 100 steps, ρ_p = 2000 kg/m³.
-//! The environment's `VM` (virtual mass coefficient), `INTERP` (linear, cubic), `QUADS`
-//! (quadrangles) and `OFFSET` (integration surface, cells) change the settings.
+//! carries all of it, `F = ρ b L³`. Defaults: EulerRKC, 1e-4 s, 100 steps, ρ_p = 2000 kg/m³.
+//! The environment's `VM` (virtual mass coefficient), `INTERP` (linear, cubic) and `OFFSET`
+//! (integration surface, cells) change the settings.
 
 #[path = "../tests/support/settler.rs"]
 mod settler;
@@ -27,7 +27,7 @@ const H: f64 = 1.25e-4;
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let arg = |k: usize, default: &str| args.get(k).cloned().unwrap_or(default.to_string());
-    let scheme = TimeScheme::from_name(&arg(1, "RK3CN")).expect("SCHEME: a time scheme's name");
+    let scheme = TimeScheme::from_name(&arg(1, "EulerRKC")).expect("SCHEME: a time scheme's name");
     let dt: f64 = arg(2, "1e-4").parse().expect("DT: a number");
     let steps: usize = arg(3, "100").parse().expect("STEPS: a whole number");
     match args.first().map(String::as_str) {
@@ -51,9 +51,6 @@ fn settings() -> (DirectSettings, MotionSettings) {
     if let Some(name) = var("INTERP") {
         direct.integral.interpolation =
             Interpolation::from_name(&name).expect("INTERP: linear or cubic");
-    }
-    if let Some(q) = var("QUADS") {
-        direct.integral.quadrangles = Some(q.parse().expect("QUADS: a whole number"));
     }
     if let Some(offset) = var("OFFSET") {
         direct.integral.surface_offset = offset.parse().expect("OFFSET: a number");

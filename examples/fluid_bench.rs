@@ -1,8 +1,8 @@
 //! Throughput of the periodic projection step (Taylor–Green vortex) at 64³ and 128³ on 1 and
 //! 2 threads, in cell-steps per second, and the solver's bytes per cell.
 //!
-//! `cargo run --release --example fluid_bench [-- scheme [n [threads]]]` (scheme: Euler, RK2,
-//! RK3, RK3CN; default Euler, the paper's single-projection step; default sizes 64 and 128,
+//! `cargo run --release --example fluid_bench [-- scheme [n [threads]]]` (scheme: Euler, RK3,
+//! EulerRKC; default Euler, the paper's single-projection step; default sizes 64 and 128,
 //! threads 1 and 2).
 
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, TimeScheme};
@@ -28,7 +28,7 @@ fn cpu_seconds() -> f64 {
 fn main() {
     let scheme = std::env::args()
         .nth(1)
-        .map(|s| TimeScheme::from_name(&s).expect("scheme: Euler, RK2 or RK3"))
+        .map(|s| TimeScheme::from_name(&s).expect("scheme: Euler, RK3 or EulerRKC"))
         .unwrap_or(TimeScheme::Euler);
     println!("scheme {}", scheme.name());
     let arg = |i: usize| {

@@ -98,8 +98,6 @@ fn porous(phi: f64, target_rh: f64) -> Row {
             let integral = StressIntegral {
                 surface_offset: offset,
                 interpolation,
-                quadrangles: None,
-                convective_flux: false,
             };
             let q = integral.quadrature(radius, h);
             let load = stress_integral_force(&view, &sphere, 1.0, flow.body_force, &integral, &q);

@@ -93,8 +93,6 @@ pub struct HydrodynamicReport {
     /// Mean force per particle along the fluid's bulk flow over `6π μ r U` (paper eq. 19),
     /// `U` the bulk (superficial) velocity, `r` the mean radius: the porous-media `K`.
     pub drag_coefficient: f64,
-    /// The constrained viscous solve of the step's last stage (semi-implicit schemes).
-    pub constrained_solve: Option<crate::coupling::direct::ImplicitForcingReport>,
 }
 
 /// The cloud of a run: the DEM engine and what the log says about it.
@@ -380,7 +378,6 @@ impl Simulation {
             return;
         };
         let clock = Instant::now();
-        let constrained = direct.implicit_forcing_report();
         let loads = direct.compute_loads(&self.fluid, self.rho);
         match self.motion.as_mut() {
             // plus lubrication and the virtual mass (ParticleMotion)
@@ -403,7 +400,6 @@ impl Simulation {
             force: [0.0; 3],
             torque: [0.0; 3],
             drag_coefficient: 0.0,
-            constrained_solve: (constrained.solves > 0).then_some(constrained),
         };
         for load in loads.iter() {
             for i in 0..3 {

@@ -226,21 +226,6 @@ impl StepReporter {
                     }
                 ))?;
             }
-            if let Some(c) = &h.constrained_solve {
-                self.log.line(&format!(
-                    "Constrained viscous solve: {} Helmholtz solves, constraint residual = {:.3e}",
-                    c.solves, c.relative_residual
-                ))?;
-                if c.limit_reached {
-                    self.log.line(&format!(
-                        "warning: the constrained viscous solve stopped at its limit of {} \
-                         GMRES iterations with the constraint residual {:.3e} above its \
-                         tolerance {:.1e}: no-slip on the spheres holds only to that residual \
-                         this step",
-                        c.max_iterations, c.relative_residual, c.tolerance
-                    ))?;
-                }
-            }
             if let Some(m) = self.direct.as_mut() {
                 m.row(&[
                     sim.time.time,

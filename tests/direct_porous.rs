@@ -150,10 +150,7 @@ fn moving_sphere(
         pressure: &flow.pressure,
         nu: 1.0,
     };
-    let integral = StressIntegral {
-        convective_flux: false, // a Stokes flow
-        ..StressIntegral::default()
-    };
+    let integral = StressIntegral::default();
     let q = integral.quadrature(radius, h);
     let load = stress_integral_force(&view, &sphere, 1.0, flow.body_force, &integral, &q);
     (flow.body_force, load)

@@ -83,8 +83,6 @@ fn stokes_drag_converges_at_second_order_three_cells_out() {
             let integral = StressIntegral {
                 surface_offset: offset,
                 interpolation,
-                quadrangles: None,
-                convective_flux: false,
             };
             let errors: Vec<f64> = resolutions
                 .iter()

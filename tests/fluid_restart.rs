@@ -46,12 +46,7 @@ fn solver(scheme: TimeScheme) -> FluidSolver {
 
 #[test]
 fn continued_run_equals_uninterrupted_bit_for_bit() {
-    for scheme in [
-        TimeScheme::Euler,
-        TimeScheme::RK3,
-        TimeScheme::RK3CN,
-        TimeScheme::EulerCN,
-    ] {
+    for scheme in TimeScheme::ALL {
         let dt = 0.01;
         let mut whole = solver(scheme);
         for _ in 0..20 {

@@ -44,7 +44,7 @@ fn run(solver: &mut FluidSolver, t_end: f64, dt_max: f64) -> f64 {
 fn taylor_green_energy_decays_at_exact_rate_on_32_cubed() {
     let nu = 0.1;
     let t_end = 2.5;
-    for scheme in [TimeScheme::Euler, TimeScheme::RK2, TimeScheme::RK3] {
+    for scheme in [TimeScheme::Euler, TimeScheme::RK3] {
         let mut s = periodic_box([32, 32, 32], nu, scheme);
         s.set_velocity(|c, x| taylor_green(c, x, 1.0));
         let e0 = s.diagnostics(0.0).kinetic_energy;

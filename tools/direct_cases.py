@@ -6,7 +6,7 @@ generator, the sedimentation sweep and the benchmark.
 
 A case is a periodic box of `cells` cells of size h, spheres of diameter d given by their
 centres (kinematicCloudPositions) or by fsim's randomPacking injection, gravity along -y
-(the paper's x2), the direct model with RK3CN (no viscous step bound) and an adaptive step.
+(the paper's x2), the direct model with an adaptive step.
 """
 import math
 import os
@@ -77,7 +77,7 @@ def write_case(case, *, cells, h, d, rho_f, nu, rho_p, end_time, write_interval,
     diameter d (m) and density rho_p, in a fluid of density rho_f and viscosity nu.
     Particles: `centres` (a list), or `random_fraction` (fsim's randomPacking, seeded)."""
     L = [n * h for n in cells]
-    if scheme in ("Euler", "RK2"):
+    if scheme == "Euler":
         # just under the explicit viscous bound h^2/(6 nu) (paper eq. 3), which rules at h < r
         max_dt = min(max_dt, 0.95 * h * h / (6 * nu))
     _write(case, "system/blockMeshDict", "dictionary", f"""
@@ -133,18 +133,14 @@ writeInterval   {write_interval:g};
 purgeWrite      0;
 
 timePrecision   6;
+
+runTimeModifiable yes;
 """)
     if scheme == "EulerRKC":
         why = """    // Explicit Euler advection; the diffusion by Runge-Kutta-Chebyshev stages, as many as
     // the step needs (3 or 4 at maxCo 0.8 here), each a Laplacian with the no-slip forcing
     // imposed on it, then one projection: the step follows maxCo (and maxDeltaT), not
-    // the explicit viscous bound h^2/(6 nu), at a fraction of EulerCN's Helmholtz solves
-    // (docs/direct_model.md)."""
-    elif scheme in ("RK3CN", "EulerCN"):
-        why = """    // Semi-implicit: explicit advection, Crank-Nicolson diffusion with the no-slip forcing
-    // inside the implicit solve, so the step follows maxCo (and maxDeltaT), not the
-    // explicit viscous bound h^2/(6 nu); the drag does not depend on the step
-    // (docs/direct_model.md)."""
+    // the explicit viscous bound h^2/(6 nu) (docs/numerics.md)."""
     else:
         why = """    // The paper's explicit scheme: the step sits just under its viscous bound h^2/(6 nu)
     // (maxDeltaT in controlDict), which rules at h < r; RK3 allows 1.25 times the step at
@@ -349,7 +345,7 @@ direct
 BENCHMARK_COUPLING = LINEAR.replace("    interpolation   linear;\n", "    interpolation   linear;\n"
                                     + """    // the forced faces are rebuilt once a sphere has moved a quarter of a cell (between
     // builds they keep their geometry and take the spheres' motion): a pulled sphere's
-    // drag changes by +0.3 %, the benchmark's step costs a third less (docs/direct_benchmark.md)
+    // drag changes by +0.3 %, the benchmark's step costs a third less (docs/benchmarks/direct.md)
     rebuildDistance 0.25;
 """)
 
@@ -375,10 +371,10 @@ def benchmark(case, end_time=0.1, cells_per_radius=2.5, particles=500, scheme="E
     `cells_per_radius` and `particles` vary it for the scaling studies (same box).
     EulerRKC (Euler advection, Chebyshev stages of the diffusion): the step follows maxCo
     0.8, about 20 us once the gas streams up through the particles (t > 1 ms), four to five
-    times the explicit Euler bound h^2/(6 nu) = 4.4 us, with 3 stages of a Laplacian each
-    instead of EulerCN's 16 FFT solves. maxCo 0.8 rather than 0.5: the first-order step's
+    times the explicit Euler bound h^2/(6 nu) = 4.4 us, with 3 stages of a Laplacian each.
+    maxCo 0.8 rather than 0.5: the first-order step's
     error in the settling velocity at 5 ms is then about 0.7 % (0.4 % at 0.5), below the
-    spatial error of h = 0.4 r, for 1.5 times fewer steps (docs/direct_benchmark.md, "EulerRKC")."""
+    spatial error of h = 0.4 r, for 1.5 times fewer steps (docs/benchmarks/direct.md)."""
     r = 50e-6
     h = r / cells_per_radius
     cells = [int(round(24 * cells_per_radius)), int(round(72 * cells_per_radius)),

@@ -32,7 +32,6 @@ mod field_view;
 mod forced_face;
 mod gmres;
 mod immersed_boundary;
-mod implicit_forcing;
 mod lubrication;
 mod particle_motion;
 mod periodic_stokes_array;
@@ -43,6 +42,7 @@ mod rigid_sphere;
 mod settling_drive;
 mod sphere_quadrature;
 mod stress_integral;
+mod tuning;
 
 pub use close_pairs::{ClosePairs, PeriodicBox};
 pub use direct_coupling::{wall_interpolation, wall_surface_offset, DirectCoupling};
@@ -53,7 +53,6 @@ pub use field_view::{periodic_directions, FieldView};
 pub use forced_face::{ClosedCell, ForcingFace, GapFace, InteriorFace, ThroatFace};
 pub use gmres::{gmres, GmresReport, GmresWorkspace};
 pub use immersed_boundary::ImmersedBoundary;
-pub use implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
     MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,

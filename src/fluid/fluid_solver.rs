@@ -5,8 +5,6 @@
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::chebyshev_diffusion::ChebyshevDiffusion;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
-use super::implicit_stage::ImplicitStage;
-use super::implicit_viscosity::ImplicitViscosity;
 use super::mean_velocity_force::MeanVelocityForce;
 use super::momentum::{accumulate_tendency, MomentumTerms};
 use super::padded_layout::PaddedLayout;
@@ -59,20 +57,15 @@ pub struct PredictedVelocity<'a> {
     /// The stage's projection weight: the projection subtracts `tau ∇p`.
     pub tau: f64,
     /// The pressure the coming projection will subtract `tau ∇` of, as last solved
-    /// (cell-centred, unpadded; the explicit schemes): a hook that wants a face to end at `w`
-    /// after the projection sets it to `w + tau ∂p` (exact once the flow is steady). Empty
-    /// for `RK3CN`, whose predictor already carries the pressure and whose projection only
-    /// subtracts an increment that vanishes at steady state (compensating with the last
-    /// increment there makes the step unstable).
+    /// (cell-centred, unpadded; `Euler` and `RK3`): a hook that wants a face to end at `w`
+    /// after the projection sets it to `w + tau ∂p` (exact once the flow is steady).
     pub pressure: &'a [f64],
-    /// The incremental schemes (`EulerRKC`, `EulerCN`, `RK3CN`, on every call; empty with
-    /// the others): the pressure `p` to which the coming projection adds its increment
-    /// `φ`, `∇²φ = (∇·u* − q)/τ` (`EulerRKC`'s stages hand the `p` of its one projection at
-    /// the step's end). A hook that sets `q` in a
+    /// `EulerRKC` (empty with the others): the pressure `p` to which the step's one
+    /// projection adds its increment `φ`, `∇²φ = (∇·u* − q)/τ`. A hook that sets `q` in a
     /// cell whose faces it fixes all adds `τ∇²p` there (the projection's discrete
     /// Laplacian), so that the new pressure is harmonic there as a full projection makes
-    /// it; else the increment leaves the Laplacian the cell had when it closed in `p` for
-    /// ever (moving spheres cover fluid cells), and the drag drifts with it.
+    /// it; else the increment keeps the Laplacian the cell had when it closed (moving
+    /// spheres cover fluid cells), and the drag drifts with it.
     pub incremental_pressure: &'a [f64],
     /// Velocity components, padded layout.
     pub velocity: &'a mut [Vec<f64>; 3],
@@ -81,10 +74,6 @@ pub struct PredictedVelocity<'a> {
     /// hook that fixes every face of a cell sets `q` there to the divergence it imposes
     /// (Kim, Kim & Choi, J. Comput. Phys. 171, 132–150, 2001); `Σ q` must be 0.
     pub mass_source: Option<&'a mut [f64]>,
-    /// `RK3CN` only: the stage's viscous Helmholtz operator, whose unconstrained solution
-    /// `velocity` holds; a hook that constrains faces solves its constrained problem with it
-    /// (see [`ImplicitStage`]). `None` for the explicit schemes.
-    pub implicit: Option<ImplicitStage<'a>>,
     /// The components this call hands over predicted: a hook acts on these only (the others
     /// hold what the last call left them). All three but with `EulerRKC`, whose stages
     /// advance one component at a time (see [`FluidSolver::step_with`]).
@@ -118,15 +107,12 @@ pub struct FluidSolver {
     settings: FluidSettings,
     u: [Vec<f64>; 3],
     p: Vec<f64>,
-    /// The explicit schemes' tendency register, and `RK3CN`'s `N` of the last stage. Empty
-    /// with `EulerCN`, which keeps nothing between stages (three fields fewer in memory).
+    /// The tendency register of the two-register schemes (`EulerRKC`'s frozen tendency).
     q: [Vec<f64>; 3],
     source: Option<[Vec<f64>; 3]>,
     /// Optional per-cell mass source of the projection (see [`PredictedVelocity`]).
     mass_source: Option<Vec<f64>>,
     poisson: SpectralPoisson,
-    /// Viscous Helmholtz solvers and their work arrays, for the semi-implicit scheme only.
-    implicit: Option<ImplicitViscosity>,
     /// `EulerRKC`'s second velocity register (one, for the component whose stages run) and
     /// pressure increment.
     chebyshev: Option<ChebyshevDiffusion>,
@@ -173,12 +159,11 @@ impl FluidSolver {
             std::array::from_fn(|c| std::array::from_fn(|d| bc.corrected_range(grid.n, c, d)));
         let mut s = FluidSolver {
             u: [zeros(), zeros(), zeros()],
-            q: Default::default(), // set_scheme allocates it when the scheme needs it
+            q: [zeros(), zeros(), zeros()],
             p: vec![0.0; grid.cell_count()],
             source: None,
             mass_source: None,
             poisson,
-            implicit: None,
             chebyshev: None,
             drive: None,
             time: 0.0,
@@ -222,20 +207,9 @@ impl FluidSolver {
     pub fn set_body_force(&mut self, f: [f64; 3]) {
         self.settings.body_force = f;
     }
-    /// Changes the time scheme, preparing the implicit viscous solvers if it needs them
-    /// (fails for `RK3CN` with outlets).
+    /// Changes the time scheme, preparing the Chebyshev stages' registers if it needs them
+    /// (fails for `EulerRKC` with outlets).
     pub fn set_scheme(&mut self, scheme: TimeScheme) -> Result<(), String> {
-        if scheme.is_semi_implicit() {
-            if self.implicit.is_none() {
-                self.implicit = Some(ImplicitViscosity::new(
-                    &self.grid,
-                    &self.bc,
-                    &self.momentum_ranges,
-                )?);
-            }
-        } else {
-            self.implicit = None;
-        }
         self.impulse_generation = None;
         if scheme.projections() > 1 {
             self.impulse_pressure.resize(self.grid.cell_count(), 0.0);
@@ -255,13 +229,6 @@ impl FluidSolver {
         } else {
             self.chebyshev = None;
             self.stages_taken = 0;
-        }
-        if scheme.keeps_tendency() {
-            if self.q[0].is_empty() {
-                self.q = std::array::from_fn(|_| vec![0.0; self.layout.len]);
-            }
-        } else {
-            self.q = Default::default();
         }
         self.settings.scheme = scheme;
         Ok(())
@@ -294,8 +261,7 @@ impl FluidSolver {
 
     /// The pressure whose gradient, acting over the whole last step, gives the momentum the
     /// pressure exchanged in it (what a force lagged by one step must see): with several
-    /// stages, `p̄ = Σ_s w_s p_s` (`TimeScheme::stage_pressure_weight`; `RK3CN`:
-    /// `w_s = 2α_s`, each stage's pressure acting over its own `τ_s = 2α_s Δt`). The last
+    /// stages, `p̄ = Σ_s w_s p_s` (`TimeScheme::stage_pressure_weight`). The last
     /// stage's pressure alone holds little of the impulse the first stage gave when the
     /// spheres' velocities changed; a force read from it loses the added mass, which
     /// destabilises the explicit coupling of free spheres. The same as [`Self::pressure`]
@@ -417,18 +383,13 @@ impl FluidSolver {
 
     /// Sets the pressure to the one the current velocity and forces imply: `∇²p = ∇·F` with
     /// `F = −∇·(uu) + ν∇²u + f` (zero normal `F` where the velocity is fixed), i.e. the pressure
-    /// an explicit step would produce. The semi-implicit scheme corrects pressure increments,
-    /// so starting from this pressure keeps a force balanced by pressure (fluid at rest under
-    /// gravity) balanced from the first step. Called by [`Self::new`] and [`Self::project`].
+    /// an explicit step would produce. `EulerRKC` corrects pressure increments, so starting
+    /// from this pressure keeps a force balanced by pressure (fluid at rest under gravity)
+    /// balanced from the first step. Called by [`Self::new`] and [`Self::project`].
     pub fn initialise_pressure(&mut self) {
         fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
         let force = self.total_body_force();
-        // The tendency F goes through `q`; a scheme without it lends the space for the
-        // moment (outside the time loop).
-        let borrowed = self.q[0].is_empty();
-        if borrowed {
-            self.q = std::array::from_fn(|_| vec![0.0; self.layout.len]);
-        }
+        // The tendency F goes through `q`.
         for qc in self.q.iter_mut() {
             qc.iter_mut().for_each(|x| *x = 0.0);
         }
@@ -457,9 +418,6 @@ impl FluidSolver {
             1.0,
         );
         self.poisson.solve(&mut self.p);
-        if borrowed {
-            self.q = Default::default();
-        }
     }
 
     /// Cell-centred velocity into `out`, unpadded x-fastest, interpolated from the faces to
@@ -530,7 +488,6 @@ impl FluidSolver {
         let total = arrays * padded
             + self.p.len() * 8
             + self.poisson.scratch_bytes()
-            + self.implicit.as_ref().map_or(0, |i| i.bytes())
             + self.chebyshev.as_ref().map_or(0, |c| c.bytes())
             + self.partials.len() * 96;
         total as f64 / self.grid.cell_count() as f64

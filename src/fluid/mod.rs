@@ -3,14 +3,12 @@
 //! Fractional-step projection (Chorin/Temam, as in Peyret & Taylor, the paper's ref. \[19\]):
 //! a predictor `u* = uⁿ + Δt (−∇·(uu) + ν∇²u + f)` (paper eq. 2), a pressure Poisson equation
 //! `∇²p = ∇·u*/Δt`, and the correction `uⁿ⁺¹ = u* − Δt ∇p`, once per stage of the chosen
-//! [`TimeScheme`]: `Euler` (the paper's), `RK2`, `RK3` (default), or `RK3CN` (implicit
-//! Crank–Nicolson diffusion, no viscous time-step limit). Space is second order: conservative
-//! central advection, 7-point diffusion. The Poisson (and, for `RK3CN`, Helmholtz) problems
-//! are solved exactly to round-off by separable real transforms: FFT in periodic directions,
+//! [`TimeScheme`]: `Euler` (the paper's), `RK3` (default), or `EulerRKC` (diffusion by
+//! Runge–Kutta–Chebyshev stages, no viscous time-step limit). Space is second order:
+//! conservative central advection, 7-point diffusion. The Poisson problems are solved exactly to round-off by separable real transforms: FFT in periodic directions,
 //! DCT where the pressure has zero normal gradient, DST where it is fixed
 //! ([`SpectralPoisson`]). [`VariablePoisson`] solves `∇·(β∇p) = f` by conjugate gradients
-//! preconditioned with the constant-coefficient spectral solve or a geometric-multigrid
-//! V-cycle ([`Multigrid`], [`Preconditioner`]), for the drag-law model.
+//! preconditioned with the constant-coefficient spectral solve, for the drag-law model.
 //!
 //! Storage (see [`FluidSolver`]): velocity components on their faces in padded arrays (one
 //! ghost layer per side, [`PaddedLayout`]); pressure unpadded in the x-fastest layout of
@@ -20,8 +18,7 @@
 //! Hooks for the coupling models: [`FluidSolver::step_with`] hands each stage's predicted
 //! velocity to a closure before it is projected (the direct model imposes the particles'
 //! rigid motion there; `EulerRKC` hands the components one at a time), and [`FluidSolver::face_source_mut`] holds per-face accelerations
-//! (the drag-law model's reaction forces). `RK3CN` removes the viscous time-step limit that
-//! dominates when the grid is finer than the particles.
+//! (the drag-law model's reaction forces).
 //!
 //! A time loop uses it like this (the caller owns the rayon pool: run it inside
 //! `pool.install`):
@@ -56,11 +53,8 @@ mod coefficient_fields;
 mod diagnostics;
 mod fluid_solver;
 mod ghost_fill;
-mod implicit_stage;
-mod implicit_viscosity;
 mod mean_velocity_force;
 mod momentum;
-mod multigrid;
 mod padded_layout;
 mod projection;
 mod shared_samples;
@@ -78,14 +72,12 @@ pub use diagnostics::FluidDiagnostics;
 pub use fluid_solver::{FluidSettings, FluidSolver, PredictedVelocity, StepReport};
 #[cfg(test)]
 pub(crate) use ghost_fill::fill_velocity_ghosts;
-pub use implicit_stage::ImplicitStage;
 pub use mean_velocity_force::MeanVelocityForce;
-pub use multigrid::{FaceAveraging, Multigrid};
 pub use padded_layout::PaddedLayout;
 pub(crate) use shared_samples::SharedSamples;
 pub use spectral_poisson::{AxisKind, PressureBoundary, SpectralPoisson};
 pub use time_scheme::TimeScheme;
-pub use variable_poisson::{Convergence, PcgReport, Preconditioner, VariablePoisson};
+pub use variable_poisson::{Convergence, PcgReport, VariablePoisson};
 pub(crate) use volume_averaged_fluid::fill_cell_ghosts;
 pub use volume_averaged_fluid::{VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 pub use volume_averaged_viscosity::ViscousReport;

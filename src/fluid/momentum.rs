@@ -242,84 +242,6 @@ fn accumulate_plane(
     }
 }
 
-/// Right-hand side of a semi-implicit stage (Spalart, Moser & Rogers 1991) for every
-/// component, into `rhs[c]` laid out as the box of its momentum faces (x fastest):
-///
-/// `rhs = u + Δt (γ N(u) + ζ N_old + α ν ∇²u) − τ ∇p_old`, `N = −∇·(uu) + f`,
-///
-/// and `q[c] ← N(u)` for the next stage (`N_old` is read from `q` first; `ζ = 0` skips it).
-/// The current pressure's gradient (weight `τ = (α + β) Δt`) is in the predictor so that the
-/// projection only corrects an increment: a force balanced by pressure (fluid at rest under
-/// gravity) then stays balanced exactly, although the implicit diffusion smooths `u*`.
-pub(crate) fn semi_implicit_rhs(
-    rhs: &mut [Vec<f64>; 3],
-    q: &mut [Vec<f64>; 3],
-    u: &[Vec<f64>; 3],
-    t: &MomentumTerms,
-    (gamma, zeta, alpha): (f64, f64, f64),
-    dt: f64,
-    pressure: &[f64],
-) {
-    let layout = t.layout;
-    let n = layout.n;
-    let tau = 2.0 * alpha * dt;
-    let plane = layout.plane_len();
-    let d0 = layout.dims[0];
-    for c in 0..3 {
-        let r = t.ranges[c];
-        if r[0].0 > r[0].1 || r[1].0 > r[1].1 || r[2].0 > r[2].1 {
-            continue;
-        }
-        let (m0, m1) = (r[0].1 - r[0].0 + 1, r[1].1 - r[1].0 + 1);
-        let (nu, force) = (t.nu, t.force[c]);
-        let source = t.source.map(|s| &s[c][..]);
-        let (k0, k1) = r[2];
-        let g = tau / t.h[c];
-        // `N` is kept for the next stage only where `q` exists (not with `EulerCN`, whose one
-        // stage has ζ = 0).
-        assert!(
-            zeta == 0.0 || !q[c].is_empty(),
-            "ζ ≠ 0 needs the last stage's N"
-        );
-        let plane_rows = |kk: usize, out: &mut [f64], mut qp: Option<&mut [f64]>| {
-            let k = kk + k0;
-            for (jj, j) in (r[1].0..=r[1].1).enumerate() {
-                let row = j * d0 + r[0].0;
-                let st = RowStencil::new(u, layout, t.h, c, k * plane + row, m0);
-                let src = source.map(|s| &s[k * plane + row..][..m0]);
-                let o = &mut out[jj * m0..(jj + 1) * m0];
-                let mut qrow = qp.as_deref_mut().map(|q| &mut q[row..row + m0]);
-                let pressure_row = PressureRow::new(n, c, j, k);
-                let grad = |i: usize| pressure_row.difference(pressure, r[0].0 + i);
-                for i in 0..m0 {
-                    let (adv, lap) = st.terms(i);
-                    let n = -adv + force + src.map_or(0.0, |s| s[i]);
-                    let mut old = 0.0;
-                    if let Some(qr) = qrow.as_deref_mut() {
-                        if zeta != 0.0 {
-                            old = zeta * qr[i];
-                        }
-                        qr[i] = n;
-                    }
-                    o[i] = st.q0[i] + dt * (gamma * n + old + alpha * nu * lap) - g * grad(i);
-                }
-            }
-        };
-        if q[c].is_empty() {
-            rhs[c]
-                .par_chunks_mut(m0 * m1)
-                .enumerate()
-                .for_each(|(kk, out)| plane_rows(kk, out, None));
-        } else {
-            rhs[c]
-                .par_chunks_mut(m0 * m1)
-                .zip(q[c][k0 * plane..(k1 + 1) * plane].par_chunks_mut(plane))
-                .enumerate()
-                .for_each(|(kk, (out, qp))| plane_rows(kk, out, Some(qp)));
-        }
-    }
-}
-
 /// The cells on both sides of the faces of component `c` in padded row `(·, j, k)`: cells
 /// `i − 1` and `i` along `c`, wrapping at the first face of a periodic direction (the schemes
 /// that read it have no outlets).
@@ -394,7 +316,7 @@ impl PressureRow {
 /// `q = −∇·(uu) + f + s − ∇p`,
 ///
 /// everything but the diffusion, which the Chebyshev stages take (the pressure's gradient is
-/// in it so that the projection corrects only an increment, as in [`semi_implicit_rhs`]).
+/// in it so that the projection corrects only an increment).
 pub(crate) fn frozen_tendency(
     q: &mut [Vec<f64>; 3],
     u: &[Vec<f64>; 3],
@@ -438,34 +360,6 @@ pub(crate) fn frozen_tendency(
                 PressureRow::new(n, c, j, k).subtract_gradient(out, pressure, r[0].0, inv_h);
             }
         });
-    }
-}
-
-/// Writes each component's solved box of momentum faces back into the padded velocity.
-pub(crate) fn store_momentum_box(
-    u: &mut [Vec<f64>; 3],
-    boxes: &[Vec<f64>; 3],
-    layout: &PaddedLayout,
-    ranges: &[[(usize, usize); 3]; 3],
-) {
-    let plane = layout.plane_len();
-    let d0 = layout.dims[0];
-    for c in 0..3 {
-        let r = ranges[c];
-        if r[0].0 > r[0].1 || r[1].0 > r[1].1 || r[2].0 > r[2].1 {
-            continue;
-        }
-        let (m0, m1) = (r[0].1 - r[0].0 + 1, r[1].1 - r[1].0 + 1);
-        let (k0, k1) = r[2];
-        u[c][k0 * plane..(k1 + 1) * plane]
-            .par_chunks_mut(plane)
-            .zip(boxes[c].par_chunks(m0 * m1))
-            .for_each(|(up, b)| {
-                for (jj, j) in (r[1].0..=r[1].1).enumerate() {
-                    let row = j * d0 + r[0].0;
-                    up[row..row + m0].copy_from_slice(&b[jj * m0..(jj + 1) * m0]);
-                }
-            });
     }
 }
 

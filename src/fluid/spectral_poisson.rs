@@ -1,4 +1,4 @@
-//! Exact solver of the 7-point Poisson (and Helmholtz) problem on the cell centres.
+//! Exact solver of the 7-point Poisson problem on the cell centres.
 //!
 //! The discrete Laplacian `L = Lₓ ⊗ I ⊗ I + I ⊗ L_y ⊗ I + I ⊗ I ⊗ L_z` is a sum of 1-D
 //! second differences, each diagonalised by a real orthogonal basis fixed by its boundary
@@ -26,7 +26,7 @@ use super::shared_samples::SharedSamples;
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustdct::{DctPlanner, Dst1, TransformType2And3, TransformType4};
+use rustdct::{DctPlanner, TransformType2And3, TransformType4};
 use std::sync::Arc;
 
 /// Condition on the pressure at one end of a bounded direction.
@@ -42,10 +42,6 @@ pub enum PressureBoundary {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AxisKind {
     Periodic,
-    /// Unknowns on the `n` interior nodes of a line whose two end nodes (one spacing beyond
-    /// each end) hold zero: a face-normal velocity between fixed boundary faces, as an
-    /// implicit viscous step needs. Basis `sin θ(i+1)`, DST-I, `θₘ = π (m+1) / (n+1)`.
-    Nodes,
     Bounded {
         low: PressureBoundary,
         high: PressureBoundary,
@@ -72,7 +68,6 @@ enum AxisTransform {
     Cosine2Pair,
     Sine2(Arc<dyn TransformType2And3<f64>>),
     Cosine4(Arc<dyn TransformType4<f64>>),
-    Sine1(Arc<dyn Dst1<f64>>),
     Sine4(Arc<dyn TransformType4<f64>>),
 }
 
@@ -81,8 +76,7 @@ struct LineWork {
     lines: Vec<f64>,
     spectrum: Vec<Complex<f64>>,
     complex_scratch: Vec<Complex<f64>>,
-    /// One per axis: rustdct's FFT-based DST-I assumes its scratch keeps the zeros it
-    /// left there, so transforms must not share it.
+    /// One per axis, sized for that axis's transform.
     real_scratch: [Vec<f64>; 3],
 }
 
@@ -94,13 +88,6 @@ impl AxisTransform {
         }
         let half = n as f64 / 2.0;
         match kind {
-            AxisKind::Nodes => {
-                let mut planner = DctPlanner::<f64>::new();
-                (
-                    AxisTransform::Sine1(planner.plan_dst1(n)),
-                    (n as f64 + 1.0) / 2.0,
-                )
-            }
             AxisKind::Periodic => {
                 let mut planner = RealFftPlanner::<f64>::new();
                 (
@@ -133,7 +120,6 @@ impl AxisTransform {
             }
             AxisTransform::Cosine2(t) | AxisTransform::Sine2(t) => (0, t.get_scratch_len()),
             AxisTransform::Cosine4(t) | AxisTransform::Sine4(t) => (0, t.get_scratch_len()),
-            AxisTransform::Sine1(t) => (0, t.get_scratch_len()),
         }
     }
 
@@ -177,9 +163,6 @@ impl AxisTransform {
             AxisTransform::Sine4(t) => {
                 t.process_dst4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
             }
-            AxisTransform::Sine1(t) => {
-                t.process_dst1_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
-            }
         }
     }
 
@@ -222,9 +205,6 @@ impl AxisTransform {
             AxisTransform::Sine4(t) => {
                 t.process_dst4_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
             }
-            AxisTransform::Sine1(t) => {
-                t.process_dst1_with_scratch(line, &mut w.real_scratch[axis][..t.get_scratch_len()])
-            }
         }
     }
 }
@@ -237,7 +217,6 @@ fn axis_angles(n: usize, kind: AxisKind) -> Vec<f64> {
     (0..n)
         .map(|m| match kind {
             AxisKind::Periodic => 2.0 * pi * m.div_ceil(2) as f64 / nf,
-            AxisKind::Nodes => pi * (m + 1) as f64 / (nf + 1.0),
             AxisKind::Bounded { low, high } => match (low, high) {
                 (Neumann, Neumann) => pi * m as f64 / nf,
                 (Dirichlet, Dirichlet) => pi * (m + 1) as f64 / nf,
@@ -247,7 +226,7 @@ fn axis_angles(n: usize, kind: AxisKind) -> Vec<f64> {
         .collect()
 }
 
-/// Exact Poisson/Helmholtz solver for cell-centred data on an `n₀ × n₁ × n₂` grid.
+/// Exact Poisson solver for cell-centred data on an `n₀ × n₁ × n₂` grid.
 pub struct SpectralPoisson {
     n: [usize; 3],
     h: [f64; 3],
@@ -338,12 +317,6 @@ impl SpectralPoisson {
     /// Solves `L φ = f` in place: `data` holds `f` (unpadded, x fastest) on entry and `φ`
     /// on return. Singular problems return the zero-mean solution.
     pub fn solve(&mut self, data: &mut [f64]) {
-        self.solve_shifted(data, 0.0);
-    }
-
-    /// Solves the Helmholtz problem `(L − σ) φ = f` in place (`σ ≥ 0`), as an implicit
-    /// viscous step needs: `(I − νΔt L) u = r` is `(L − 1/(νΔt)) u = −r/(νΔt)`.
-    pub fn solve_shifted(&mut self, data: &mut [f64], sigma: f64) {
         let [n0, n1, n2] = self.n;
         assert_eq!(data.len(), n0 * n1 * n2);
         let plane = n0 * n1;
@@ -367,7 +340,6 @@ impl SpectralPoisson {
         let divide = Spectrum {
             eigenvalues: &self.eigenvalues,
             scale: self.round_trip,
-            sigma,
         };
         if matches!(transforms[2], AxisTransform::Identity) {
             data.par_chunks_mut(plane).enumerate().for_each(|(k, p)| {
@@ -428,7 +400,6 @@ fn neighbours(phi: &[f64], c: usize, i: usize, n: usize, s: usize, kind: AxisKin
     } else {
         match kind {
             AxisKind::Periodic => phi[c + (n - 1) * s],
-            AxisKind::Nodes => 0.0,
             AxisKind::Bounded { low, .. } => ghost(low),
         }
     };
@@ -437,7 +408,6 @@ fn neighbours(phi: &[f64], c: usize, i: usize, n: usize, s: usize, kind: AxisKin
     } else {
         match kind {
             AxisKind::Periodic => phi[c - (n - 1) * s],
-            AxisKind::Nodes => 0.0,
             AxisKind::Bounded { high, .. } => ghost(high),
         }
     };
@@ -489,8 +459,6 @@ struct Spectrum<'a> {
     eigenvalues: &'a [Vec<f64>; 3],
     /// The transforms' round-trip factor.
     scale: f64,
-    /// The shift of `L − σ`.
-    sigma: f64,
 }
 
 impl Spectrum<'_> {
@@ -499,7 +467,7 @@ impl Spectrum<'_> {
     #[inline]
     fn apply(&self, v: f64, i: usize, j: usize, k: usize) -> f64 {
         let ev = self.eigenvalues;
-        let ejk = ev[1][j] + ev[2][k] - self.sigma;
+        let ejk = ev[1][j] + ev[2][k];
         let denom = (ev[0][i] + ejk) * self.scale;
         if denom == 0.0 {
             0.0
@@ -671,42 +639,17 @@ mod tests {
         );
         check_exact([12, 16, 1], [b(Neumann, Neumann), b(Dirichlet, Neumann), p]);
         check_exact([8, 1, 6], [p, b(Neumann, Neumann), b(Dirichlet, Dirichlet)]);
-        check_exact([15, 12, 10], [AxisKind::Nodes, b(Dirichlet, Dirichlet), p]);
-        check_exact([7, 1, 9], [AxisKind::Nodes, p, AxisKind::Nodes]);
-        check_exact([63, 1, 1], [AxisKind::Nodes, p, p]);
         // Tiny lines, where the transforms take their special small-size paths.
         check_exact(
             [2, 3, 2],
             [b(Neumann, Dirichlet), b(Dirichlet, Dirichlet), p],
         );
-        check_exact(
-            [3, 2, 2],
-            [b(Dirichlet, Neumann), b(Neumann, Neumann), AxisKind::Nodes],
-        );
+        check_exact([3, 2, 2], [b(Dirichlet, Neumann), b(Neumann, Neumann), p]);
         check_exact([2, 2, 3], [p, p, b(Neumann, Neumann)]);
-        check_exact([1, 63, 1], [p, AxisKind::Nodes, p]);
-        check_exact([1, 15, 1], [p, AxisKind::Nodes, p]);
-        check_exact([1, 31, 1], [p, AxisKind::Nodes, p]);
         check_exact(
             [64, 40, 1],
             [
                 b(Dirichlet, Dirichlet),
-                b(Dirichlet, Dirichlet),
-                b(Neumann, Neumann),
-            ],
-        );
-        check_exact(
-            [40, 63, 1],
-            [
-                b(Dirichlet, Dirichlet),
-                AxisKind::Nodes,
-                b(Neumann, Neumann),
-            ],
-        );
-        check_exact(
-            [63, 40, 1],
-            [
-                AxisKind::Nodes,
                 b(Dirichlet, Dirichlet),
                 b(Neumann, Neumann),
             ],
@@ -754,32 +697,6 @@ mod tests {
             .iter()
             .zip(&phi)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(err < 1e-12, "error {err:e}");
-    }
-
-    #[test]
-    fn helmholtz_shift_is_exact() {
-        let n = [12, 10, 8];
-        let axes = [
-            AxisKind::Periodic,
-            AxisKind::Bounded {
-                low: Neumann,
-                high: Neumann,
-            },
-            AxisKind::Periodic,
-        ];
-        let mut solver = SpectralPoisson::new(n, [1.0; 3], axes);
-        let f = random_field(n[0] * n[1] * n[2], 7);
-        let mut phi = f.clone();
-        let sigma = 2.5;
-        solver.solve_shifted(&mut phi, sigma);
-        let mut lphi = vec![0.0; f.len()];
-        solver.apply_laplacian(&phi, &mut lphi);
-        let err = lphi
-            .iter()
-            .zip(&phi)
-            .zip(&f)
-            .fold(0.0f64, |m, ((l, p), f)| m.max((l - sigma * p - f).abs()));
         assert!(err < 1e-12, "error {err:e}");
     }
 }

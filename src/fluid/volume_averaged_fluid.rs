@@ -43,7 +43,7 @@ use super::fluid_solver::FluidSolver;
 use super::ghost_fill::{extrapolate_outlets, fill_velocity_ghosts};
 use super::padded_layout::PaddedLayout;
 use super::projection::subtract_gradient;
-use super::variable_poisson::{Convergence, PcgReport, Preconditioner, VariablePoisson};
+use super::variable_poisson::{Convergence, PcgReport, VariablePoisson};
 use super::volume_averaged_viscosity::{face_diffusivities, ViscousReport, ViscousSolve};
 use crate::grid::Grid;
 use rayon::prelude::*;
@@ -124,7 +124,6 @@ impl VolumeAveragedFluid {
         fluid: &FluidSolver,
         form: VolumeAveragedForm,
         gravity: [f64; 3],
-        preconditioner: Preconditioner,
     ) -> Result<Self, String> {
         let grid = fluid.grid().clone();
         let layout = fluid.layout().clone();
@@ -145,7 +144,7 @@ impl VolumeAveragedFluid {
             }
         }
         let axes = std::array::from_fn(|d| bc.pressure_axis(d));
-        let poisson = VariablePoisson::with_preconditioner(grid.n, grid.h, axes, preconditioner);
+        let poisson = VariablePoisson::new(grid.n, grid.h, axes);
         let zeros = || [(); 3].map(|_| vec![0.0; layout.len]);
         let cells = grid.cell_count();
         Ok(VolumeAveragedFluid {
@@ -734,9 +733,7 @@ mod tests {
                 faces: std::array::from_fn(|_| wall.clone()),
             };
             let mut fluid = FluidSolver::new(grid, bc, FluidSettings::new(1e-3)).unwrap();
-            let mut va =
-                VolumeAveragedFluid::new(&fluid, form, [0.0, 0.0, -9.81], Preconditioner::Spectral)
-                    .unwrap();
+            let mut va = VolumeAveragedFluid::new(&fluid, form, [0.0, 0.0, -9.81]).unwrap();
             // A non-uniform but steady ε: the fluid must stay at rest, p = −g z + const.
             let cells: Vec<f64> = (0..54).map(|c| 0.5 + 0.05 * (c % 7) as f64).collect();
             va.reset_fluid_fraction(&cells);
@@ -756,13 +753,7 @@ mod tests {
     #[test]
     fn uniform_inflow_through_a_fixed_porous_layer_conserves_superficial_flux() {
         let mut fluid = column(8);
-        let mut va = VolumeAveragedFluid::new(
-            &fluid,
-            VolumeAveragedForm::Paper,
-            [0.0; 3],
-            Preconditioner::Spectral,
-        )
-        .unwrap();
+        let mut va = VolumeAveragedFluid::new(&fluid, VolumeAveragedForm::Paper, [0.0; 3]).unwrap();
         // ε = 0.5 in the middle layers: the interstitial velocity doubles there.
         let cells: Vec<f64> = (0..128)
             .map(|c| if (2..6).contains(&(c / 16)) { 0.5 } else { 1.0 })
@@ -804,13 +795,9 @@ mod tests {
                 ],
             };
             let mut fluid = FluidSolver::new(grid, bc, FluidSettings::new(1e-2)).unwrap();
-            let mut va = VolumeAveragedFluid::new(
-                &fluid,
-                VolumeAveragedForm::Paper,
-                [0.0, 0.0, -2.0],
-                Preconditioner::Spectral,
-            )
-            .unwrap();
+            let mut va =
+                VolumeAveragedFluid::new(&fluid, VolumeAveragedForm::Paper, [0.0, 0.0, -2.0])
+                    .unwrap();
             va.set_implicit_viscosity(implicit);
             let cells: Vec<f64> = (0..128)
                 .map(|c| {
@@ -870,13 +857,8 @@ mod tests {
             FluidSettings::new(nu),
         )
         .unwrap();
-        let mut va = VolumeAveragedFluid::new(
-            &fluid,
-            VolumeAveragedForm::DpmFoam,
-            [0.0; 3],
-            Preconditioner::Spectral,
-        )
-        .unwrap();
+        let mut va =
+            VolumeAveragedFluid::new(&fluid, VolumeAveragedForm::DpmFoam, [0.0; 3]).unwrap();
         va.set_implicit_viscosity(true);
         let k = 2.0 * std::f64::consts::PI;
         let l = fluid.layout().clone();

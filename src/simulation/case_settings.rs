@@ -47,9 +47,10 @@ pub(super) fn fluid_scheme(case: &Case) -> Result<(TimeScheme, bool), FsimError>
                 } else {
                     ""
                 };
+                let names: Vec<&str> = TimeScheme::ALL.iter().map(|s| s.name()).collect();
                 case.time_scheme_error(format!(
-                    "unknown fsim timeScheme '{name}'; expected one of Euler, RK2, RK3, RK3CN, \
-                     EulerCN, EulerRKC{hint}"
+                    "unknown fsim timeScheme '{name}'; expected one of {}{hint}",
+                    names.join(", ")
                 ))
             })?;
             (scheme, false)

@@ -4,7 +4,6 @@
 use super::{Simulation, StepSizing};
 use crate::coupling::direct::RESPONSE_STEP_FRACTION;
 use crate::error::FsimError;
-use crate::fluid::{ChebyshevStages, TimeScheme};
 
 /// A Courant step below this fraction of the largest step taken means a velocity growing
 /// without bound: a flow that develops changes its speed by orders of magnitude less within a
@@ -31,19 +30,7 @@ impl Simulation {
                             .to_string(),
                         None => {
                             let scheme = self.fluid.settings().scheme;
-                            let bound = match scheme {
-                                TimeScheme::RK3CN => {
-                                    "advective: sqrt(3) / sum |v_d|/h_d".to_string()
-                                }
-                                TimeScheme::EulerCN => "advective: 2 nu/|v|^2".to_string(),
-                                TimeScheme::EulerRKC => format!(
-                                    "advective: 2 nu/|v|^2; diffusive: the reach of {} \
-                                     Chebyshev stages",
-                                    ChebyshevStages::MAX_STAGES
-                                ),
-                                _ => "paper eq. 3: min(h^2/(6 nu), 2 nu/|v|^2)".to_string(),
-                            };
-                            format!("{} scheme ({bound})", scheme.name())
+                            format!("{} scheme ({})", scheme.name(), scheme.bound_description())
                         }
                     };
                     // Past the first step the bound held before: the velocity has grown,

@@ -1,5 +1,8 @@
 //! The direct model's state in a run: the spheres, their forced faces, and their loads.
 
+use super::tuning::{
+    COARSE_CELLS_PER_RADIUS, MIN_CELLS_PER_RADIUS, WALL_TRILINEAR_CLEARANCE_CELLS,
+};
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -10,9 +13,7 @@ use super::direct_settings::DirectSettings;
 use super::field_brick::FieldBrick;
 use super::field_sampler::{FieldSampler, Interpolation};
 use super::field_view::{periodic_directions, FieldView};
-use super::forced_face::ThroatFace;
 use super::immersed_boundary::ImmersedBoundary;
-use super::implicit_forcing::{ImplicitForcing, ImplicitForcingReport};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use super::stress_integral::{
@@ -78,8 +79,6 @@ pub struct DirectCoupling {
     restored_build: Option<Vec<f64>>,
     /// The throats' state of a restarted run, applied to the restored build.
     restored_throats: Option<Vec<f64>>,
-    /// The constrained viscous solve of `RK3CN` stages.
-    implicit_forcing: ImplicitForcing,
 }
 
 impl DirectCoupling {
@@ -89,12 +88,7 @@ impl DirectCoupling {
         fluid.mass_source_mut();
         let grid = fluid.grid();
         let mut boundary = ImmersedBoundary::new(grid, fluid.boundary_conditions());
-        if !settings.rigid_throats {
-            boundary.set_throat_viscosity(fluid.settings().nu);
-        }
-        if fluid.settings().scheme.is_semi_implicit() {
-            boundary.set_throat_gain(ThroatFace::SEMI_IMPLICIT_GAIN);
-        }
+        boundary.set_throat_viscosity(fluid.settings().nu);
         DirectCoupling {
             settings,
             boundary,
@@ -121,7 +115,6 @@ impl DirectCoupling {
             last_rebuilt: false,
             restored_build: None,
             restored_throats: None,
-            implicit_forcing: ImplicitForcing::new(),
         }
     }
 
@@ -142,15 +135,15 @@ impl DirectCoupling {
             let r = 0.5 * p.diameter[i];
             let resolution = r / h;
             smallest = smallest.min(resolution);
-            if resolution < 2.0 {
+            if resolution < MIN_CELLS_PER_RADIUS {
                 return Err(format!(
-                    "model direct needs spheres of at least 2 cells in radius: particle {} \
+                    "model direct needs spheres of at least {MIN_CELLS_PER_RADIUS} cells in radius: particle {} \
                      (id {}) has r/h = {resolution:.3} (h = {h:e} m); refine the grid",
                     i + 1,
                     p.id[i]
                 ));
             }
-            if resolution < 4.0 {
+            if resolution < COARSE_CELLS_PER_RADIUS {
                 coarse += 1;
             }
             for d in 0..3 {
@@ -169,7 +162,7 @@ impl DirectCoupling {
         let mut notes = Vec::new();
         if coarse > 0 {
             notes.push(format!(
-                "model direct: {coarse} particle(s) below 4 cells in radius (smallest \
+                "model direct: {coarse} particle(s) below {COARSE_CELLS_PER_RADIUS} cells in radius (smallest \
                  r/h = {smallest:.2}); expect drag errors of 2 % and more"
             ));
         }
@@ -338,9 +331,7 @@ impl DirectCoupling {
     }
 
     /// The hook of [`FluidSolver::step_with`]: imposes no-slip on the stage's predicted
-    /// velocity (pre-compensated for the coming projection with the explicit schemes; with
-    /// `RK3CN` the forcing faces are constraint rows of the implicit viscous solve,
-    /// [`ImplicitForcing`]).
+    /// velocity (pre-compensated for the coming projection: [`ImmersedBoundary::impose`]).
     pub fn impose(&mut self, stage: PredictedVelocity<'_>) {
         let PredictedVelocity {
             velocity,
@@ -348,7 +339,6 @@ impl DirectCoupling {
             incremental_pressure,
             tau,
             mass_source,
-            implicit,
             components,
             body_force,
             time,
@@ -364,14 +354,6 @@ impl DirectCoupling {
         };
         self.boundary
             .set_throat_targets(components, driving, body_force, tau, time);
-        if let Some(mut implicit) = implicit {
-            assert_eq!(
-                components, [true; 3],
-                "a constrained solve takes every component"
-            );
-            self.implicit_forcing
-                .solve(&self.boundary, velocity, &mut implicit);
-        }
         self.boundary.impose(
             velocity,
             components,
@@ -380,16 +362,6 @@ impl DirectCoupling {
             mass_source,
             incremental_pressure,
         );
-    }
-
-    /// Cost and residual of the last constrained viscous solve (`RK3CN`).
-    pub fn implicit_forcing_report(&self) -> ImplicitForcingReport {
-        self.implicit_forcing.report()
-    }
-
-    /// The constrained viscous solve's settings (tolerance, iteration cap).
-    pub fn implicit_forcing_mut(&mut self) -> &mut ImplicitForcing {
-        &mut self.implicit_forcing
     }
 
     /// Force and torque on every sphere (order of [`Self::set_spheres`]) from the current
@@ -433,7 +405,6 @@ impl DirectCoupling {
             let integral = StressIntegral {
                 surface_offset: offset,
                 interpolation: interpolations[k],
-                ..integral
             };
             let shell = with_shell.then_some(shell_rules);
             if !use_brick {
@@ -623,12 +594,8 @@ impl DirectCoupling {
 /// least one), `max(1, ⌊2 gap⌋ / 2)`.
 ///
 /// A surface beyond a wall encloses a patch of it, whose traction then enters the balance:
-/// a sphere approaching a wall pushes it with the pressure in the gap, so the patch takes
-/// part of the sphere's resistance and the sphere is drawn in (a sphere settling onto a
-/// floor at r/h = 4 sped up from 0.6 to 8 mm/s as its gap closed). Pulled toward the wall
-/// at r/h = 4 against the same at r/h = 8 (docs/direct_model.md, "Walls"): at gaps of 2.5
-/// and 2 cells the surface three cells out gave −1.9 % and −40 %; held inside (and read
-/// with [`wall_interpolation`]) −0.1 % and +6.5 %. Whole half cells, so that a sphere
+/// the pressure in the gap pushes the patch instead of the sphere, which is drawn in
+/// (docs/direct_model.md, "Walls"). Whole half cells, so that a sphere
 /// drifting along a wall keeps its surface, and its shell term (a changed surface has no
 /// rate), most steps.
 pub fn wall_surface_offset(gap: f64) -> f64 {
@@ -636,14 +603,11 @@ pub fn wall_surface_offset(gap: f64) -> f64 {
 }
 
 /// The interpolation of an integration surface `clearance` cells from a bounding face:
-/// `nominal`, but trilinear closer than 1.5 cells. There a tricubic stencil reaches the
-/// ghost layer beyond the wall or is shifted inside the stored samples, and the integral of
-/// a moving sphere drifts: a sphere settling toward a floor at r/h = 4 sped up from 0.67 to
-/// 0.80 mm/s, then to 3.5 mm/s as its gap closed from 3 to 2.3 cells, the more the
-/// smaller the step; read trilinearly it slowed from 0.675 to 0.623 mm/s, as the same
-/// sphere at r/h = 8 did from 0.687 to 0.642 (docs/direct_model.md, "Walls").
+/// `nominal`, but trilinear closer than [`WALL_TRILINEAR_CLEARANCE_CELLS`]: there a
+/// tricubic stencil reaches the ghost layer beyond the wall, and the integral of a moving
+/// sphere drifts (docs/direct_model.md, "Walls").
 pub fn wall_interpolation(clearance: f64, nominal: Interpolation) -> Interpolation {
-    if clearance < 1.5 {
+    if clearance < WALL_TRILINEAR_CLEARANCE_CELLS {
         Interpolation::Linear
     } else {
         nominal

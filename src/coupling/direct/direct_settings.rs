@@ -11,16 +11,11 @@ use crate::case::{CaseError, Coupling};
 /// model direct;
 /// direct
 /// {
-///     surfaceOffset   3;      // integration sphere r + surfaceOffset·h (cells); 0: on the sphere;
-///                             // must stay clear of the neighbours (below the gap minus 2)
-///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes
-///     quadrangles     0;      // quadrangles per integration sphere; 0 or absent: edges ≈ h
+///     interpolation   cubic;  // cubic | linear: grid → quadrature nodes of the stress
+///                             // integral (linear: half the cost, for suspensions)
 ///     fixedParticles  no;     // yes: every particle is held in place (porous media)
 ///     rebuildDistance 0;      // cells a sphere may move before its forced faces are
 ///                             // rebuilt (between builds they follow it); 0: every step
-///     rigidThroats    no;     // yes: faces between walls under two cells apart move with
-///                             // their sphere (the staircase) instead of carrying the
-///                             // lubrication flow ([`super::ThroatFace`])
 /// }
 /// ```
 ///
@@ -28,30 +23,18 @@ use crate::case::{CaseError, Coupling};
 /// not pass silently).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DirectSettings {
-    /// Integration surface, interpolation and quadrangle count of the stress integral.
+    /// The stress integral: its interpolation from the case, its surface the default's.
     pub integral: StressIntegral,
     /// Hold every particle fixed (flow through a fixed array).
     pub fixed_particles: bool,
     /// Distance (cells) a sphere may move from where its forced faces were built before
     /// they are rebuilt ([`super::ImmersedBoundary::follow`]).
     pub rebuild_distance: f64,
-    /// Hold the faces of throats rigid (the staircase) rather than give them the
-    /// lubrication profile ([`super::ThroatFace`]).
-    pub rigid_throats: bool,
 }
 
-const KEYWORDS: [&str; 6] = [
-    "surfaceOffset",
-    "interpolation",
-    "quadrangles",
-    "fixedParticles",
-    "rebuildDistance",
-    "rigidThroats",
-];
+const KEYWORDS: [&str; 3] = ["interpolation", "fixedParticles", "rebuildDistance"];
 
-/// The largest `rebuildDistance`, cells: beyond half a cell a face's role would lag the
-/// surface by more than the forcing's own reach.
-pub const MAX_REBUILD_DISTANCE: f64 = 0.5;
+use super::tuning::MAX_REBUILD_DISTANCE;
 
 impl DirectSettings {
     /// From the case's coupling file; the defaults when it has no `direct` dictionary.
@@ -75,27 +58,13 @@ impl DirectSettings {
                 ));
             }
         }
-        if let Some(offset) = d.opt_scalar("surfaceOffset")? {
-            if !(0.0..=8.0).contains(&offset) {
-                let loc = d.get_entry("surfaceOffset")?.value_loc();
-                return Err(CaseError::at(
-                    loc,
-                    format!("surfaceOffset must be between 0 and 8 cells, got {offset}"),
-                ));
-            }
-            settings.integral.surface_offset = offset;
-        }
         if d.contains("interpolation") {
             let names = ["cubic", "linear"];
             let k = choice(d, "interpolation", &names, None)?;
             settings.integral.interpolation =
                 Interpolation::from_name(names[k]).expect("listed names parse");
         }
-        if let Some(n) = d.opt_label("quadrangles")? {
-            settings.integral.quadrangles = (n > 0).then_some(n);
-        }
         settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
-        settings.rigid_throats = d.get_bool_or("rigidThroats", false)?;
         if let Some(distance) = d.opt_scalar("rebuildDistance")? {
             if !(0.0..=MAX_REBUILD_DISTANCE).contains(&distance) {
                 let loc = d.get_entry("rebuildDistance")?.value_loc();
@@ -129,23 +98,19 @@ mod tests {
         assert_eq!(s, DirectSettings::default());
         assert_eq!(s.integral.surface_offset, 3.0);
         let s = settings(
-            "model direct; direct { surfaceOffset 2; interpolation linear; quadrangles 600; \
-             fixedParticles yes; rebuildDistance 0.1; rigidThroats yes; }",
+            "model direct; direct { interpolation linear; fixedParticles yes; \
+             rebuildDistance 0.1; }",
         )
         .unwrap();
-        assert!(s.rigid_throats);
         assert_eq!(s.rebuild_distance, 0.1);
-        assert_eq!(s.integral.surface_offset, 2.0);
+        assert_eq!(s.integral.surface_offset, 3.0);
         assert_eq!(s.integral.interpolation, Interpolation::Linear);
-        assert_eq!(s.integral.quadrangles, Some(600));
         assert!(s.fixed_particles);
-        let e = settings("model direct; direct { surfaceOfset 2; }").unwrap_err();
+        let e = settings("model direct; direct { surfaceOffset 2; }").unwrap_err();
         assert!(
-            e.to_string().contains("unknown keyword 'surfaceOfset'"),
+            e.to_string().contains("unknown keyword 'surfaceOffset'"),
             "{e}"
         );
-        let e = settings("model direct; direct { surfaceOffset -1; }").unwrap_err();
-        assert!(e.to_string().contains("between 0 and 8"), "{e}");
         let e = settings("model direct; direct { rebuildDistance 0.8; }").unwrap_err();
         assert!(e.to_string().contains("between 0 and 0.5"), "{e}");
         let e = settings("model direct; direct { interpolation quintic; }").unwrap_err();

@@ -1,6 +1,8 @@
 //! The forced faces of the direct forcing, as the fluid step imposes them, and the labels
 //! that mark them on the grid ([`super::ImmersedBoundary`] builds and imposes them).
 
+use super::tuning::THROAT_RELAXATION_GAIN;
+
 /// A face inside a sphere: it moves with the sphere. Indices are `u32` (a grid has fewer
 /// than 2³² slots, checked in
 /// [`ImmersedBoundary::new`](super::ImmersedBoundary::new)): the lists are rebuilt every step
@@ -120,16 +122,12 @@ pub struct ThroatFace {
 
 impl ThroatFace {
     /// The pressure a face reads is the last projection's, so the throat and the
-    /// projection form a loop whose gain is `k / (ν τ)` for a projection of weight `τ`: at
-    /// 1 `RK3` diverged (φ = 0.343, r/h = 3.9), at ½ every explicit scheme held. Where the
-    /// gain would pass this, the face relaxes toward its profile at the rate `gain · ν / k`
-    /// over the time its stages span (so `EulerRKC`'s several stages per projection relax
-    /// it once): the steady state is the profile's, whatever the step.
-    pub const RELAXED_GAIN: f64 = 0.5;
-    /// The same for the semi-implicit schemes, whose constrained viscous solve answers a
-    /// throat more strongly: at ½ the settling suspension of `tests/direct_motion.rs`
-    /// diverged within 40 steps of `RK3CN`, at 0.2 and 0.1 it settles within 0.2 % of `Euler`.
-    pub const SEMI_IMPLICIT_GAIN: f64 = 0.1;
+    /// projection form a loop whose gain is `k / (ν τ)` for a projection of weight `τ`.
+    /// Where the gain would pass [`THROAT_RELAXATION_GAIN`], the face relaxes toward its
+    /// profile at the rate `gain · ν / k` over the time its stages span (so `EulerRKC`'s
+    /// several stages per projection relax it once): the steady state is the profile's,
+    /// whatever the step.
+    pub const RELAXED_GAIN: f64 = THROAT_RELAXATION_GAIN;
 
     /// The target for stages whose span (s) times the loop's gain is `reach`: the profile
     /// for the own wall velocity `wall` and driving `drive` (body force less pressure

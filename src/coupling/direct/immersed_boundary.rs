@@ -37,11 +37,8 @@
 //! hook, on each stage's predicted velocity, before the projection. The projection then
 //! subtracts `τ∇p`; the hook pre-compensates with the pressure of the previous projection
 //! (`u_f* = target + τ ∂p`), so that once the flow is steady the forced faces hold their
-//! targets exactly and the steady state does not depend on `Δt` (the explicit schemes).
-//! `RK3CN`'s incremental projection needs no compensation (its increment vanishes at steady
-//! state); there the forcing faces are constraint rows of the implicit viscous solve itself
-//! ([`super::ImplicitForcing`]), so that its steady state does not depend on `Δt` either.
-//! The incremental schemes (`p ← p + φ`) add `τ∇²pⁿ` to a closed cell's mass source, so that
+//! targets exactly and the steady state does not depend on `Δt` (`Euler`, `RK3`).
+//! `EulerRKC`'s incremental projection (`p ← p + φ`) adds `τ∇²pⁿ` to a closed cell's mass source, so that
 //! the pressure a moving sphere covers ends harmonic there, as a full projection leaves it.
 
 use super::component_update::{Candidate, ComponentUpdate};
@@ -80,8 +77,6 @@ pub struct ImmersedBoundary {
     carried: [Vec<(u32, f64)>; 3],
     /// Time of each component's last stage that set the throats' targets (NaN before).
     throat_clock: [f64; 3],
-    /// The loop gain of the throats' relaxation ([`ThroatFace::RELAXED_GAIN`]).
-    throat_gain: f64,
     /// Kinematic viscosity of the throats' pressure-driven flow (0: rigid throats, held to
     /// the walls' line).
     throat_viscosity: f64,
@@ -134,7 +129,6 @@ impl ImmersedBoundary {
             throats: Default::default(),
             carried: Default::default(),
             throat_clock: [f64::NAN; 3],
-            throat_gain: ThroatFace::RELAXED_GAIN,
             throat_viscosity: 0.0,
             closed: Vec::new(),
             previous_closed: Vec::new(),
@@ -158,12 +152,6 @@ impl ImmersedBoundary {
         self.throat_viscosity = nu;
     }
 
-    /// The loop gain of the throats' relaxation: [`ThroatFace::RELAXED_GAIN`] (default)
-    /// or, for the semi-implicit schemes, [`ThroatFace::SEMI_IMPLICIT_GAIN`].
-    pub fn set_throat_gain(&mut self, gain: f64) {
-        self.throat_gain = gain;
-    }
-
     /// Component `c`'s forcing faces in throats (indices into [`Self::forcing_faces`]).
     pub fn throat_faces(&self, c: usize) -> &[ThroatFace] {
         &self.throats[c]
@@ -173,7 +161,7 @@ impl ImmersedBoundary {
     /// `time` ([`ThroatFace::target`]): the lubrication profile driven by `body_force` less
     /// the gradient of `pressure` (kinematic, the last projection's), relaxed toward it over
     /// the time since the component's last stage (`tau` at its first) at the loop gain
-    /// ([`Self::set_throat_gain`]); an empty `pressure` drives by the body force alone.
+    /// ([`ThroatFace::RELAXED_GAIN`]); an empty `pressure` drives by the body force alone.
     pub fn set_throat_targets(
         &mut self,
         components: [bool; 3],
@@ -186,7 +174,7 @@ impl ImmersedBoundary {
         for c in (0..3).filter(|&c| components[c]) {
             let last = std::mem::replace(&mut self.throat_clock[c], time);
             let span = if time > last { time - last } else { tau };
-            let reach = self.throat_gain * span;
+            let reach = ThroatFace::RELAXED_GAIN * span;
             let h = self.grid.h[c];
             let forcing = &self.forcing[c];
             for t in self.throats[c].iter_mut() {

@@ -37,6 +37,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::close_pairs::{ClosePairs, PeriodicBox};
+use super::tuning::LUBRICATION_MIN_GAP;
 use crate::particles::{ParticleState, Vec3};
 use std::f64::consts::PI;
 
@@ -90,7 +91,7 @@ impl Lubrication {
         Lubrication {
             mu,
             cutoff,
-            min_gap_ratio: 1e-3,
+            min_gap_ratio: LUBRICATION_MIN_GAP,
             pairs: ClosePairs::default(),
             inv_mass: Vec::new(),
         }

@@ -70,34 +70,26 @@ use std::collections::HashMap;
 use super::lubrication::{Lubrication, LubricationBox, LubricationReport};
 use super::response_time::coupling_step_bound;
 use super::settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
+use super::tuning::{DRIVE_MOMENTUM_GAIN, LUBRICATION_CUTOFF_CELLS};
 use crate::case::{CaseError, Coupling};
 use crate::fluid::{BoundaryConditions, FaceCondition};
 use crate::grid::Grid;
 use crate::particles::{Dem, ParticleState, Vec3};
 
+/// Default virtual-mass coefficient `C_v`.
+pub use super::tuning::DEFAULT_VIRTUAL_MASS;
 /// Lowest particle-to-fluid density ratio the coupling accepts (the lightest tried stable
 /// with the virtual mass was 0.1).
-pub const MIN_DENSITY_RATIO: f64 = 0.2;
-/// Default virtual-mass coefficient `C_v`.
-pub const DEFAULT_VIRTUAL_MASS: f64 = 2.0;
+pub use super::tuning::MIN_DENSITY_RATIO;
 
-/// Settings of the moving spheres in `constant/couplingProperties`: `virtualMass C_v;` and
-/// the optional `lubrication` sub-dictionary:
+/// Settings of the moving spheres in `constant/couplingProperties`:
 ///
 /// ```text
 /// virtualMass     2;       // C_v: virtual mass C_v ρ_f V split off the lagged force
-/// lubrication
-/// {
-///     active      yes;     // no: contacts only
-///     cutoff      1;       // ζ_c in cells: the correction acts below this gap
-///     minGap      0.001;   // ζ_min / R_eff: saturation (surface roughness)
-/// }
+///                          // (0: the paper's plain explicit coupling)
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionSettings {
-    pub active: bool,
-    pub cutoff_cells: f64,
-    pub min_gap_ratio: f64,
     /// `virtualMass C_v;` at the top level of the file (stabilises the explicit coupling).
     pub virtual_mass: f64,
 }
@@ -105,18 +97,13 @@ pub struct MotionSettings {
 impl Default for MotionSettings {
     fn default() -> Self {
         MotionSettings {
-            active: true,
-            cutoff_cells: 1.0,
-            min_gap_ratio: 1e-3,
             virtual_mass: DEFAULT_VIRTUAL_MASS,
         }
     }
 }
 
-const LUBRICATION_KEYWORDS: [&str; 3] = ["active", "cutoff", "minGap"];
-
 impl MotionSettings {
-    /// From the case's coupling file; the defaults when it has no `lubrication` dictionary.
+    /// From the case's coupling file; the default without `virtualMass`.
     pub fn from_coupling(coupling: &Coupling) -> Result<Self, CaseError> {
         let mut s = MotionSettings::default();
         let Some(dict) = coupling.dict.as_ref() else {
@@ -131,42 +118,6 @@ impl MotionSettings {
                 ));
             }
             s.virtual_mass = c;
-        }
-        let Some(d) = dict.opt_dict("lubrication")? else {
-            return Ok(s);
-        };
-        for entry in d.entries() {
-            if !LUBRICATION_KEYWORDS.contains(&entry.keyword()) {
-                return Err(CaseError::at(
-                    entry.value_loc(),
-                    format!(
-                        "unknown keyword '{}' in lubrication; expected one of {}",
-                        entry.keyword(),
-                        LUBRICATION_KEYWORDS.join(", ")
-                    ),
-                ));
-            }
-        }
-        s.active = d.get_bool_or("active", true)?;
-        if let Some(c) = d.opt_scalar("cutoff")? {
-            if !(c > 0.0 && c <= 8.0) {
-                let loc = d.get_entry("cutoff")?.value_loc();
-                return Err(CaseError::at(
-                    loc,
-                    format!("lubrication cutoff must be in (0, 8] cells, got {c}"),
-                ));
-            }
-            s.cutoff_cells = c;
-        }
-        if let Some(m) = d.opt_scalar("minGap")? {
-            if !(m > 0.0 && m < 1.0) {
-                let loc = d.get_entry("minGap")?.value_loc();
-                return Err(CaseError::at(
-                    loc,
-                    format!("lubrication minGap must be in (0, 1) (a fraction of R_eff), got {m}"),
-                ));
-            }
-            s.min_gap_ratio = m;
         }
         Ok(s)
     }
@@ -196,7 +147,7 @@ pub struct SedimentationReport {
 
 /// Lubrication, the periodic-settling drive and the settling monitor of one run.
 pub struct ParticleMotion {
-    lubrication: Option<Lubrication>,
+    lubrication: Lubrication,
     lubrication_box: LubricationBox,
     drive: Option<SettlingDrive>,
     fluid_density: f64,
@@ -251,11 +202,7 @@ impl ParticleMotion {
         let walls: [bool; 6] =
             std::array::from_fn(|f| matches!(bc.faces[f], FaceCondition::Wall { .. }));
         let h = grid.h.iter().cloned().fold(0.0, f64::max);
-        let lubrication = settings.active.then(|| {
-            let mut l = Lubrication::new(rho * nu, settings.cutoff_cells * h);
-            l.min_gap_ratio = settings.min_gap_ratio;
-            l
-        });
+        let lubrication = Lubrication::new(rho * nu, LUBRICATION_CUTOFF_CELLS * h);
         let box_volume = length[0] * length[1] * length[2];
         let gravity = dem.config().gravity;
         Ok(ParticleMotion {
@@ -311,7 +258,8 @@ impl ParticleMotion {
             let previous = self.last_momentum.unwrap_or([0.0; 3]);
             let scale = 1.0 / (self.fluid_density * self.box_volume * dt);
             for a in 0..3 {
-                self.correction[a] -= (momentum[a] - previous[a] + 0.5 * momentum[a]) * scale;
+                self.correction[a] -=
+                    (momentum[a] - previous[a] + DRIVE_MOMENTUM_GAIN * momentum[a]) * scale;
             }
             self.last_momentum = Some(momentum);
         }
@@ -330,13 +278,12 @@ impl ParticleMotion {
         let n = dem.particles().len();
         self.forces.clear();
         self.forces.resize(n, [0.0; 3]);
-        self.last_lubrication = match self.lubrication.as_mut() {
-            Some(l) => l.add_forces(dem.particles(), &self.lubrication_box, dt, &mut self.forces),
-            None => LubricationReport {
-                active: 0,
-                min_gap_ratio: f64::INFINITY,
-            },
-        };
+        self.last_lubrication = self.lubrication.add_forces(
+            dem.particles(),
+            &self.lubrication_box,
+            dt,
+            &mut self.forces,
+        );
         let mut torques = std::mem::take(&mut self.torques);
         torques.clear();
         torques.resize(n, [0.0; 3]);
@@ -531,11 +478,7 @@ mod tests {
         let bc = BoundaryConditions::periodic();
         let run = |c_v: f64| -> f64 {
             let mut dem = one_particle(rho_p, rho_f);
-            let settings = MotionSettings {
-                virtual_mass: c_v,
-                active: false,
-                ..Default::default()
-            };
+            let settings = MotionSettings { virtual_mass: c_v };
             let mut motion = ParticleMotion::new(settings, &grid, &bc, &dem, rho_f, 1e-3).unwrap();
             let m = dem.particles().mass(0);
             let m_a = 3.0 * rho_f / rho_p * m;

@@ -20,10 +20,7 @@ use super::close_pairs::{ClosePairs, PeriodicBox};
 use crate::grid::Grid;
 use crate::particles::ParticleState;
 
-/// Fewest cells per radius the direct model accepts.
-pub const MIN_CELLS_PER_RADIUS: f64 = 2.0;
-/// Narrowest gap, in cells, the grid is taken to resolve.
-pub const RESOLVED_GAP_CELLS: f64 = 2.0;
+pub use super::tuning::{MIN_CELLS_PER_RADIUS, RESOLVED_GAP_CELLS};
 
 /// The findings of [`check_resolution`].
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -17,11 +17,8 @@
 //! before a write time may stretch by 1 % to land on it) and warns about a fixed step above
 //! it.
 
+pub use super::tuning::RESPONSE_STEP_FRACTION;
 use crate::particles::ParticleState;
-
-/// The fraction of the shortest response time a step may take (below the lowest onset
-/// measured, 0.27–0.36 τ_p).
-pub const RESPONSE_STEP_FRACTION: f64 = 0.25;
 
 /// The shortest Stokes response time `ρ_p d²/(18 μ)` (s) over the free particles of `p` in a
 /// fluid of dynamic viscosity `mu` (Pa s); infinite when every particle is fixed.

@@ -81,12 +81,6 @@ impl SphereQuadrature {
         Self::cubed(m.max(2))
     }
 
-    /// The rule with about `quadrangles` quadrangles in all (rounded to `6 m²`).
-    pub fn with_quadrangles(quadrangles: usize) -> Self {
-        let m = ((quadrangles as f64 / 6.0).sqrt().round() as usize).max(1);
-        Self::cubed(m)
-    }
-
     /// The rules of [`Self::with_spacing`] for every radius up to `radius`, by edge count.
     pub fn family(radius: f64, spacing: f64) -> SphereQuadratureFamily {
         let largest = Self::with_spacing(radius, spacing).per_edge;
@@ -209,7 +203,6 @@ mod tests {
                 assert!(coarse / fine > 3.5, "{errors:?}");
             }
         }
-        assert_eq!(SphereQuadrature::with_quadrangles(600).per_edge, 10);
         assert_eq!(SphereQuadrature::with_spacing(1.0, 0.1).per_edge, 16);
         let family = SphereQuadrature::family(1.0, 0.1);
         for radius in [0.05, 0.3, 0.77, 1.0] {

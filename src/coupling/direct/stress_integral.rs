@@ -3,6 +3,7 @@
 use super::field_sampler::{FieldSampler, Interpolation};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
+use super::tuning::{QUADRATURE_EDGE_CELLS, SURFACE_OFFSET_CELLS};
 use nalgebra::{Matrix3, Vector3};
 
 /// Force and torque on one particle, SI (N, N·m).
@@ -44,21 +45,14 @@ pub struct StressIntegral {
     pub surface_offset: f64,
     /// Interpolation of velocity and pressure to the quadrature nodes.
     pub interpolation: Interpolation,
-    /// Quadrangles on the integration sphere; `None`: edges of about `h` (measured: as accurate as `h/2` three cells out, a quarter of the cost).
-    pub quadrangles: Option<usize>,
-    /// Include the momentum flux `−ρ u ((u − v_p)·n)` through the surface (Navier–Stokes;
-    /// off for a Stokes flow, which has no inertia).
-    pub convective_flux: bool,
 }
 
 impl Default for StressIntegral {
-    /// The measured best (docs/direct_model.md): three cells out, tricubic, edges `h`.
+    /// The measured best (docs/direct_model.md): three cells out, tricubic.
     fn default() -> Self {
         StressIntegral {
-            surface_offset: 3.0,
+            surface_offset: SURFACE_OFFSET_CELLS,
             interpolation: Interpolation::Cubic,
-            quadrangles: None,
-            convective_flux: true,
         }
     }
 }
@@ -75,12 +69,11 @@ impl StressIntegral {
         SphereQuadrature::family(self.surface_radius(radius, h), h)
     }
 
-    /// The quadrature rule for a sphere of `radius` on cells of size `h`.
+    /// The quadrature rule for a sphere of `radius` on cells of size `h`: quadrangles of
+    /// edge about `h` (as accurate as `h/2` three cells out, at a quarter of the cost:
+    /// docs/direct_model.md).
     pub fn quadrature(&self, radius: f64, h: f64) -> SphereQuadrature {
-        match self.quadrangles {
-            Some(n) => SphereQuadrature::with_quadrangles(n),
-            None => SphereQuadrature::with_spacing(self.surface_radius(radius, h), 1.0 * h),
-        }
+        SphereQuadrature::with_spacing(self.surface_radius(radius, h), QUADRATURE_EDGE_CELLS * h)
     }
 }
 

@@ -44,9 +44,7 @@ use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::{DragLawSettings, Stencil};
 use super::grid_transfer::{GridTransfer, SampleStencil};
-use crate::fluid::{
-    FluidSolver, Preconditioner, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport,
-};
+use crate::fluid::{FluidSolver, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 use crate::particles::{Dem, ParticleState};
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -120,12 +118,7 @@ impl DragLawCoupling {
                 i, p.id[i], p.diameter[i], h_min
             ));
         }
-        let va = VolumeAveragedFluid::new(
-            fluid,
-            settings.form,
-            settings.gravity,
-            Preconditioner::DEFAULT,
-        )?;
+        let va = VolumeAveragedFluid::new(fluid, settings.form, settings.gravity)?;
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
         let settings_cell_point = settings.cell_point;
         let len = va.layout().len;

@@ -1,4 +1,4 @@
-//! The fluid's time step: the explicit, Chebyshev (`EulerRKC`) and semi-implicit schemes,
+//! The fluid's time step: the explicit (`Euler`, `RK3`) and Chebyshev (`EulerRKC`) schemes,
 //! each stage's hook and projection, and the bulk-velocity correction.
 
 use super::{FluidSolver, PredictedVelocity, StepReport};
@@ -8,11 +8,7 @@ use crate::fluid::chebyshev_stages::ChebyshevStages;
 use crate::fluid::ghost_fill::{
     extrapolate_outlets, fill_component_ghosts, fill_fixed_faces, fill_velocity_ghosts,
 };
-use crate::fluid::implicit_stage::ImplicitStage;
-use crate::fluid::momentum::{
-    accumulate_tendency, add_scaled, frozen_tendency, semi_implicit_rhs, store_momentum_box,
-    MomentumTerms,
-};
+use crate::fluid::momentum::{accumulate_tendency, add_scaled, frozen_tendency, MomentumTerms};
 use crate::fluid::projection::{divergence_rhs, subtract_gradient};
 use rayon::prelude::*;
 
@@ -38,9 +34,6 @@ impl FluidSolver {
         hook: &mut dyn FnMut(PredictedVelocity<'_>),
     ) -> StepReport {
         self.velocity_changes();
-        if self.settings.scheme.is_semi_implicit() {
-            return self.step_semi_implicit(dt, hook);
-        }
         if self.settings.scheme.is_chebyshev() {
             return self.step_chebyshev(dt, hook);
         }
@@ -71,7 +64,6 @@ impl FluidSolver {
                 incremental_pressure: &[],
                 velocity: &mut self.u,
                 mass_source: self.mass_source.as_deref_mut(),
-                implicit: None,
                 components: [true; 3],
             });
             extrapolate_outlets(&self.layout, &self.bc, &mut self.u);
@@ -104,86 +96,7 @@ impl FluidSolver {
         self.finish_step(t0, dt)
     }
 
-    /// The semi-implicit step (`RK3CN`, `EulerCN`), per stage `(γ, ζ, α = β)` (Spalart–Moser–Rogers
-    /// for `RK3CN`):
-    /// 1. `r = u + Δt (γ N(u) + ζ N_old + α ν∇²u)`, `N = −∇·(uu) + f` (kept for the next stage);
-    /// 2. `(I − β Δt ν∇²) u* = r − τ∇p`, solved exactly per component; then the hook;
-    /// 3. `∇²φ = ∇·u* / τ`, `u = u* − τ∇φ`, `p ← p + φ`, with `τ = (α + β) Δt`
-    ///    (incremental pressure correction: the pressure is part of the state).
-    pub(super) fn step_semi_implicit(
-        &mut self,
-        dt: f64,
-        hook: &mut dyn FnMut(PredictedVelocity<'_>),
-    ) -> StepReport {
-        let t0 = self.time;
-        let h = self.grid.h;
-        let force = self.total_body_force();
-        let mut c_end = 0.0;
-        let stages = self.settings.scheme.semi_implicit_stages();
-        for (index, &(gamma, zeta, alpha)) in stages.iter().enumerate() {
-            let implicit = self
-                .implicit
-                .as_mut()
-                .expect("set_scheme prepares the implicit solvers");
-            c_end += gamma + zeta;
-            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            let terms = MomentumTerms {
-                layout: &self.layout,
-                h,
-                nu: self.settings.nu,
-                force,
-                source: self.source.as_ref(),
-                ranges: &self.momentum_ranges,
-            };
-            semi_implicit_rhs(
-                &mut implicit.work,
-                &mut self.q,
-                &self.u,
-                &terms,
-                (gamma, zeta, alpha),
-                dt,
-                &self.p,
-            );
-            let kappa = alpha * dt * self.settings.nu;
-            implicit.solve(kappa);
-            store_momentum_box(
-                &mut self.u,
-                &implicit.work,
-                &self.layout,
-                &self.momentum_ranges,
-            );
-            let tau = 2.0 * alpha * dt;
-            hook(PredictedVelocity {
-                body_force: force,
-                grid: &self.grid,
-                layout: &self.layout,
-                time: t0 + c_end * dt,
-                tau,
-                pressure: &[],
-                incremental_pressure: &self.p,
-                velocity: &mut self.u,
-                mass_source: self.mass_source.as_deref_mut(),
-                implicit: Some(ImplicitStage {
-                    solver: &mut *implicit,
-                    layout: &self.layout,
-                    ranges: &self.momentum_ranges,
-                    kappa,
-                    index,
-                }),
-                components: [true; 3],
-            });
-            fill_velocity_ghosts(&self.layout, &self.bc, &mut self.u);
-            let mut phi = std::mem::take(&mut implicit.increment);
-            self.project_increment(&mut phi, tau);
-            if let Some(implicit) = self.implicit.as_mut() {
-                implicit.increment = phi;
-            }
-            self.accumulate_impulse_pressure(index);
-        }
-        self.finish_step(t0, dt)
-    }
-
-    /// The incremental projection of the semi-implicit and Chebyshev steps, into the
+    /// The incremental projection of the Chebyshev step, into the
     /// increment's storage `phi`: `∇²φ = ∇·u*/τ` (less the mass source), `u = u* − τ∇φ`,
     /// `p ← p + φ`.
     pub(super) fn project_increment(&mut self, phi: &mut [f64], tau: f64) {
@@ -267,7 +180,6 @@ impl FluidSolver {
                     incremental_pressure: &self.p,
                     velocity: &mut self.u,
                     mass_source: None,
-                    implicit: None,
                     components: std::array::from_fn(|d| d == c),
                 });
                 fill_component_ghosts(&self.layout, &self.bc, &mut self.u[c], c);
@@ -285,7 +197,6 @@ impl FluidSolver {
                 incremental_pressure: &self.p,
                 velocity: &mut self.u,
                 mass_source: Some(mass_source),
-                implicit: None,
                 components: [false; 3],
             });
         }
