@@ -123,16 +123,6 @@ impl Simulation {
     /// Builds the simulation from a validated case, starting from the case's initial fields,
     /// or from the restart state of `restart` when continuing (`startFrom latestTime`).
     pub fn new(case: &Case, restart: Option<&TimeEntry>) -> Result<Self, FsimError> {
-        if !matches!(
-            case.coupling.model,
-            CouplingModel::None | CouplingModel::Direct | CouplingModel::DragLaw
-        ) {
-            return Err(FsimError::input(format!(
-                "constant/couplingProperties: model '{}' is not available yet in this fsim \
-                 (models none, direct and dragLaw run)",
-                case.coupling.model.name()
-            )));
-        }
         let grid = case.mesh.grid.clone();
         let bc = boundary_conditions(case)?;
         let (scheme, drag_law_implicit_viscosity) = fluid_scheme(case)?;

@@ -495,3 +495,32 @@ fn dimension_sets_other_than_fsims_are_refused_at_the_set() {
         "{e}"
     );
 }
+
+#[test]
+fn model_auto_is_refused_until_it_exists() {
+    let c = TempCase::from_sample("channel");
+    c.edit(
+        "constant/couplingProperties",
+        "model           none;",
+        "model           auto;",
+    );
+    let at = c.position("constant/couplingProperties", "auto;", 0);
+    check(
+        &c.error(),
+        "constant/couplingProperties",
+        at,
+        "model auto is not available yet",
+    );
+    // the models that exist are listed, without auto
+    c.edit(
+        "constant/couplingProperties",
+        "model           auto;",
+        "model           resolved;",
+    );
+    let e = c.error().to_string();
+    assert!(
+        e.contains("expected one of none, direct, dragLaw for 'model'"),
+        "{e}"
+    );
+    assert!(!e.contains("auto"), "{e}");
+}

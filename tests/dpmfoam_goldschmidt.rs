@@ -55,7 +55,7 @@ fn goldschmidt_loads_unchanged_with_its_drag_law_options() {
     let o = cloud.drag_law.as_ref().expect("drag-law options");
     // particleForces { ErgunWenYuDrag { alphac alpha.air; } gravity; }
     assert_eq!(o.drag, DragClosure::ErgunWenYu);
-    assert!(o.gravity && !o.pressure_gradient && o.coupled);
+    assert!(o.gravity && !o.pressure_gradient);
     // sourceTerms { schemes { U semiImplicit 1; } }; constantProperties { alphaMax 0.99; }
     assert_eq!(o.source, SourceTreatment::SemiImplicit);
     assert_eq!(o.alpha_max, 0.99);

@@ -69,7 +69,6 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
     assert_eq!(cloud.forces, ["ErgunWenYuDrag", "gravity"]);
     assert_eq!(cloud.config.gravity, [0.0, 0.0, -9.81]);
     assert_eq!(cloud.config.fluid_density, 1.2);
-    assert!(cloud.coupled);
     // walls (top, bottom, walls) are soft walls of the wall model; frontAndBack (symmetry)
     // rebounds with its localInteraction coefficients e 0.97, mu 0.09
     let rebound = FaceCondition::Rebound { e: 0.97, mu: 0.09 };

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::block_mesh::{BlockMesh, BoxFace};
 use super::control_dict::{time_name, ControlDict, StartFrom, StopAt, WriteControl};
-use super::coupling::{Coupling, CouplingModel};
+use super::coupling::Coupling;
 use super::dictionary::Dict;
 use super::drag_law_options::fraction_name;
 use super::error::CaseError;
@@ -305,11 +305,6 @@ impl Case {
             Some(loc) => CaseError::at(&loc, message),
             None => CaseError::in_file("system/fvSolution", message),
         }
-    }
-
-    /// Whether the case has particles to couple.
-    pub fn has_particles(&self) -> bool {
-        self.coupling.model != CouplingModel::None
     }
 }
 

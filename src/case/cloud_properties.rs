@@ -79,8 +79,6 @@ pub struct Cloud {
     pub wall_model_name: String,
     /// The `particleForces` listed, in file order.
     pub forces: Vec<String>,
-    /// `solution.coupled`.
-    pub coupled: bool,
     /// The drag-law model's settings, when the case runs that model.
     pub drag_law: Option<DragLawOptions>,
     /// One line per injection model: name, type, count.
@@ -156,7 +154,9 @@ impl Cloud {
             ));
             return Ok(None);
         }
-        let coupled = solution.get_bool_or("coupled", false)?;
+        // `coupled` is the drag-law model's to check (two-way only); with `model none` the
+        // cloud feels only gravity and buoyancy, whatever it says.
+        solution.get_bool_or("coupled", false)?;
         if !solution.get_bool_or("transient", true)? {
             return Err(at_value(
                 solution,
@@ -495,7 +495,6 @@ impl Cloud {
             pair_model_name,
             wall_model_name,
             forces,
-            coupled,
             drag_law,
             injections,
             origins,

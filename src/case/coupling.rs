@@ -1,6 +1,6 @@
 //! `constant/couplingProperties` (fsim's own file): which particle–fluid coupling runs.
 
-use super::control_dict::choice;
+use super::control_dict::{at_value, choice};
 use super::dictionary::Dict;
 use super::error::CaseError;
 
@@ -13,8 +13,6 @@ pub enum CouplingModel {
     Direct,
     /// Unresolved particles with a drag closure (CFD-DEM).
     DragLaw,
-    /// fsim chooses from the particle size and concentration.
-    Auto,
 }
 
 impl CouplingModel {
@@ -23,7 +21,6 @@ impl CouplingModel {
             CouplingModel::None => "none",
             CouplingModel::Direct => "direct",
             CouplingModel::DragLaw => "dragLaw",
-            CouplingModel::Auto => "auto",
         }
     }
 }
@@ -48,11 +45,21 @@ impl Coupling {
             };
             return Ok(Coupling { model, dict: None });
         };
-        let model = match choice(&d, "model", &["none", "direct", "dragLaw", "auto"], None)? {
+        // `model auto` (fsim choosing the model) is announced but not built yet.
+        if choice(&d, "model", &["auto"], None).is_ok() {
+            return Err(at_value(
+                &d,
+                "model",
+                "model auto is not available yet in this fsim; choose direct (resolved \
+                 particles) or dragLaw (CFD-DEM): docs/user-guide/direct-model.md, \
+                 docs/user-guide/drag-law-model.md"
+                    .to_string(),
+            ));
+        }
+        let model = match choice(&d, "model", &["none", "direct", "dragLaw"], None)? {
             0 => CouplingModel::None,
             1 => CouplingModel::Direct,
-            2 => CouplingModel::DragLaw,
-            _ => CouplingModel::Auto,
+            _ => CouplingModel::DragLaw,
         };
         // The coupling code reads the rest; `dragLawCoeffs` is read (and its unknown keywords
         // noted) with the drag-law settings.

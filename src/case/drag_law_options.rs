@@ -122,8 +122,6 @@ pub struct DragLawOptions {
     pub gravity: bool,
     /// `pressureGradient` listed in `particleForces`.
     pub pressure_gradient: bool,
-    /// `solution.coupled`: the fluid feels the particles (two-way).
-    pub coupled: bool,
     /// `sourceTerms.schemes.U`.
     pub source: SourceTreatment,
     /// `constantProperties.alphaMax`: ε ≥ 1 − alphaMax.
@@ -155,7 +153,6 @@ impl DragLawOptions {
         };
         DragLawSettings {
             closure: Some(self.drag),
-            coupled: self.coupled,
             analytical: self.integration == ParticleIntegration::Analytical,
             form: self.form,
             interpolation: stencil(self.velocity_interpolation != Interpolation::Cell),
@@ -317,7 +314,6 @@ impl DragLawOptions {
             form,
             gravity: forces.gravity,
             pressure_gradient: forces.pressure_gradient,
-            coupled: true,
             source,
             alpha_max,
             velocity_interpolation,
@@ -592,7 +588,6 @@ subModels
                 form: VolumeAveragedForm::DpmFoam,
                 gravity: true,
                 pressure_gradient: false,
-                coupled: true,
                 source: SourceTreatment::SemiImplicit,
                 alpha_max: 0.99,
                 velocity_interpolation: Interpolation::Cell,
@@ -617,7 +612,6 @@ subModels
             engine,
             DragLawSettings {
                 closure: Some(DragClosure::ErgunWenYu),
-                coupled: true,
                 analytical: false,
                 form: VolumeAveragedForm::DpmFoam,
                 interpolation: Stencil::Cell,

@@ -15,6 +15,6 @@ pub use drag_closure::{
     beetstra, di_felice, ergun_wen_yu_drag, gidaspow, koch_hill, paper, plessis_masliyah_drag,
     sphere_drag, tenneti, terminal_velocity, wen_yu_drag, Convention, DragClosure, DragInput,
 };
-pub use drag_law_coupling::{interpolation_from_name, DragLawCoupling, ExchangeReport};
+pub use drag_law_coupling::{DragLawCoupling, ExchangeReport};
 pub use drag_law_settings::{DragLawSettings, Stencil};
 pub use grid_transfer::{GridTransfer, SampleStencil};

@@ -24,8 +24,8 @@ impl Interpolation {
     /// `linear` or `cubic`.
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
-            "linear" | "trilinear" => Some(Interpolation::Linear),
-            "cubic" | "tricubic" => Some(Interpolation::Cubic),
+            "linear" => Some(Interpolation::Linear),
+            "cubic" => Some(Interpolation::Cubic),
             _ => None,
         }
     }

@@ -42,7 +42,7 @@
 use super::cell_point_interpolation::CellPointInterpolation;
 use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
-use super::drag_law_settings::{DragLawSettings, Stencil};
+use super::drag_law_settings::DragLawSettings;
 use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{FluidSolver, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 use crate::particles::{Dem, ParticleState};
@@ -319,8 +319,6 @@ impl DragLawCoupling {
         // computed once and serves every read (u, ε, ∇p) and write (source, coefficient).
         let scale = 1.0 / (rho * transfer.cell_volume());
         let semi_implicit = s.semi_implicit;
-        // One-way coupling: the fluid does not feel the particles' drag.
-        let coupled = s.coupled;
         // Fields 0–2: the source per component; 3–5: the coefficient.
         let fields = if semi_implicit { 6 } else { 3 };
         {
@@ -417,10 +415,6 @@ impl DragLawCoupling {
                             lo = lo.min(a);
                             hi = hi.max(b);
                         }
-                    }
-                    if !coupled {
-                        partial.reset(0, 0, fields);
-                        return;
                     }
                     partial.reset(lo, hi, fields);
                     let base = partial.base();
@@ -646,17 +640,4 @@ pub fn mean_pressure_gradient(
     }
     let rho_mix = (rho * (box_volume - solid) + mass) / box_volume;
     gravity.map(|g| rho_mix / rho * g)
-}
-
-/// Whether a stencil name from DPMFoam's `interpolationSchemes` maps to one of fsim's.
-pub fn interpolation_from_name(name: &str) -> Option<Stencil> {
-    match name {
-        "cell" => Some(Stencil::Cell),
-        // DPMFoam's cellPoint interpolates linearly on a tetrahedral decomposition of the
-        // cell; on fsim's uniform hexahedra the trilinear stencil is its counterpart.
-        "cellPoint" | "cellPointFace" | "cellPointWallModified" | "trilinear" => {
-            Some(Stencil::Trilinear)
-        }
-        _ => None,
-    }
 }

@@ -29,8 +29,6 @@ impl Stencil {
 pub struct DragLawSettings {
     /// The drag closure; `None`: no drag (`particleForces` without one).
     pub closure: Option<DragClosure>,
-    /// Two-way coupling (`solution.coupled`): the reaction enters the fluid.
-    pub coupled: bool,
     /// OpenFOAM's `analytical` integration of the drag over a step (else `Euler`).
     pub analytical: bool,
     /// Which volume-averaged equations the fluid solves (paper's eq. 7 or DPMFoam's).
@@ -62,7 +60,6 @@ impl DragLawSettings {
     pub fn paper(rho: f64, nu: f64, gravity: [f64; 3]) -> Self {
         DragLawSettings {
             closure: Some(DragClosure::Paper),
-            coupled: true,
             analytical: false,
             form: VolumeAveragedForm::Paper,
             interpolation: Stencil::Trilinear,
