@@ -16,6 +16,8 @@
 //! surface gap of `FROM` to `TO` cells at step `DT`, the normal drag printed every `EVERY`
 //! cells. h = 1, ν = 1; minutes per run.
 
+#[path = "../tests/support/box_case.rs"]
+mod box_case;
 #[path = "../tests/support/slit.rs"]
 mod slit;
 

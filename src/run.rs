@@ -4,15 +4,8 @@
 //! load and validate the case                  (nothing is written before this succeeds)
 //! build the simulation: grid, fluid, initial or restart state
 //! while time remains:                        (system/controlDict read again if changed)
-//!     choose Δt                              (controlDict, maxCo, paper eq. 3 bound)
-//!     evolve the cloud  ┐ drag law (DPMFoam's order): forces from the fluid as it is
-//!     evolve the fluid  ┘ (eq. 10–16), DEM sub-steps; then ε, momentum predictor,
-//!                         pressure correction with the particles' reaction
-//!     evolve the fluid  ┐ direct model (paper §2.1) and model none: momentum predictor and
-//!     hydrodynamic loads│ projection with no-slip on every sphere where it is, force and
-//!     evolve the cloud  ┘ torque by the stress integral (eq. 4–6), DEM sub-steps (model
-//!                         none: gravity and buoyancy, no fluid forces)
-//!     check the solution                      (a diverged run stops, keeping its last time)
+//!     take a step                            (Simulation::step, src/simulation/step.rs:
+//!                                             Δt, the model's phases, the health check)
 //!     monitor, log
 //!     write the time directory when due       (whole or not at all)
 //! ```
@@ -20,12 +13,11 @@
 use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalField, StopAt};
 use crate::cli::Options;
 use crate::error::FsimError;
-use crate::fluid::{FluidDiagnostics, StepReport};
 use crate::output::{
     write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
 use crate::run_signals::RunSignals;
-use crate::simulation::{continues, CloudReport, Simulation, StepSizing};
+use crate::simulation::{continues, Coupling, Simulation, StepSizing};
 use crate::step_reporter::StepReporter;
 use std::time::Instant;
 
@@ -76,7 +68,7 @@ fn run_case(
     // The initial field now lives on the solver's faces; free the case's copy (24 B/cell).
     case.fields.u = InternalField::Uniform([0.0; 3]);
     let case = &*case;
-    for note in sim.particles.iter().flat_map(|p| &p.notes) {
+    for note in sim.particles().iter().flat_map(|p| &p.notes) {
         eprintln!("fsimFoam: note: {note}");
     }
     for warning in &sim.warnings {
@@ -98,8 +90,8 @@ fn run_case(
     let mut reporter = StepReporter::open(
         &case.dir,
         &start_name,
-        sim.particles.is_some(),
-        sim.drag.is_some(),
+        sim.particles().is_some(),
+        sim.coupling.drag_law().is_some(),
     )?;
     reporter.log.banner(&banner(case, &sim, threads))?;
     if restart.is_none() && !case.dir.join(&start_name).join(RESTART_FILE_NAME).exists() {
@@ -129,17 +121,9 @@ fn run_case(
             }
         }
         let clock = Instant::now();
-        let step = take_step(&mut sim)?;
+        let step = sim.step()?;
         let name = output.time_name(sim.time.time);
-        reporter.step(
-            &name,
-            &sim,
-            step.dt,
-            &step.fluid,
-            step.cloud.as_ref(),
-            &step.health,
-            clock.elapsed(),
-        )?;
+        reporter.step(&name, &sim, &step, clock.elapsed())?;
         if step.write_due {
             write_time(&mut output, &mut sim)?;
             written = sim.time.time;
@@ -226,41 +210,6 @@ fn take_signals(
     Ok(())
 }
 
-/// What one step did, for the monitors.
-pub(crate) struct TakenStep {
-    dt: f64,
-    fluid: StepReport,
-    cloud: Option<CloudReport>,
-    health: FluidDiagnostics,
-    write_due: bool,
-}
-
-/// One time step, its phases in the model's order (module docs): the run's, and the
-/// timed steps of `-dry-run`.
-pub(crate) fn take_step(sim: &mut Simulation) -> Result<TakenStep, FsimError> {
-    let dt = sim.next_time_step()?;
-    let (fluid, cloud, diagnostics) = if sim.drag.is_some() {
-        let cloud = sim.evolve_cloud(dt);
-        let fluid = sim.evolve_fluid(dt)?;
-        (fluid, cloud, sim.fluid_diagnostics())
-    } else {
-        let fluid = sim.evolve_fluid(dt)?;
-        sim.hydrodynamic_loads();
-        let (cloud, diagnostics) = sim.evolve_cloud_beside_diagnostics(dt);
-        (fluid, cloud, diagnostics)
-    };
-    let write_due = sim.time.advance(dt);
-    let health = sim.check_health(diagnostics)?;
-    sim.update_sedimentation();
-    Ok(TakenStep {
-        dt,
-        fluid,
-        cloud,
-        health,
-        write_due,
-    })
-}
-
 /// A fixed `deltaT` above the scheme's bound for the initial field is bad input (exit 2),
 /// found before anything is written.
 fn check_first_step(sim: &mut Simulation) -> Result<(), FsimError> {
@@ -278,7 +227,10 @@ fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimE
     let dir = output.begin(sim.time.time).map_err(output_error)?;
     let title = format!("fsim t = {}", output.time_name(sim.time.time));
     // The drag-law model's fluid fraction ε (DPMFoam's alpha.<phase>).
-    let alpha = sim.drag.as_ref().map(|d| d.cell_fluid_fraction());
+    let alpha = sim
+        .coupling
+        .drag_law()
+        .map(|m| m.coupling.cell_fluid_fraction());
     // Velocity and pressure are read in place: a copy would add 24 and 8 B/cell to the
     // run's peak memory (the cell-centred velocity is interpolated as it is written).
     let fluid = &sim.fluid;
@@ -292,7 +244,9 @@ fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimE
     }
     write_fluid(dir.path(), &grid, &title, &fields).map_err(output_error)?;
     drop(fields);
-    sim.write_particles(&dir.file(PARTICLE_FILE_NAME))?;
+    if let Some(particles) = sim.particles() {
+        particles.write(&dir.file(PARTICLE_FILE_NAME))?;
+    }
     sim.write_restart(&dir.file(RESTART_FILE_NAME))?;
     output.commit(dir).map_err(output_error)?;
     Ok(())
@@ -302,21 +256,20 @@ fn banner(case: &Case, sim: &Simulation, threads: usize) -> Banner {
     let mut extra = vec![
         (
             "Scheme".to_string(),
-            if let Some(d) = &sim.drag {
-                format!(
+            match &sim.coupling {
+                Coupling::DragLaw(m) => format!(
                     "volume-averaged ({}, PCG pressure)",
-                    d.fluid.predictor_name()
-                )
-            } else {
-                sim.fluid.settings().scheme.name().to_string()
+                    m.coupling.fluid.predictor_name()
+                ),
+                _ => sim.fluid.settings().scheme.name().to_string(),
             },
         ),
         ("nu".to_string(), format!("{:e} m2/s", case.transport.nu)),
     ];
-    if let Some(d) = &sim.drag {
-        extra.push(("Drag law".to_string(), d.describe()));
+    if let Some(m) = sim.coupling.drag_law() {
+        extra.push(("Drag law".to_string(), m.coupling.describe()));
     }
-    if let Some(p) = &sim.particles {
+    if let Some(p) = sim.particles() {
         extra.push((
             "Particles".to_string(),
             format!(

@@ -1,16 +1,14 @@
 //! `-dry-run`: what a run would do and what it would cost, without writing anything.
 //!
 //! The cost is measured, not modelled: the plan takes a few steps in memory exactly as the
-//! run would (`take_step`) and times them, because a rate per cell misses the coupling,
-//! the cloud and the machine (the fluid-only rate this replaced planned 18 s for the
-//! benchmark's 0.1 s, which took 317 s).
+//! run would ([`Simulation::step`]) and times them, because a rate per cell misses the
+//! coupling, the cloud and the machine (docs/user-guide/command-line.md).
 
 use crate::case::{Case, StopAt, WriteControl};
 use crate::coupling::drag::terminal_velocity;
 use crate::error::FsimError;
 use crate::output::cpu_time_seconds;
-use crate::run::take_step;
-use crate::simulation::{PhaseTimes, Simulation};
+use crate::simulation::{Coupling, PhaseTimes, Simulation};
 use std::time::Instant;
 
 /// How many steps `-dry-run` takes in memory to time the run.
@@ -33,13 +31,13 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
     let cells = sim.grid().cell_count();
     println!("Case    : {}", case.dir.display());
     println!("Plan    : {}", case.summary());
-    match &sim.drag {
-        Some(d) => println!(
+    match &sim.coupling {
+        Coupling::DragLaw(m) => println!(
             "Scheme  : volume-averaged, {}, PCG pressure ({})",
-            d.fluid.predictor_name(),
-            d.describe()
+            m.coupling.fluid.predictor_name(),
+            m.coupling.describe()
         ),
-        None => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),
+        _ => println!("Scheme  : {}", sim.fluid.settings().scheme.name()),
     }
     if !sim.time.running() {
         println!(
@@ -121,7 +119,7 @@ pub fn print_plan(case: &Case, sim: &mut Simulation, threads: usize) -> Result<(
         "Writes  : about {writes} time directories (+ {besides}), each about {:.1} MB",
         cells as f64 * 2.0 * 4.0 * 8.0 / 1e6
     );
-    if let Some(p) = &sim.particles {
+    if let Some(p) = sim.particles() {
         let n = p.dem.particles().len();
         let bytes = p.dem.memory_bytes() as f64;
         println!(
@@ -204,10 +202,11 @@ struct SettlingStep {
 /// (within `maxDeltaT`). The flow starts at rest, so the present step says nothing of it.
 fn settling_step(case: &Case, sim: &Simulation) -> Option<SettlingStep> {
     let g = case.gravity.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if !case.control.adjust_time_step || sim.direct.is_none() || g == 0.0 {
+    let direct = sim.coupling.direct()?;
+    if !case.control.adjust_time_step || g == 0.0 {
         return None;
     }
-    let p = sim.particles.as_ref()?.dem.particles();
+    let p = direct.particles.dem.particles();
     let (rho, mu) = (sim.rho, sim.rho * case.transport.nu);
     let terminal = (0..p.diameter.len())
         .filter(|&i| !p.fixed[i])
@@ -266,7 +265,8 @@ fn time_steps(sim: &mut Simulation) -> Result<TimedSteps, FsimError> {
     {
         let step = Instant::now();
         let k = timed.seconds.len() + 1;
-        take_step(sim).map_err(|e| FsimError::run(format!("dry run: timed step {k}: {e}")))?;
+        sim.step()
+            .map_err(|e| FsimError::run(format!("dry run: timed step {k}: {e}")))?;
         timed.seconds.push(step.elapsed().as_secs_f64());
         timed.phases.fluid += sim.phase_times.fluid;
         timed.phases.coupling += sim.phase_times.coupling;

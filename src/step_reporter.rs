@@ -2,9 +2,8 @@
 //! the per-step monitors in `postProcessing/fluid/` and `postProcessing/cloud/`.
 
 use crate::error::FsimError;
-use crate::fluid::{FluidDiagnostics, StepReport};
 use crate::output::{Log, Monitor, OutputError};
-use crate::simulation::{CloudReport, Simulation};
+use crate::simulation::{CloudReport, Coupling, DirectModel, DragLawModel, Simulation, TakenStep};
 use std::io::Stdout;
 use std::path::Path;
 use std::time::Duration;
@@ -153,17 +152,21 @@ impl StepReporter {
     }
 
     /// The `Time = …` block and one monitor row per phase of the step just taken.
-    #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
         time_name: &str,
         sim: &Simulation,
-        dt: f64,
-        fluid: &StepReport,
-        cloud: Option<&CloudReport>,
-        health: &FluidDiagnostics,
+        step: &TakenStep,
         wall: Duration,
     ) -> Result<(), FsimError> {
+        let TakenStep {
+            dt,
+            fluid,
+            cloud,
+            health,
+            ..
+        } = step;
+        let (dt, cloud) = (*dt, cloud.as_ref());
         self.log.time(time_name)?;
         self.log.line(&format!(
             "Courant Number max: {:.6}\ndeltaT = {}\nProjection: divergence = {:.3e}, kinetic \
@@ -199,7 +202,35 @@ impl StepReporter {
                 sim.phase_times.particles,
             ])
             .map_err(output_error)?;
-        if let Some(h) = &sim.hydrodynamics {
+        if let Coupling::Direct(model) = &sim.coupling {
+            self.direct_model(sim.time.time, model)?;
+        }
+        if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
+            log_cloud(&mut self.log, c)?;
+            let [ux, uy, uz] = c.mean_velocity;
+            m.row(&[
+                sim.time.time,
+                c.count as f64,
+                c.kinetic_energy.0,
+                c.kinetic_energy.1,
+                ux,
+                uy,
+                uz,
+                c.max_overlap,
+                c.substeps as f64,
+            ])
+            .map_err(output_error)?;
+        }
+        if let Coupling::DragLaw(model) = &sim.coupling {
+            self.drag_law_model(sim, model, cloud)?;
+        }
+        Ok(())
+    }
+
+    /// The direct model's lines and monitor rows: the hydrodynamic loads and forced faces,
+    /// the settling of free spheres.
+    fn direct_model(&mut self, time: f64, model: &DirectModel) -> Result<(), FsimError> {
+        if let Some(h) = &model.loads {
             if self.direct.is_none() {
                 self.direct = Some(
                     Monitor::create(
@@ -215,7 +246,8 @@ impl StepReporter {
                 "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {:.6}",
                 h.force[0], h.force[1], h.force[2], h.drag_coefficient
             ))?;
-            if let Some(d) = &sim.direct {
+            {
+                let d = &model.coupling;
                 self.log.line(&format!(
                     "Forced faces: {} ({})",
                     d.boundary().forced_count(),
@@ -228,7 +260,7 @@ impl StepReporter {
             }
             if let Some(m) = self.direct.as_mut() {
                 m.row(&[
-                    sim.time.time,
+                    time,
                     h.force[0],
                     h.force[1],
                     h.force[2],
@@ -240,7 +272,7 @@ impl StepReporter {
                 .map_err(output_error)?;
             }
         }
-        if let Some(r) = &sim.settling {
+        if let Some(r) = &model.settling {
             if self.sedimentation.is_none() {
                 self.sedimentation = Some(
                     Monitor::create(
@@ -252,11 +284,7 @@ impl StepReporter {
                     .map_err(output_error)?,
                 );
             }
-            let lubrication = sim
-                .motion
-                .as_ref()
-                .map(|m| m.last_lubrication())
-                .unwrap_or_default();
+            let lubrication = model.motion.last_lubrication();
             self.log.line(&format!(
                 "Sedimentation: settling velocity = {:.6e} m/s (phi = {:.4}), mixture momentum \
                  ({:.3e} {:.3e} {:.3e}) of {:.3e} kg m/s, lubrication pairs {}",
@@ -272,7 +300,7 @@ impl StepReporter {
             let g_norm = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
             if let Some(m) = self.sedimentation.as_mut() {
                 m.row(&[
-                    sim.time.time,
+                    time,
                     r.phi,
                     r.particle_velocity[0],
                     r.particle_velocity[1],
@@ -297,23 +325,19 @@ impl StepReporter {
                 .map_err(output_error)?;
             }
         }
-        if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
-            log_cloud(&mut self.log, c)?;
-            let [ux, uy, uz] = c.mean_velocity;
-            m.row(&[
-                sim.time.time,
-                c.count as f64,
-                c.kinetic_energy.0,
-                c.kinetic_energy.1,
-                ux,
-                uy,
-                uz,
-                c.max_overlap,
-                c.substeps as f64,
-            ])
-            .map_err(output_error)?;
-        }
-        if let (Some(d), Some(m)) = (sim.drag.as_ref(), self.drag.as_mut()) {
+        Ok(())
+    }
+
+    /// The drag-law model's lines and monitor row: ε, the pressure drop, the exchanged
+    /// momentum, the pressure solve.
+    fn drag_law_model(
+        &mut self,
+        sim: &Simulation,
+        model: &DragLawModel,
+        cloud: Option<&CloudReport>,
+    ) -> Result<(), FsimError> {
+        let d = &model.coupling;
+        if let Some(m) = self.drag.as_mut() {
             let e = &d.last;
             let g = d.settings.gravity;
             let axis = if g == [0.0; 3] {

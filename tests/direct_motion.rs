@@ -1,7 +1,7 @@
 //! Freely moving spheres with the direct model: a settling sphere against the periodic-array
 //! correction (paper eq. 17) and the zero momentum of a settling suspension in a periodic box,
-//! run by `fsimFoam` on the tutorials; and the coupled step assembled from the library's
-//! parts (`support/settler.rs`) for the time schemes and the density-ratio stability.
+//! run by `fsimFoam` on the tutorials; and cases written and stepped in the test
+//! (`support/settler.rs`) for the time schemes and the density-ratio stability.
 
 mod support;
 
@@ -22,8 +22,8 @@ fn coarse_settling_velocity(scheme: TimeScheme, factor: f64) -> f64 {
     let (rho_p, rho_f, nu) = (2000.0, 1000.0, 1e-3);
     let centre = [9.0 * h + 0.3 * h, 9.0 * h, 9.0 * h - 0.2 * h];
     let mut s = Settler::new([n; 3], h, &[(centre, d)], rho_p, rho_f, nu, TimeScheme::RK3);
-    let dt = factor * s.fluid.stability_bound();
-    s.fluid.set_scheme(scheme).unwrap();
+    let dt = factor * s.fluid().stability_bound();
+    s.fluid().set_scheme(scheme).unwrap();
     let steps = (3e-3 / dt).round() as usize;
     for _ in 0..steps {
         s.step(dt);

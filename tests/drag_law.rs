@@ -1,4 +1,5 @@
-//! Acceptance tests of the drag-law model (paper §2.2) at the library level: terminal
+//! Acceptance tests of the drag-law model (paper §2.2), its step as fsimFoam takes it
+//! ([`step_drag_law`]) on set-ups built in code: terminal
 //! settling velocity for every closure, Ergun's pressure drop through a fixed bed at two
 //! fluid fractions, the pressure drop of a fluidized bed, and the action–reaction balance of
 //! the particle–fluid exchange at every step.
@@ -13,6 +14,7 @@ use fsim::grid::Grid;
 use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
+use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
@@ -90,10 +92,40 @@ fn settings(closure: DragClosure, gravity: f64) -> DragLawSettings {
     s
 }
 
-/// One coupled step in DPMFoam's order, checking action = −reaction.
-fn step(coupling: &mut DragLawCoupling, fluid: &mut FluidSolver, dem: &mut Dem, dt: f64) {
-    coupling.particle_forces(fluid, dem, dt);
-    let e = coupling.last;
+/// The drag-law model of `cloud` in `fluid`, its pressure initialised for steps of `dt`.
+fn model(s: DragLawSettings, fluid: &mut FluidSolver, cloud: Dem, dt: f64) -> DragLawModel {
+    model_with_inlets(s, fluid, cloud, dt, [false; 6])
+}
+
+/// [`model`] with the superficial inlets (DPMFoam's `interstitialInletVelocity`) `inlets`.
+fn model_with_inlets(
+    s: DragLawSettings,
+    fluid: &mut FluidSolver,
+    cloud: Dem,
+    dt: f64,
+    inlets: [bool; 6],
+) -> DragLawModel {
+    let mut coupling = DragLawCoupling::new(s, fluid, &cloud).unwrap();
+    coupling.fluid.set_superficial_inlets(inlets);
+    coupling.initialise_pressure(fluid, dt);
+    DragLawModel {
+        particles: Particles::from_dem(cloud),
+        coupling,
+    }
+}
+
+/// One step of the drag-law model as fsimFoam takes it ([`step_drag_law`]), checking
+/// action = −reaction and the pressure solve.
+fn step(model: &mut DragLawModel, fluid: &mut FluidSolver, dt: f64) {
+    step_drag_law(
+        fluid,
+        model,
+        fluid.time() + dt,
+        dt,
+        &mut PhaseTimes::default(),
+    )
+    .unwrap();
+    let e = model.coupling.last;
     let scale = e
         .drag_on_particles
         .iter()
@@ -107,9 +139,7 @@ fn step(coupling: &mut DragLawCoupling, fluid: &mut FluidSolver, dem: &mut Dem, 
             e.drag_on_fluid
         );
     }
-    dem.advance(dt);
-    coupling.update_fluid_fraction(dem).unwrap();
-    let r = coupling.step_fluid(fluid, dt);
+    let r = model.coupling.last_fluid.unwrap();
     assert!(r.pressure.converged, "{:?}", r.pressure);
 }
 
@@ -150,7 +180,7 @@ fn a_single_particle_settles_at_the_root_of_each_closures_force_balance() {
         let mut fluid = fluid([8, 8, 16], h, None);
         let mut particles = ParticleState::with_capacity(1);
         particles.push(0, [4.5e-3, 4.5e-3, 13e-3], d, rho_p);
-        let mut cloud = dem(
+        let cloud = dem(
             particles,
             [8e-3, 8e-3, 16e-3],
             G,
@@ -159,16 +189,15 @@ fn a_single_particle_settles_at_the_root_of_each_closures_force_balance() {
         let mut s = settings(closure, G);
         // The particle's own cell: ε is the same wherever it falls.
         s.averaging = Stencil::Cell;
-        let mut coupling = DragLawCoupling::new(s, &fluid, &cloud).unwrap();
-        coupling.initialise_pressure(&mut fluid, 5e-4);
+        let mut model = model(s, &mut fluid, cloud, 5e-4);
         for _ in 0..200 {
-            step(&mut coupling, &mut fluid, &mut cloud, 5e-4);
+            step(&mut model, &mut fluid, 5e-4);
         }
-        let x = cloud.particles().position[0];
-        let v = cloud.particles().velocity[0];
-        let u = coupling.fluid_velocity_at(&fluid, x);
+        let x = model.particles.dem.particles().position[0];
+        let v = model.particles.dem.particles().velocity[0];
+        let u = model.coupling.fluid_velocity_at(&fluid, x);
         let slip = (u[2] - v[2]).abs();
-        let eps = coupling.fluid_fraction_at(x);
+        let eps = model.coupling.fluid_fraction_at(x);
         assert!((eps - (1.0 - volume / (h * h * h))).abs() < 1e-12);
         let want = closure.convention();
         let root = terminal_slip(closure, want, d, eps, weight);
@@ -218,15 +247,14 @@ fn fixed_bed_pressure_drop_matches_ergun_at_two_fluid_fractions() {
             }
         }
         let hi = [4.0 * h, 4.0 * h, 16.0 * h];
-        let mut cloud = dem(particles, hi, 0.0, PairModel::linear(1.0, 0.5, 0.0));
+        let cloud = dem(particles, hi, 0.0, PairModel::linear(1.0, 0.5, 0.0));
         let mut s = settings(closure, 0.0);
         s.averaging = stencil;
         s.interpolation = stencil;
         s.semi_implicit = true;
-        let mut coupling = DragLawCoupling::new(s, &fluid, &cloud).unwrap();
-        coupling.initialise_pressure(&mut fluid, 1e-3);
+        let mut model = model(s, &mut fluid, cloud, 1e-3);
         for _ in 0..100 {
-            step(&mut coupling, &mut fluid, &mut cloud, 1e-3);
+            step(&mut model, &mut fluid, 1e-3);
         }
         // Pressure gradient between layers 6 and 10, well inside the bed.
         let p = fluid.pressure();
@@ -280,7 +308,7 @@ fn fluidized_bed_pressure_drop_carries_the_buoyant_weight() {
             }
         }
         let hi = [8e-3, 8e-3, 60e-3];
-        let mut cloud = dem_in(
+        let cloud = dem_in(
             particles,
             [0.0, 0.0, 4e-3],
             hi,
@@ -290,24 +318,21 @@ fn fluidized_bed_pressure_drop_carries_the_buoyant_weight() {
         let mut s = settings(DragClosure::ErgunWenYu, G);
         s.averaging = Stencil::Trilinear;
         s.cell_point = cell_point;
-        let mut coupling = DragLawCoupling::new(s, &fluid, &cloud).unwrap();
-        // The inlet's 8 cm/s is superficial (DPMFoam's interstitialInletVelocity).
-        coupling
-            .fluid
-            .set_superficial_inlets([false, false, false, false, true, false]);
         let dt = 2e-3;
-        coupling.initialise_pressure(&mut fluid, dt);
+        // The inlet's 8 cm/s is superficial (DPMFoam's interstitialInletVelocity).
+        let inlets = [false, false, false, false, true, false];
+        let mut model = model_with_inlets(s, &mut fluid, cloud, dt, inlets);
         let weight = count as f64 * (rho_p - RHO) * PI * d * d * d / 6.0 * G / (8e-3 * 8e-3);
         let (mut sum, mut samples) = (0.0, 0);
         let (mut top, mut bottom) = (0.0f64, 1.0f64);
         for n_step in 0..500 {
-            step(&mut coupling, &mut fluid, &mut cloud, dt);
+            step(&mut model, &mut fluid, dt);
             if n_step >= 250 {
                 // ρ (p₀ − p_N−1) less the water column between the two layer centres.
-                let drop = coupling.pressure_drop(&fluid, 2);
+                let drop = model.coupling.pressure_drop(&fluid, 2);
                 sum += drop;
                 samples += 1;
-                for x in &cloud.particles().position {
+                for x in &model.particles.dem.particles().position {
                     top = top.max(x[2]);
                     bottom = bottom.min(x[2]);
                 }

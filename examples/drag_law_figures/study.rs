@@ -16,6 +16,7 @@ use fsim::grid::Grid;
 use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
+use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
@@ -110,7 +111,7 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
                 }
             }
             let count = particles.len() as f64;
-            let mut dem = periodic_dem(particles, length, 0.0);
+            let dem = periodic_dem(particles, length, 0.0);
             // G small enough for Re ≪ 1: U ~ G L³/(6πμr K).
             let g = 1e-3;
             let mut s = DragLawSettings::paper(RHO, NU, [0.0, 0.0, g]);
@@ -120,21 +121,15 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
                 Convention::Total => fsim::fluid::VolumeAveragedForm::DpmFoam,
             };
             s.semi_implicit = true;
-            let mut coupling = DragLawCoupling::new(s, &fluid, &dem).expect("a valid set-up");
-            let h = unit / cells as f64;
+            let h = h_of(unit, cells);
             let dt = 0.1 * h * h / NU;
-            coupling.initialise_pressure(&mut fluid, dt);
+            let mut model = drag_law_model(s, &mut fluid, dem, dt);
             for _ in 0..steps {
-                coupling.particle_forces(&fluid, &mut dem, dt);
-                dem.advance(dt);
-                coupling
-                    .update_fluid_fraction(&dem)
-                    .expect("ε above the floor");
-                coupling.step_fluid(&mut fluid, dt);
+                step(&mut fluid, &mut model, dt);
             }
-            coupling.particle_forces(&fluid, &mut dem, dt);
-            let force = coupling.last.hydrodynamic_force[2] / count;
-            let u = superficial_z(&coupling, &fluid);
+            model.apply_particle_forces(&fluid, dt);
+            let force = model.coupling.last.hydrodynamic_force[2] / count;
+            let u = superficial_z(&model.coupling, &fluid);
             PorousRow {
                 phi,
                 cells,
@@ -144,6 +139,34 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
             }
         })
         .collect()
+}
+
+/// The cell size of `cells` cells over `length`.
+fn h_of(length: f64, cells: usize) -> f64 {
+    length / cells as f64
+}
+
+/// The drag-law model of `dem` in `fluid` with settings `s`, its pressure initialised for
+/// steps of `dt`.
+fn drag_law_model(s: DragLawSettings, fluid: &mut FluidSolver, dem: Dem, dt: f64) -> DragLawModel {
+    let mut coupling = DragLawCoupling::new(s, fluid, &dem).expect("a valid set-up");
+    coupling.initialise_pressure(fluid, dt);
+    DragLawModel {
+        particles: Particles::from_dem(dem),
+        coupling,
+    }
+}
+
+/// One step of the drag-law model, as fsimFoam takes it.
+fn step(fluid: &mut FluidSolver, model: &mut DragLawModel, dt: f64) {
+    step_drag_law(
+        fluid,
+        model,
+        fluid.time() + dt,
+        dt,
+        &mut PhaseTimes::default(),
+    )
+    .expect("ε above the floor");
 }
 
 /// The isolated sphere's terminal velocity under `closure` (ε = 1), by bisection.
@@ -208,7 +231,7 @@ pub fn sedimentation(
             }
             let count = particles.len();
             let mut fluid = periodic_fluid(cells, length);
-            let mut dem = periodic_dem(particles, length, g);
+            let dem = periodic_dem(particles, length, g);
             // The fluid carries the mean pressure gradient that holds the suspension's
             // buoyant weight, so the whole box does not accelerate.
             let hold = phi * (rho_p - RHO) / RHO * g;
@@ -219,22 +242,16 @@ pub fn sedimentation(
                 Convention::Total => fsim::fluid::VolumeAveragedForm::DpmFoam,
             };
             s.semi_implicit = true;
-            let mut coupling = DragLawCoupling::new(s, &fluid, &dem).expect("a valid set-up");
-            let h = length / cells as f64;
+            let h = h_of(length, cells);
             let dt = (0.1 * h * h / NU).min(0.2 * h / v0);
-            coupling.initialise_pressure(&mut fluid, dt);
+            let mut model = drag_law_model(s, &mut fluid, dem, dt);
             let (mut sum, mut samples) = (0.0, 0);
-            for step in 0..steps {
-                coupling.particle_forces(&fluid, &mut dem, dt);
-                dem.advance(dt);
-                coupling
-                    .update_fluid_fraction(&dem)
-                    .expect("ε above the floor");
-                coupling.step_fluid(&mut fluid, dt);
-                if step >= steps / 2 {
-                    let vp = dem.mean_velocity()[2];
+            for k in 0..steps {
+                step(&mut fluid, &mut model, dt);
+                if k >= steps / 2 {
+                    let vp = model.particles.dem.mean_velocity()[2];
                     // Zero-volume-flux frame: subtract j = ⟨ε u⟩ + φ v_p.
-                    let j = superficial_z(&coupling, &fluid) + phi * vp;
+                    let j = superficial_z(&model.coupling, &fluid) + phi * vp;
                     sum += vp - j;
                     samples += 1;
                 }

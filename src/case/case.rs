@@ -154,6 +154,7 @@ impl Case {
         let coupling = Coupling::new(
             optional("constant/couplingProperties")?,
             cloud_properties.is_some(),
+            &mut warnings,
         )?;
 
         let fv_solution = optional("system/fvSolution")?;

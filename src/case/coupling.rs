@@ -1,13 +1,36 @@
-//! `constant/couplingProperties` (fsim's own file): which particle–fluid coupling runs.
+//! `constant/couplingProperties` (fsim's own file): which particle–fluid coupling runs, and
+//! the direct model's settings. (The drag-law model's `dragLawCoeffs` are read with the
+//! cloud, in `drag_law_options.rs`.)
+//!
+//! ```text
+//! model           direct;     // none | direct | dragLaw
+//! virtualMass     2;          // direct: C_v of the virtual mass split off the lagged force
+//!                             // (0: the paper's plain explicit coupling)
+//! direct
+//! {
+//!     interpolation   cubic;  // cubic | linear: grid → quadrature nodes of the stress
+//!                             // integral (linear: half the cost, for suspensions)
+//!     fixedParticles  no;     // yes: every particle is held in place (porous media)
+//!     rebuildDistance 0;      // cells a sphere may move before its forced faces are
+//!                             // rebuilt (between builds they follow it); 0: every step
+//! }
+//! dragLawCoeffs { … }         // dragLaw: docs/user-guide/drag-law-model.md
+//! ```
+//!
+//! Unknown keywords in `direct` are errors (this is fsim's own file: a misspelt setting must
+//! not pass silently); unknown keywords at the top level are listed as ignored.
 
 use super::control_dict::{at_value, choice};
 use super::dictionary::Dict;
 use super::error::CaseError;
+use crate::coupling::direct::{
+    DirectSettings, Interpolation, MotionSettings, MAX_REBUILD_DISTANCE,
+};
 
 /// The coupling model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CouplingModel {
-    /// Fluid only: no particles.
+    /// Fluid only: no particles, or a cloud that feels gravity and buoyancy only.
     None,
     /// Resolved particles (grid finer than the particles).
     Direct,
@@ -25,25 +48,40 @@ impl CouplingModel {
     }
 }
 
-/// The model and, when the file exists, the whole dictionary for the model's own settings
-/// (read by the coupling code; marked read here so it is not listed as ignored).
+/// The model, the direct model's settings (defaults unless `model direct`), and, when the
+/// file exists, its dictionary (the drag-law settings read `dragLawCoeffs` from it).
 #[derive(Clone, Debug)]
 pub struct Coupling {
     pub model: CouplingModel,
+    pub direct: DirectSettings,
+    pub motion: MotionSettings,
     pub dict: Option<Dict>,
 }
 
+const TOP_LEVEL_KEYWORDS: [&str; 4] = ["model", "virtualMass", "direct", "dragLawCoeffs"];
+const DIRECT_KEYWORDS: [&str; 3] = ["interpolation", "fixedParticles", "rebuildDistance"];
+
 impl Coupling {
     /// From the file, or the default when it is absent: `dragLaw` when the case has
-    /// `constant/kinematicCloudProperties` (a DPMFoam case), else `none`.
-    pub fn new(dict: Option<Dict>, has_cloud: bool) -> Result<Coupling, CaseError> {
+    /// `constant/kinematicCloudProperties` (a DPMFoam case), else `none`. Top-level keywords
+    /// fsim does not know are noted in `warnings`.
+    pub fn new(
+        dict: Option<Dict>,
+        has_cloud: bool,
+        warnings: &mut Vec<String>,
+    ) -> Result<Coupling, CaseError> {
         let Some(d) = dict else {
             let model = if has_cloud {
                 CouplingModel::DragLaw
             } else {
                 CouplingModel::None
             };
-            return Ok(Coupling { model, dict: None });
+            return Ok(Coupling {
+                model,
+                direct: DirectSettings::default(),
+                motion: MotionSettings::default(),
+                dict: None,
+            });
         };
         // `model auto` (fsim choosing the model) is announced but not built yet.
         if choice(&d, "model", &["auto"], None).is_ok() {
@@ -61,9 +99,24 @@ impl Coupling {
             1 => CouplingModel::Direct,
             _ => CouplingModel::DragLaw,
         };
-        // The coupling code reads the rest; `dragLawCoeffs` is read (and its unknown keywords
-        // noted) with the drag-law settings.
+        let (direct, motion) = match model {
+            CouplingModel::Direct => (direct_settings(&d)?, motion_settings(&d)?),
+            _ => (DirectSettings::default(), MotionSettings::default()),
+        };
+        // The other model's settings may stay in the file (to switch models by one word);
+        // `dragLawCoeffs` is read (and its unknown keywords noted) with the drag-law settings.
         for e in d.entries() {
+            let known = TOP_LEVEL_KEYWORDS.contains(&e.keyword()) || e.keyword() == "FoamFile";
+            if !known {
+                let (line, col) = e.value_loc().line_col();
+                warnings.push(format!(
+                    "{}:{line}:{col}: ignored keyword '{}' (fsim does not use it; expected one \
+                     of {})",
+                    d.file(),
+                    e.keyword(),
+                    TOP_LEVEL_KEYWORDS.join(", ")
+                ));
+            }
             e.mark_used();
             match e.as_dict() {
                 Some(sub) if e.keyword() != "dragLawCoeffs" => sub.mark_all_used(),
@@ -72,7 +125,115 @@ impl Coupling {
         }
         Ok(Coupling {
             model,
+            direct,
+            motion,
             dict: Some(d),
         })
+    }
+}
+
+/// `direct { … }`: the defaults without it.
+fn direct_settings(dict: &Dict) -> Result<DirectSettings, CaseError> {
+    let mut settings = DirectSettings::default();
+    let Some(d) = dict.opt_dict("direct")? else {
+        return Ok(settings);
+    };
+    for entry in d.entries() {
+        if !DIRECT_KEYWORDS.contains(&entry.keyword()) {
+            return Err(CaseError::at(
+                entry.value_loc(),
+                format!(
+                    "unknown keyword '{}' in direct; expected one of {}",
+                    entry.keyword(),
+                    DIRECT_KEYWORDS.join(", ")
+                ),
+            ));
+        }
+    }
+    if d.contains("interpolation") {
+        let names = ["cubic", "linear"];
+        let k = choice(d, "interpolation", &names, None)?;
+        settings.integral.interpolation =
+            Interpolation::from_name(names[k]).expect("listed names parse");
+    }
+    settings.fixed_particles = d.get_bool_or("fixedParticles", false)?;
+    if let Some(distance) = d.opt_scalar("rebuildDistance")? {
+        if !(0.0..=MAX_REBUILD_DISTANCE).contains(&distance) {
+            let loc = d.get_entry("rebuildDistance")?.value_loc();
+            return Err(CaseError::at(
+                loc,
+                format!(
+                    "rebuildDistance must be between 0 and {MAX_REBUILD_DISTANCE} cells, got \
+                     {distance}"
+                ),
+            ));
+        }
+        settings.rebuild_distance = distance;
+    }
+    Ok(settings)
+}
+
+/// `virtualMass C_v;`: the default without it.
+fn motion_settings(dict: &Dict) -> Result<MotionSettings, CaseError> {
+    let mut s = MotionSettings::default();
+    if let Some(c) = dict.opt_scalar("virtualMass")? {
+        if !(0.0..=10.0).contains(&c) {
+            let loc = dict.get_entry("virtualMass")?.value_loc();
+            return Err(CaseError::at(
+                loc,
+                format!("virtualMass must be between 0 and 10, got {c}"),
+            ));
+        }
+        s.virtual_mass = c;
+    }
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_dict;
+
+    fn coupling(text: &str) -> Result<(Coupling, Vec<String>), CaseError> {
+        let dict = parse_dict(text, "constant/couplingProperties").unwrap();
+        let mut warnings = Vec::new();
+        Coupling::new(Some(dict), true, &mut warnings).map(|c| (c, warnings))
+    }
+
+    #[test]
+    fn reads_the_direct_settings_and_rejects_unknown_keywords() {
+        let (c, notes) = coupling("model direct;").unwrap();
+        assert_eq!(c.direct, DirectSettings::default());
+        assert_eq!(c.direct.integral.surface_offset, 3.0);
+        assert!(notes.is_empty());
+        let (c, _) = coupling(
+            "model direct; virtualMass 0; direct { interpolation linear; fixedParticles yes; \
+             rebuildDistance 0.1; }",
+        )
+        .unwrap();
+        assert_eq!(c.direct.rebuild_distance, 0.1);
+        assert_eq!(c.direct.integral.interpolation, Interpolation::Linear);
+        assert!(c.direct.fixed_particles);
+        assert_eq!(c.motion.virtual_mass, 0.0);
+        let e = coupling("model direct; direct { surfaceOffset 2; }").unwrap_err();
+        assert!(
+            e.to_string().contains("unknown keyword 'surfaceOffset'"),
+            "{e}"
+        );
+        let e = coupling("model direct; direct { rebuildDistance 0.8; }").unwrap_err();
+        assert!(e.to_string().contains("between 0 and 0.5"), "{e}");
+        let e = coupling("model direct; direct { interpolation quintic; }").unwrap_err();
+        assert!(e.to_string().contains("quintic"), "{e}");
+        let e = coupling("model direct; virtualMass 11;").unwrap_err();
+        assert!(e.to_string().contains("between 0 and 10"), "{e}");
+        // another model's settings are not read, a misspelt top-level keyword is noted
+        let (c, notes) =
+            coupling("model dragLaw; direct { surfaceOffset 2; } virtulMass 1;").unwrap();
+        assert_eq!(c.direct, DirectSettings::default());
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(
+            notes[0].contains("ignored keyword 'virtulMass'"),
+            "{notes:?}"
+        );
     }
 }

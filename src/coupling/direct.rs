@@ -69,3 +69,4 @@ pub use sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 pub use stress_integral::{
     shell_momentum, stress_integral_force, HydrodynamicLoad, ShellMomentum, StressIntegral,
 };
+pub use tuning::MAX_REBUILD_DISTANCE;

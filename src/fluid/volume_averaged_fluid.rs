@@ -386,9 +386,17 @@ impl VolumeAveragedFluid {
         }
     }
 
-    /// Advances `fluid` by `dt` (see the module notes); `εⁿ⁺¹` and the sources must be set.
+    /// Advances `fluid` by `dt` (see the module notes); `εⁿ⁺¹` and the sources must be set:
+    /// [`Self::predict_momentum`], then [`Self::correct_pressure`].
     pub fn step(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
-        let t0 = fluid.time();
+        self.predict_momentum(fluid, dt);
+        self.correct_pressure(fluid, dt)
+    }
+
+    /// Paper eq. 7's momentum equation without the new pressure: `u*` on the momentum faces
+    /// from `uⁿ`, `εⁿ`, `εⁿ⁺¹`, the particles' source and the body force (step 1 of the
+    /// module notes).
+    pub fn predict_momentum(&mut self, fluid: &mut FluidSolver, dt: f64) {
         self.fill_ghosts(fluid.velocity_mut());
         if let Some(v) = self.viscous.as_mut() {
             v.reset_report();
@@ -411,6 +419,13 @@ impl VolumeAveragedFluid {
             extrapolate_outlets(&self.layout, &self.bc, u);
         }
         self.fill_ghosts(fluid.velocity_mut());
+    }
+
+    /// Paper eq. 7's continuity, `∇·(ε u) = −∂ε/∂t`: the pressure that makes the predicted
+    /// velocity meet it, and the velocity corrected by its gradient (steps 2–3); the fluid's
+    /// time moves on by `dt`.
+    pub fn correct_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
+        let t0 = fluid.time();
         let pressure = self.solve_pressure(fluid, dt);
         self.correct(fluid);
         fluid.set_time(t0 + dt);

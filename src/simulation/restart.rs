@@ -1,15 +1,18 @@
 //! The restart state of a run: written at each time directory, read back when a case
 //! continues (`startFrom latestTime`) so that the continuation is bit-identical.
 
-use super::{Particles, Simulation};
+use super::coupling::Coupling;
+use super::particles::Particles;
+use super::simulation::{time_axis, Simulation};
 use crate::case::Cloud;
-use crate::coupling::direct::{DirectCoupling, ParticleMotion};
 use crate::error::FsimError;
 use crate::fluid::FluidSolver;
 use crate::output::{RestartHeader, RestartState};
 use crate::particles::{Dem, DemSnapshot};
 
 impl Simulation {
+    /// Restores the fluid and the time axis from the restart state in `time_dir`, and
+    /// returns the state for the particles and the coupling.
     pub(super) fn restore(
         &mut self,
         time_dir: &std::path::Path,
@@ -26,7 +29,7 @@ impl Simulation {
                 .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
         }
         let header = &state.header;
-        self.time = super::time_axis(header.time, header.step, control);
+        self.time = time_axis(header.time, header.step, control);
         self.dt = header.delta_t;
         self.largest_dt = header.delta_t;
         Ok(state)
@@ -36,28 +39,17 @@ impl Simulation {
     pub fn write_restart(&mut self, path: &std::path::Path) -> Result<(), FsimError> {
         let header = RestartHeader::new(self.time.time, self.time.step, self.dt);
         let cloud = self
-            .particles
-            .as_ref()
+            .coupling
+            .particles()
             .map(|p| p.dem.snapshot().to_arrays())
             .unwrap_or_default();
-        let shell = self.direct.as_ref().map(|d| d.shell_state());
-        let build = self.direct.as_ref().map(|d| d.build_state());
-        let throats = self.direct.as_ref().map(|d| d.throat_state());
-        let motion = self.motion.as_ref().map(|m| m.restart_state());
+        let model = match &self.coupling {
+            Coupling::Direct(direct) => direct.restart_arrays(),
+            _ => Vec::new(),
+        };
         let mut arrays = self.fluid.restart_arrays();
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
-        if let Some(shell) = &shell {
-            arrays.push((DirectCoupling::RESTART_NAME, shell.as_slice()));
-        }
-        if let Some(build) = &build {
-            arrays.push((DirectCoupling::BUILD_RESTART_NAME, build.as_slice()));
-        }
-        if let Some(throats) = &throats {
-            arrays.push((DirectCoupling::THROAT_RESTART_NAME, throats.as_slice()));
-        }
-        if let Some(motion) = &motion {
-            arrays.push((ParticleMotion::RESTART_NAME, motion.as_slice()));
-        }
+        arrays.extend(model.iter().map(|(name, v)| (*name, v.as_slice())));
         header
             .write(path, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))
@@ -74,13 +66,7 @@ pub(super) fn restore_particles(
     let path = time_dir.join(crate::output::RESTART_FILE_NAME);
     let snapshot = DemSnapshot::from_arrays(|name| state.array(name))
         .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
-    let dem = Dem::restore(cloud.config, cloud.domain, &snapshot)
+    let dem = Dem::restore(cloud.config.clone(), cloud.domain.clone(), &snapshot)
         .map_err(|e| FsimError::input(format!("{}: {e}", path.display())))?;
-    Ok(Particles {
-        dem,
-        pair_model: cloud.pair_model_name,
-        wall_model: cloud.wall_model_name,
-        substeps: 0,
-        notes: cloud.warnings,
-    })
+    Ok(Particles::new(cloud, dem))
 }

@@ -1,7 +1,8 @@
 //! The size of each step: controlDict's `deltaT` or the `maxCo` rule, within the scheme's
 //! stability bound, and the collapse of the Courant step by which a diverging run shows.
 
-use super::{Simulation, StepSizing};
+use super::coupling::Coupling;
+use super::simulation::{Simulation, StepSizing};
 use crate::coupling::direct::RESPONSE_STEP_FRACTION;
 use crate::error::FsimError;
 
@@ -19,8 +20,8 @@ impl Simulation {
             StepSizing::Fixed(dt) => {
                 let bound = self.stability_bound();
                 if dt > bound {
-                    let scheme = match &self.drag {
-                        Some(drag) if drag.fluid.implicit_viscosity() => {
+                    let scheme = match self.coupling.drag_law() {
+                        Some(m) if m.coupling.fluid.implicit_viscosity() => {
                             "drag-law model's EulerImplicit predictor (upwind advection: \
                              1/(Σ|u|/h))"
                                 .to_string()
@@ -89,19 +90,19 @@ impl Simulation {
     /// The `maxCo` rule's step after a step of `previous` (at most 1.2 times it), within
     /// `max_delta_t` and the scheme's stability bound.
     fn adaptive_step(&mut self, previous: f64, max_co: f64, max_delta_t: f64) -> f64 {
-        match self.drag {
+        match &self.coupling {
             // the drag law steps the fluid with its own predictor and bound
-            Some(_) => self
+            Coupling::DragLaw(_) => self
                 .fluid
                 .courant_dt(previous, max_co, max_delta_t)
                 .min(self.stability_bound()),
             // adaptive_dt holds the fluid's own bound already (3 passes over the field); free
             // spheres add their coupling's (coupling_step_bound)
-            None => self.fluid.adaptive_dt(previous, max_co, max_delta_t).min(
-                self.motion
-                    .as_ref()
-                    .map_or(f64::INFINITY, |m| m.step_bound()),
-            ),
+            Coupling::Direct(m) => self
+                .fluid
+                .adaptive_dt(previous, max_co, max_delta_t)
+                .min(m.motion.step_bound()),
+            Coupling::None { .. } => self.fluid.adaptive_dt(previous, max_co, max_delta_t),
         }
     }
 
@@ -117,20 +118,15 @@ impl Simulation {
             self.time.step,
             allowed / self.largest_dt,
             self.largest_dt,
-            if self.direct.is_some() && self.particles.is_some() {
-                " (with model direct: particles not much heavier than the fluid need the \
-                 virtual mass, virtualMass in constant/couplingProperties)"
-            } else {
-                ""
-            }
+            self.virtual_mass_hint()
         ))
     }
 
     /// The bound on `Δt` of the fluid's scheme (paper eq. 3 for Euler), or of the drag-law
     /// model's explicit predictor.
     pub fn stability_bound(&self) -> f64 {
-        match &self.drag {
-            Some(drag) => drag.fluid.stability_bound(&self.fluid),
+        match self.coupling.drag_law() {
+            Some(m) => m.coupling.fluid.stability_bound(&self.fluid),
             None => self.fluid.stability_bound(),
         }
     }

@@ -1,6 +1,7 @@
 //! Helpers for tests that run `fsimFoam` on copies of the tutorials, and shared fluid set-ups.
 #![allow(dead_code)]
 
+pub mod box_case;
 pub mod settler;
 pub mod slit;
 

@@ -1,31 +1,40 @@
-//! A harness assembling the direct model's coupled step from the library's parts as the time
-//! loop does (fluid step with no-slip, stress integral, lubrication and virtual mass, DEM),
-//! for the tests of freely moving spheres and `examples/direct_explore.rs`.
+//! Free spheres settling in a fully periodic box, run as `fsimFoam` runs a case
+//! (`box_case.rs`: [`Simulation::step`], with no-slip, stress integral, lubrication and
+//! virtual mass, DEM, settling drive). For the tests of freely moving spheres and
+//! `examples/direct_explore.rs`.
 #![allow(dead_code)]
 
-use fsim::coupling::direct::{
-    DirectCoupling, DirectSettings, HydrodynamicLoad, MotionSettings, ParticleMotion,
-    SedimentationReport,
-};
-use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, TimeScheme};
-use fsim::grid::Grid;
-use fsim::particles::{
-    Dem, DemConfig, DomainBox, FaceCondition, PairModel, ParticleState, WallModel,
-};
+use super::box_case::{step, BoxCase};
+use fsim::coupling::direct::SedimentationReport;
+use fsim::fluid::{FluidSolver, TimeScheme};
+use fsim::simulation::Simulation;
 
 /// A fully periodic box of `n` cells of size `h` per axis with free spheres, gravity −y.
 pub struct Settler {
-    pub fluid: FluidSolver,
-    pub coupling: DirectCoupling,
-    pub dem: Dem,
-    pub motion: ParticleMotion,
-    pub rho: f64,
-    pub time: f64,
+    pub sim: Simulation,
+}
+
+/// The direct model's settings a settler's case may give (`constant/couplingProperties`).
+#[derive(Clone, Copy, Debug)]
+pub struct SettlerOptions {
+    /// `direct { interpolation …; }`: `"cubic"` or `"linear"`.
+    pub interpolation: &'static str,
+    /// `virtualMass`; the default when `None`.
+    pub virtual_mass: Option<f64>,
+}
+
+impl Default for SettlerOptions {
+    fn default() -> Self {
+        SettlerOptions {
+            interpolation: "cubic",
+            virtual_mass: None,
+        }
+    }
 }
 
 impl Settler {
     /// Spheres `(centre, diameter)` of density `rho_p` in a fluid of `rho_f` and `nu`, with
-    /// the default direct-model and motion settings.
+    /// the default direct-model settings.
     pub fn new(
         n: [usize; 3],
         h: f64,
@@ -35,86 +44,68 @@ impl Settler {
         nu: f64,
         scheme: TimeScheme,
     ) -> Settler {
-        let settings = (DirectSettings::default(), MotionSettings::default());
-        Self::with_settings(n, h, spheres, (rho_p, rho_f, nu), scheme, settings)
+        let options = SettlerOptions::default();
+        Self::with_options(n, h, spheres, (rho_p, rho_f, nu), scheme, options)
     }
 
-    /// As [`Self::new`], with the direct model's and the motion's settings given;
-    /// `densities_and_nu` is `(rho_p, rho_f, nu)`.
-    pub fn with_settings(
+    /// As [`Self::new`] with the direct model's `options`; `densities_and_nu` is
+    /// `(rho_p, rho_f, nu)`.
+    pub fn with_options(
         n: [usize; 3],
         h: f64,
         spheres: &[([f64; 3], f64)],
         (rho_p, rho_f, nu): (f64, f64, f64),
         scheme: TimeScheme,
-        (direct, motion_settings): (DirectSettings, MotionSettings),
+        options: SettlerOptions,
     ) -> Settler {
-        let grid = Grid::new(n, [h; 3], [0.0; 3]);
-        let bc = BoundaryConditions::periodic();
-        let mut settings = FluidSettings::new(nu);
-        settings.scheme = scheme;
-        let mut fluid = FluidSolver::new(grid.clone(), bc.clone(), settings).unwrap();
-        let mut p = ParticleState::default();
-        for (k, (x, d)) in spheres.iter().enumerate() {
-            p.push(k as u64, *x, *d, rho_p);
-        }
         let d = spheres[0].1;
+        assert!(
+            spheres.iter().all(|s| s.1 == d),
+            "one diameter for every sphere"
+        );
         let m = rho_p * std::f64::consts::PI * d * d * d / 6.0;
-        // soft contacts: only a backstop here
-        let kn = 1e-3 * m / (1e-4 * 1e-4);
-        let wall = WallModel::LinearSpringDashpot {
-            kn,
-            restitution: 0.5,
-            kt: 2.0 / 7.0 * kn,
-            mu: 0.3,
-            tangential_damping_ratio: 0.5,
-            collision_resolution_steps: 20.0,
+        let virtual_mass = options
+            .virtual_mass
+            .map_or(String::new(), |c| format!("virtualMass {c:e};\n"));
+        let case = BoxCase {
+            cells: n,
+            h,
+            walls: [false; 3],
+            wall_velocity: [0.0; 3],
+            fluid: (rho_f, nu),
+            gravity: [0.0, -9.81, 0.0],
+            scheme,
+            initial_velocity: [0.0; 3],
+            mean_velocity: None,
+            coupling: format!(
+                "model direct;\n{virtual_mass}direct {{ interpolation {}; }}\n",
+                options.interpolation
+            ),
+            spheres: spheres.iter().map(|s| s.0).collect(),
+            diameter: d,
+            rho_p,
+            // soft contacts: only a backstop here
+            kn: 1e-3 * m / (1e-4 * 1e-4),
         };
-        let mut config = DemConfig::new(PairModel::linear(kn, 0.5, 0.3), wall);
-        config.gravity = [0.0, -9.81, 0.0];
-        config.fluid_density = rho_f;
-        let length = grid.length();
-        let dem = Dem::new(
-            config,
-            DomainBox::uniform([0.0; 3], length, FaceCondition::Periodic),
-            p,
-        )
-        .unwrap();
-        let motion = ParticleMotion::new(motion_settings, &grid, &bc, &dem, rho_f, nu).unwrap();
-        fluid.set_body_force(motion.fluid_body_force());
-        let coupling = DirectCoupling::new(&mut fluid, direct);
         Settler {
-            fluid,
-            coupling,
-            dem,
-            motion,
-            rho: rho_f,
-            time: 0.0,
+            sim: case.simulation(),
         }
     }
 
-    /// One coupled step (the order of `src/coupling/direct/particle_motion.rs`).
+    /// One step of `dt` as `fsimFoam` takes it.
     pub fn step(&mut self, dt: f64) {
-        let loads = self.fluid_step(dt);
-        self.motion
-            .set_loads(&mut self.dem, loads.iter().map(|l| (l.force, l.torque)), dt);
-        self.dem.advance(dt);
-        self.time += dt;
+        step(&mut self.sim, dt);
     }
 
-    /// The fluid's part of a step: no-slip on the spheres where they are, then the
-    /// stress-integral loads on them (the particles do not move).
-    pub fn fluid_step(&mut self, dt: f64) -> Vec<HydrodynamicLoad> {
-        self.coupling.set_particles(self.dem.particles());
-        let coupling = &mut self.coupling;
-        self.fluid
-            .step_with(dt, &mut |stage| coupling.impose(stage));
-        self.coupling.compute_loads(&self.fluid, self.rho).to_vec()
+    /// The fluid (its scheme may be changed before the first step).
+    pub fn fluid(&mut self) -> &mut FluidSolver {
+        &mut self.sim.fluid
     }
 
-    pub fn report(&mut self) -> SedimentationReport {
-        let mean = [0, 1, 2].map(|c| self.fluid.mean_component(c));
-        self.motion.sedimentation(mean, self.dem.particles())
+    /// The settling monitor after the last step.
+    pub fn report(&self) -> SedimentationReport {
+        let direct = self.sim.coupling.direct().expect("model direct");
+        direct.settling.expect("a step was taken")
     }
 }
 

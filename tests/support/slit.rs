@@ -3,10 +3,9 @@
 //! `examples/wall_slit_drag.rs`.
 #![allow(dead_code)]
 
+use super::box_case::{step, BoxCase};
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
-use fsim::fluid::{
-    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme,
-};
+use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, TimeScheme};
 use fsim::grid::Grid;
 
 /// Faxén's drag factor for a sphere midway between two walls, `λ = a/l` (Happel & Brenner,
@@ -44,8 +43,9 @@ pub fn slit_fluid(l: usize, lateral: usize, wall_velocity: f64) -> FluidSolver {
 /// A sphere of `radius` cells held still, off the grid's symmetry lines, with its surface
 /// `gap` cells above the lower wall (midway when `None`), the walls and the bulk moving at
 /// `−U` (`meanVelocityForce` holds it, so that the sphere drives no net flow; U = 0.01,
-/// Re = 2aU/ν ≤ 0.16). The drag over `6πμaU` after `steps` steps of `dt`, or, when `None`,
-/// once it changes by less than 10⁻⁶ a step.
+/// Re = 2aU/ν ≤ 0.16): a case run as `fsimFoam` runs it (`box_case.rs`). The drag over
+/// `6πμaU` after `steps` steps of `dt`, or, when `None`, once it changes by less than 10⁻⁶ a
+/// step.
 pub fn slit_drag(
     radius: f64,
     l: usize,
@@ -55,25 +55,35 @@ pub fn slit_drag(
     steps: Option<usize>,
 ) -> f64 {
     let speed = 0.01;
-    let mut fluid = slit_fluid(l, lateral, -speed);
-    fluid
-        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, -speed, 1.0)))
-        .unwrap();
-    fluid.set_velocity(|c, _| if c == 0 { -speed } else { 0.0 });
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
     let centre = [
         0.5 * lateral as f64 + 0.13,
         gap.map_or(l as f64, |g| radius + g),
         0.5 * lateral as f64 + 0.21,
     ];
-    coupling.set_spheres(&[RigidSphere::fixed(centre, radius)], &[0]);
-    let stokes = 6.0 * std::f64::consts::PI * radius * speed;
+    let case = BoxCase {
+        cells: [lateral, 2 * l, lateral],
+        h: 1.0,
+        walls: [false, true, false],
+        wall_velocity: [-speed, 0.0, 0.0],
+        fluid: (1.0, 1.0),
+        gravity: [0.0; 3],
+        scheme: TimeScheme::EulerRKC,
+        initial_velocity: [-speed, 0.0, 0.0],
+        mean_velocity: Some([-speed, 0.0, 0.0]),
+        coupling: "model direct; direct { fixedParticles yes; }".to_string(),
+        spheres: vec![centre],
+        diameter: 2.0 * radius,
+        rho_p: 2.0,
+        kn: 1.0,
+    };
+    let mut sim = case.simulation();
     let mut last = f64::INFINITY;
-    for step in 1.. {
-        fluid.step_with(dt, &mut |stage| coupling.impose(stage));
-        let k = -coupling.compute_loads(&fluid, 1.0)[0].force[0] / stokes;
+    for n in 1.. {
+        step(&mut sim, dt);
+        let loads = sim.coupling.direct().and_then(|m| m.loads).unwrap();
+        let k = loads.drag_coefficient;
         let done = match steps {
-            Some(n) => step == n,
+            Some(total) => n == total,
             None => (k - last).abs() < 1e-6,
         };
         if done {
@@ -86,7 +96,9 @@ pub fn slit_drag(
 
 /// A sphere of `radius` cells pulled toward the lower of two resting walls `2 l` cells
 /// apart (period `lateral`) at `speed` from a surface gap of `from` cells, steps of `dt`;
-/// the normal drag over `6πμaU` as the gap reaches each of `at` (cells, descending).
+/// the normal drag over `6πμaU` as the gap reaches each of `at` (cells, descending). A
+/// sphere moved at a prescribed speed is not a case (fsimFoam's spheres are free or fixed),
+/// so this one drives the fluid's stages and the stress integral itself.
 pub fn approach_drag(
     [radius, speed, dt]: [f64; 3],
     l: usize,

@@ -71,7 +71,6 @@ use super::lubrication::{Lubrication, LubricationBox, LubricationReport};
 use super::response_time::coupling_step_bound;
 use super::settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive};
 use super::tuning::{DRIVE_MOMENTUM_GAIN, LUBRICATION_CUTOFF_CELLS};
-use crate::case::{CaseError, Coupling};
 use crate::fluid::{BoundaryConditions, FaceCondition};
 use crate::grid::Grid;
 use crate::particles::{Dem, ParticleState, Vec3};
@@ -99,27 +98,6 @@ impl Default for MotionSettings {
         MotionSettings {
             virtual_mass: DEFAULT_VIRTUAL_MASS,
         }
-    }
-}
-
-impl MotionSettings {
-    /// From the case's coupling file; the default without `virtualMass`.
-    pub fn from_coupling(coupling: &Coupling) -> Result<Self, CaseError> {
-        let mut s = MotionSettings::default();
-        let Some(dict) = coupling.dict.as_ref() else {
-            return Ok(s);
-        };
-        if let Some(c) = dict.opt_scalar("virtualMass")? {
-            if !(0.0..=10.0).contains(&c) {
-                let loc = dict.get_entry("virtualMass")?.value_loc();
-                return Err(CaseError::at(
-                    loc,
-                    format!("virtualMass must be between 0 and 10, got {c}"),
-                ));
-            }
-            s.virtual_mass = c;
-        }
-        Ok(s)
     }
 }
 

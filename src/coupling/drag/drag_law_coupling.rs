@@ -486,9 +486,14 @@ impl DragLawCoupling {
         Ok(())
     }
 
-    /// Step part 3: the volume-averaged fluid.
-    pub fn step_fluid(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
-        let report = self.fluid.step(fluid, dt);
+    /// Step part 3: the volume-averaged momentum predictor ([`VolumeAveragedFluid::predict_momentum`]).
+    pub fn predict_momentum(&mut self, fluid: &mut FluidSolver, dt: f64) {
+        self.fluid.predict_momentum(fluid, dt);
+    }
+
+    /// Step part 4: the pressure correction ([`VolumeAveragedFluid::correct_pressure`]).
+    pub fn correct_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
+        let report = self.fluid.correct_pressure(fluid, dt);
         self.last_fluid = Some(report);
         report
     }

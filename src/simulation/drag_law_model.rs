@@ -1,0 +1,43 @@
+//! The drag-law model of a run (paper §2.2): the unresolved particles, their coupling to the
+//! volume-averaged fluid, and the phases of its step (`step.rs` calls them in DPMFoam's
+//! order).
+
+use super::particles::Particles;
+use crate::coupling::drag::DragLawCoupling;
+use crate::error::FsimError;
+use crate::fluid::{FluidSolver, VolumeAveragedReport};
+
+/// `model dragLaw` with a cloud: the particles and the drag-law coupling.
+pub struct DragLawModel {
+    pub particles: Particles,
+    pub coupling: DragLawCoupling,
+}
+
+impl DragLawModel {
+    /// Paper eq. 10–13: the drag (closure eq. 11–12) and pressure-gradient force on every
+    /// particle from the fluid as it is (velocity, ε and ∇p read at the particle, eq.
+    /// 14–15), into the DEM's external loads; their reaction gathered for the fluid (eq.
+    /// 13, 16).
+    pub fn apply_particle_forces(&mut self, fluid: &FluidSolver, dt: f64) {
+        self.coupling
+            .particle_forces(fluid, &mut self.particles.dem, dt);
+    }
+
+    /// Paper eq. 14–16's transfer of the particles' volume: ε at their new positions (a cell
+    /// packed beyond `alphaMax` stops the run at `time`, s).
+    pub fn update_fluid_fraction(&mut self, time: f64) -> Result<(), FsimError> {
+        self.coupling
+            .update_fluid_fraction(&self.particles.dem)
+            .map_err(|e| FsimError::run(format!("drag-law model at t = {time} s: {e}")))
+    }
+
+    /// Paper eq. 7–9: the volume-averaged momentum predictor with the particles' reaction.
+    pub fn predict_momentum(&mut self, fluid: &mut FluidSolver, dt: f64) {
+        self.coupling.predict_momentum(fluid, dt);
+    }
+
+    /// Paper eq. 7's continuity: the variable-coefficient pressure correction.
+    pub fn correct_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
+        self.coupling.correct_pressure(fluid, dt)
+    }
+}
