@@ -1,4 +1,4 @@
-//! The direct model between plane walls, the long version of `tests/direct_walls.rs`.
+//! The direct model between plane walls, the long version of `tests/direct/walls.rs`.
 //!
 //! ```text
 //! cargo run --release --example wall_slit_drag -- faxen   # midway, against Faxén

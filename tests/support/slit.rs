@@ -1,5 +1,5 @@
 //! A sphere between two plane no-slip walls (y = 0 and y = 2l, periodic along x and z with
-//! period `L`), in lattice units (h = 1, ν = 1, `EulerRKC`): for `tests/direct_walls.rs` and
+//! period `L`), in lattice units (h = 1, ν = 1, `EulerRKC`): for `tests/direct/walls.rs` and
 //! `examples/wall_slit_drag.rs`.
 #![allow(dead_code)]
 

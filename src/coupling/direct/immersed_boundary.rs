@@ -290,7 +290,7 @@ impl ImmersedBoundary {
     /// Between builds each sphere is thus imposed where it was built, with its current
     /// rigid motion: its true shape, up to `skin` behind, and its surface jumps to where it
     /// is at the next build. Like a neighbour list's skin in the DEM, the skin trades that
-    /// lag for builds. Measured (tests/direct_rebuild_distance.rs, a sphere pulled three
+    /// lag for builds. Measured (tests/direct/rebuild_distance.rs, a sphere pulled three
     /// cells along a diagonal, r/h = 4, Re = 0.2): mean drag +0.10 % at 0.05 h, +0.20 % at
     /// 0.1 h, +0.29 % at 0.25 h. Letting the weights follow the moving surface while the
     /// faces' roles stay (a forcing face overtaken by the sphere, an inside face left

@@ -2,11 +2,9 @@
 //! line and column; a run that leaves the scheme's stability region stops with exit code 1
 //! and keeps its last good time directory.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
 use std::path::Path;
-use support::*;
 
 /// Breaks a copy of the cavity with `edit`, runs it, and checks exit code 2, the first
 /// stderr line (which must contain each of `expect`), and that nothing was written.

@@ -2,11 +2,9 @@
 //! bit, and bad cloud input stops with exit code 2, naming the particle or the keyword with
 //! file, line and column, before anything is written.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
 use std::path::{Path, PathBuf};
-use support::*;
 
 fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

@@ -1,13 +1,11 @@
 //! `stopAt` and `runTimeModifiable`, as OpenFOAM's `Time`: a run stopped by its controlDict
 //! at the start or while it runs, and a controlDict changed during the run.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
-use support::*;
 
 /// The time directories of `case`, by time.
 fn times(case: &Path) -> Vec<f64> {

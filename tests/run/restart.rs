@@ -1,10 +1,8 @@
 //! `startFrom latestTime` continues an interrupted run exactly: 0 → T in one run equals
 //! 0 → T/2 then latestTime → T, bit for bit, in every file of the final time directory.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
-use support::*;
 
 /// The names of the time directories of `case`, sorted as text.
 fn times(case: &std::path::Path) -> Vec<String> {

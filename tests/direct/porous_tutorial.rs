@@ -2,11 +2,9 @@
 //! φ = 0.1, r/h = 8, driven by meanVelocityForce; the K it monitors (stress integral three
 //! cells out) matches Sangani & Acrivos (paper eq. 17) within 3 %.
 
-mod support;
-
+use crate::support::*;
 use fsim::coupling::direct::sangani_acrivos_k;
 use std::fs;
-use support::*;
 
 #[test]
 fn porous_media_tutorial_gives_the_sangani_acrivos_k() {

@@ -2,11 +2,9 @@
 //! (exit 2, nothing written) or warnings (at `-dry-run` and before the run), and a coupled run
 //! that diverges stops with the reason (exit 1) and keeps its last good time directory.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
 use std::path::{Path, PathBuf};
-use support::*;
 
 fn replace(file: &Path, from: &str, to: &str) {
     let text = fs::read_to_string(file).unwrap();

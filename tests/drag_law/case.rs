@@ -3,11 +3,9 @@
 //! two cells, a fluid fraction below `1 − alphaMax` at the start or during the run) stops
 //! with a clear message and no half-written time directory.
 
-mod support;
-
+use crate::support::*;
 use std::fs;
 use std::path::Path;
-use support::*;
 
 fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

@@ -12,9 +12,7 @@
 //! The lateral images add `c/L²` (a confined Stokeslet's far field is a two-dimensional
 //! dipole): two periods extrapolate it away.
 
-mod support;
-
-use support::slit::{approach_drag, faxen_midway, slit_drag, without_images};
+use crate::support::slit::{approach_drag, faxen_midway, slit_drag, without_images};
 
 /// Midway between walls six radii apart (λ = 1/3) at r/h = 4: within 3 % of Faxén once the
 /// lateral images are extrapolated away (measured +1.6 %; at r/h = 8, +0.7 %).

@@ -3,18 +3,16 @@
 //! boundary conditions, the particles and the grid are those of its files. Broken copies (in a
 //! scratch directory) give clear errors at the file, line and column.
 
-mod support;
-
 use std::fs;
 use std::path::{Path, PathBuf};
 
+use crate::support::*;
 use fsim::case::{
     Case, Cloud, Interpolation, ParticleIntegration, SourceTreatment, VelocityBc, VoidFraction,
 };
 use fsim::coupling::drag::DragClosure;
 use fsim::fluid::{FaceCondition, VolumeAveragedForm};
 use fsim::simulation::{boundary_conditions, interstitial_inlets};
-use support::*;
 
 const GOLDSCHMIDT: &str =
     "/usr/share/doc/openfoam-examples/examples/lagrangian/DPMFoam/Goldschmidt";

@@ -3,14 +3,12 @@
 //! diffusion decays by the stability polynomial; first order in time; steady states do not
 //! depend on the step; steps far above the explicit viscous bound.
 
-mod support;
-
+use crate::support::wall_channel;
 use fsim::fluid::{
     BoundaryConditions, ChebyshevStages, FaceCondition, FluidSettings, FluidSolver, TimeScheme,
 };
 use fsim::grid::Grid;
 use std::f64::consts::PI;
-use support::wall_channel;
 
 fn periodic_square(n: usize, nu: f64) -> FluidSolver {
     let h = 2.0 * PI / n as f64;

@@ -2,7 +2,7 @@
 //! on a few points: where the bed is one sphere per cell (uniform ε), K is the closure's own
 //! (Ergun's at φ ≥ 0.2: eq. 18), and the lattice settles slower than an isolated sphere.
 
-#[path = "../examples/drag_law_figures/study.rs"]
+#[path = "../../examples/drag_law_figures/study.rs"]
 mod study;
 
 use fsim::coupling::drag::DragClosure;

@@ -2,10 +2,9 @@
 //! by one, so the drag does not depend on the step: porous media (fixed simple cubic array)
 //! time-stepped at 1, 4 and 10 times the explicit viscous bound against the explicit RK3 run
 //! and the reference K, and a `fsimFoam` run whose step follows the Courant number. (The
-//! settling sphere across the same steps: `tests/direct_motion.rs`.)
+//! settling sphere across the same steps: `tests/direct/motion.rs`.)
 
-mod support;
-
+use crate::support::*;
 use fsim::coupling::direct::{
     reference_k, stress_integral_force, DirectCoupling, DirectSettings, FieldView, RigidSphere,
     StressIntegral,
@@ -15,7 +14,6 @@ use fsim::grid::Grid;
 use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
-use support::*;
 
 /// A fixed sphere of solid fraction `phi` off the grid's symmetry points by (0.1, 0.2, 0.3) h
 /// in a periodic unit cell of `n³` cells (ν = ρ = 1), driven at bulk velocity 1: the fluid

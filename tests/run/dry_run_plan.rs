@@ -1,11 +1,9 @@
 //! `-dry-run` plans the run from a few steps it takes in memory: the step count it plans is
 //! checked against the steps the run then takes (deterministic), never against a clock.
 
-mod support;
-
+use crate::support::{copy_tutorial, fsim, listing, set_entry, set_positions, Scratch};
 use std::fs;
 use std::path::Path;
-use support::{copy_tutorial, fsim, listing, set_entry, set_positions, Scratch};
 
 /// The step count of the plan's `Steps   : about N of ...` line.
 fn planned_steps(plan: &str) -> f64 {
