@@ -195,8 +195,9 @@ fn settling_sphere_matches_the_periodic_array_correction() {
 /// correction) keeps the total momentum of fluid and particles at zero, within 1 % of
 /// `Σ m|v|` at every step once the correction has settled (after 5 ms, 30 steps; during the
 /// start-up it reaches 16 %, measured), while the particles fall and the fluid streams up. The correction this coarse, dense case needs measures the stress
-/// integral's momentum defect there: 0.055 of the analytic drive (bound 0.3; 0.198 with the
-/// earlier two-cell integration surface that overlapped the neighbours).
+/// integral's momentum defect there: measured 0.0155 of the analytic drive (0.198 with an
+/// earlier two-cell integration surface that overlapped the neighbours); held within ±0.01
+/// of that (a drive 5 % too strong moves it to 0.035).
 #[test]
 fn settling_suspension_keeps_zero_momentum() {
     let s = Scratch::new("suspension-momentum");
@@ -247,7 +248,10 @@ fn settling_suspension_keeps_zero_momentum() {
     );
     assert!(vp < 0.0 && uf > 0.0, "particles {vp}, fluid {uf}");
     assert!(worst < 0.01 * scale, "momentum {worst:e} of {scale:e}");
-    assert!(correction < 0.3, "drive correction {correction}");
+    assert!(
+        (correction - 0.0155).abs() < 0.01,
+        "drive correction {correction}, measured 0.0155"
+    );
 }
 
 /// A fully periodic cube of `n` cells of size `h` holding `count` spheres of diameter `d`,
