@@ -20,8 +20,9 @@
 //! * `solution.averagingMethod basic|dual` → [`VoidFraction`]: `basic` is DPMFoam's own rule
 //!   (a particle's volume counts in its cell only, which DPMFoam applies whatever this keyword
 //!   says: the keyword is read by MPPICFoam's models); `dual`, OpenFOAM's averaging on the dual
-//!   (point) mesh, is taken as fsim's closest equivalent, the trilinear spreading of paper
-//!   eq. 16 (noted). Absent: `basic`, as DPMFoam does. `moment` is refused.
+//!   (point) mesh, is taken as fsim's closest equivalent, the trilinear weights of paper
+//!   eq. 15 applied to the volume as the paper says after paper eq. 16 (noted). Absent:
+//!   `basic`, as DPMFoam does. `moment` is refused.
 //! * `solution.integrationSchemes.U Euler|analytical` → [`ParticleIntegration`] (noted: fsim
 //!   integrates with its own scheme).
 //! * `constantProperties.alphaMax` → [`DragLawOptions::alpha_max`]: the fluid fraction never
@@ -74,7 +75,8 @@ impl Interpolation {
 pub enum VoidFraction {
     /// DPMFoam's rule: a particle's whole volume in the cell holding its centre.
     Cell,
-    /// The paper's eq. 16: spread to the 8 nearest cell centres with trilinear weights.
+    /// The paper's rule (after paper eq. 16): spread to the 8 nearest cell centres with the
+    /// trilinear weights of paper eq. 15.
     Trilinear,
 }
 
@@ -115,7 +117,7 @@ pub struct DragLawOptions {
     /// The drag closure of `particleForces` (the drag-law model needs exactly one).
     pub drag: DragClosure,
     /// Which volume-averaged equations the fluid solves: DPMFoam's (the default, so that a
-    /// DPMFoam case gives DPMFoam's physics) or the paper's eq. 7 (`dragLawCoeffs { form
+    /// DPMFoam case gives DPMFoam's physics) or paper eq. 7 (`dragLawCoeffs { form
     /// paper; }`).
     pub form: VolumeAveragedForm,
     /// `gravity` listed in `particleForces` (gravity with buoyancy `1 − ρ_f/ρ_p`).

@@ -74,7 +74,7 @@ impl Simulation {
 }
 
 /// `model none`: the fluid by its scheme's stages (paper eq. 2); a cloud beside it feels
-/// gravity and buoyancy only (eq. 1 without `f_h`).
+/// gravity and buoyancy only (paper eq. 1 without `f_h`).
 pub fn step_fluid_alone(
     fluid: &mut FluidSolver,
     particles: Option<&mut Particles>,
@@ -102,12 +102,12 @@ pub fn step_direct(
     timed(&mut clock.coupling, || model.place_spheres());
     let report = timed(&mut clock.fluid, || {
         model.advance_fluid_with_no_slip(fluid, dt)
-    }); // eq. 2
+    }); // paper eq. 2
     timed(&mut clock.coupling, || {
         model.apply_hydrodynamic_loads(fluid, rho, dt)
-    }); // eq. 4–6
+    }); // paper eq. 4–6
     let particles = Some(&mut model.particles);
-    let (cloud, diagnostics) = advance_beside_diagnostics(particles, fluid, dt, clock); // eq. 1
+    let (cloud, diagnostics) = advance_beside_diagnostics(particles, fluid, dt, clock); // paper eq. 1
     model.hold_mixture_momentum(fluid, dt);
     ModelStep {
         fluid: report,
@@ -127,13 +127,13 @@ pub fn step_drag_law(
     clock: &mut PhaseTimes,
 ) -> Result<ModelStep, FsimError> {
     let cloud = timed(&mut clock.particles, || {
-        model.apply_particle_forces(fluid, dt); // eq. 10–13
-        model.particles.advance(dt) // eq. 1
+        model.apply_particle_forces(fluid, dt); // paper eq. 10–13
+        model.particles.advance(dt) // paper eq. 1
     });
     let report = timed(&mut clock.fluid, || -> Result<_, FsimError> {
-        model.update_fluid_fraction(end)?; // eq. 14–16
-        model.predict_momentum(fluid, dt); // eq. 7–9
-        model.correct_pressure(fluid, dt); // eq. 7, continuity
+        model.update_fluid_fraction(end)?; // paper eq. 14–16
+        model.predict_momentum(fluid, dt); // paper eq. 7–9
+        model.correct_pressure(fluid, dt); // paper eq. 7, continuity
         Ok(StepReport {
             dt,
             time: fluid.time(),

@@ -1,6 +1,6 @@
 //! The CSV producer of `examples/drag_law_figures` (paper Fig. 2 and 3 for the drag-law model)
 //! on a few points: where the bed is one sphere per cell (uniform ε), K is the closure's own
-//! (Ergun's at φ ≥ 0.2: eq. 18), and the lattice settles slower than an isolated sphere.
+//! (Ergun's at φ ≥ 0.2: paper eq. 18), and the lattice settles slower than an isolated sphere.
 
 #[path = "../../examples/drag_law_figures/study.rs"]
 mod study;

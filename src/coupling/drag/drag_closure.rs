@@ -29,8 +29,8 @@ pub enum Convention {
 /// A drag closure, by its DPMFoam `particleForces` name or fsim's name for it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DragClosure {
-    /// The paper's eq. 11–12 (OCR-garbled; read as Wen & Yu for ε > 0.8 with the exponent
-    /// −2.7 of eq. 12/18, Ergun 1952 for ε ≤ 0.8).
+    /// Paper eq. 11–12 (OCR-garbled; read as Wen & Yu for ε > 0.8 with the exponent −2.7 of
+    /// paper eq. 12, −4.7 in paper eq. 18's K, and Ergun 1952 for ε ≤ 0.8).
     Paper,
     /// OpenFOAM v1912 `sphereDrag`: an isolated sphere, no ε.
     SphereDrag,
@@ -172,11 +172,11 @@ impl DragClosure {
     }
 }
 
-/// Paper eq. 11–12 in the drag-only convention (used with eq. 10):
+/// Paper eq. 11–12 in the drag-only convention (used with paper eq. 10):
 /// - ε > 0.8 (Wen & Yu): `β = 3 π μ d ε^−2.7 (1 + 0.15 Re_s^0.687)`, so that in a uniform bed at
-///   Re ≪ 1 the total force is `K = ε^−4.7` times Stokes' (eq. 18, φ < 0.2);
+///   Re ≪ 1 the total force is `K = ε^−4.7` times Stokes' (paper eq. 18, φ < 0.2);
 /// - ε ≤ 0.8 (Ergun): `β = 25 π μ d (1 − ε)/ε + (1.75/6) π ρ |u − v| d²`, whose total force
-///   `β/ε` at Re ≪ 1 is `K = (25/3) φ / ε³` times Stokes' (eq. 18, φ ≥ 0.2).
+///   `β/ε` at Re ≪ 1 is `K = (25/3) φ / ε³` times Stokes' (paper eq. 18, φ ≥ 0.2).
 pub fn paper(q: &DragInput) -> f64 {
     if q.eps > 0.8 {
         q.stokes() * q.eps.powf(-2.7) * (1.0 + 0.15 * q.re_superficial().powf(0.687))
@@ -437,7 +437,7 @@ mod tests {
         // β = 8.770280e-5.
         let b = paper(&water(0.5));
         assert!(close(b, 8.770280e-5, 1e-6), "{b}");
-        // At Re → 0 the total force β/ε over 3πμd U_s (U_s = ε|u−v|) is eq. 18's K:
+        // At Re → 0 the total force β/ε over 3πμd U_s (U_s = ε|u−v|) is paper eq. 18's K:
         // (25/3) φ / ε³ for ε ≤ 0.8, ε^−4.7 above.
         for (eps, k) in [(0.6, 25.0 / 3.0 * 0.4 / 0.216), (0.9, 0.9f64.powf(-4.7))] {
             let mut q = water(eps);

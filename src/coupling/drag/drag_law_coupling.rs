@@ -1,9 +1,10 @@
 //! The drag-law model's step (paper §2.2), in DPMFoam's order:
 //!
 //! ```text
-//! particle forces   fluid velocity, ε and ∇p read at each particle (eq. 14–15); drag from
-//!                   the closure (eq. 11–12), pressure-gradient force (eq. 10); the reaction
-//!                   −f_d spread back to the faces (eq. 13, 16)
+//! particle forces   fluid velocity, ε and ∇p read at each particle (paper eq. 14–15);
+//!                   drag from the closure (paper eq. 11–12), pressure-gradient force
+//!                   (paper eq. 10); the reaction −f_d spread back to the faces
+//!                   (paper eq. 13, 16)
 //! evolve the cloud  DEM sub-steps with those forces held (the caller)
 //! update ε          particle volumes spread to the cells; ε ≥ 1 − alphaMax or the run stops
 //! fluid             momentum predictor with the source, variable-coefficient pressure
@@ -12,8 +13,8 @@
 //!
 //! Forces on one particle of mass `m`, volume `V`, with the fluid's `ρ`, the fluid's gravity
 //! `g_f` and the cloud's `g` (the DEM applies `m (1 − ρ/ρ_p) g` itself):
-//! - paper's form: `f_h = f_d − V ρ (∇p − g_f)`, which with the DEM's buoyant weight is eq. 10
-//!   plus `m g` (`p` includes the fluid's weight, so `−Vρ∇p` holds the buoyancy);
+//! - paper's form: `f_h = f_d − V ρ (∇p − g_f)`, which with the DEM's buoyant weight is
+//!   paper eq. 10 plus `m g` (`p` includes the fluid's weight, so `−Vρ∇p` holds the buoyancy);
 //! - DPMFoam's form: `f_h = f_d` (its `gravity` force carries the buoyancy).
 //!
 //! In a box periodic on all six faces with gravity, the pressure is periodic and cannot carry
@@ -21,8 +22,8 @@
 //! imposes the uniform kinematic gradient `G = (ρ_mix/ρ_f) g` that does, with
 //! `ρ_mix = (ρ_f (V_box − V_s) + Σ m)/V_box`. The fluid's body
 //! acceleration becomes `c (g − G)`, and in the paper's form each particle also feels the mean
-//! part of its pressure-gradient force (eq. 10), `−V ρ_f G`. Then the external forces on fluid
-//! and particles sum to zero in both forms: DPMFoam's `ρ_f V_box (g − G) + Σ (m − ρ_f V) g`,
+//! part of its pressure-gradient force (paper eq. 10), `−V ρ_f G`. Then the external forces on
+//! fluid and particles sum to zero in both forms: DPMFoam's `ρ_f V_box (g − G) + Σ (m − ρ_f V) g`,
 //! the paper's `ρ_f (V_box − V_s)(g − G) + Σ m g − ρ_f V_s G`, both `(M_f + M_p) g − ρ_f V_box G`.
 //!
 //! The drag `f_d = β (u − v)` is integrated as OpenFOAM's `Euler` scheme for `U` does: implicit

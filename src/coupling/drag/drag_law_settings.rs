@@ -11,7 +11,7 @@ pub enum Stencil {
     /// into that cell when writing (DPMFoam's `theta` and `UTrans`).
     Cell,
     /// Trilinear weights of the 8 nearest samples (paper eq. 15), the same weights for
-    /// reading (eq. 14) and for spreading back (eq. 16).
+    /// reading (paper eq. 14) and for spreading back (paper eq. 16).
     Trilinear,
 }
 
@@ -31,7 +31,7 @@ pub struct DragLawSettings {
     pub closure: Option<DragClosure>,
     /// OpenFOAM's `analytical` integration of the drag over a step (else `Euler`).
     pub analytical: bool,
-    /// Which volume-averaged equations the fluid solves (paper's eq. 7 or DPMFoam's).
+    /// Which volume-averaged equations the fluid solves (paper eq. 7 or DPMFoam's).
     pub form: VolumeAveragedForm,
     /// Fluid velocity and pressure gradient at a particle.
     pub interpolation: Stencil,
@@ -55,7 +55,7 @@ pub struct DragLawSettings {
 }
 
 impl DragLawSettings {
-    /// The paper's choices: its closure and eq. 7, trilinear transfer both ways, explicit
+    /// The paper's choices: its closure and paper eq. 7, trilinear transfer both ways, explicit
     /// source, `alphaMax` 0.99 (fluid and gravity given).
     pub fn paper(rho: f64, nu: f64, gravity: [f64; 3]) -> Self {
         DragLawSettings {

@@ -1,13 +1,13 @@
 //! Particle ↔ grid transfer on the staggered grid (paper eq. 13–16).
 //!
 //! Each velocity component lives on its own faces, ε on the cell centres. A particle at `x`
-//! reads a component from the 8 nearest samples of that component with the trilinear weights
-//! of eq. 15, `w = Π_d (1 − |x_d − x_d^q| / h_d)` (eq. 14), and its reaction force goes back
-//! to the same samples with the same weights (eq. 13, 16); its volume goes to the 8 nearest
-//! cell centres the same way ("the same method is used to evaluate the local average volume
-//! fraction"). [`Stencil::Cell`] is DPMFoam's choice instead: the particle's own cell (its
-//! cell-centred velocity, the mean of the cell's two faces per component; its whole volume
-//! and force in that cell).
+//! reads a component from the 8 nearest samples of that component (paper eq. 14) with the
+//! trilinear weights `w = Π_d (1 − |x_d − x_d^q| / h_d)` (paper eq. 15), and its reaction
+//! force goes back to the same samples with the same weights (paper eq. 13, 16); its volume
+//! goes to the 8 nearest cell centres the same way ("the same method is used to evaluate the
+//! local average volume fraction", after paper eq. 16). [`Stencil::Cell`] is DPMFoam's
+//! choice instead: the particle's own cell (its cell-centred velocity, the mean of the
+//! cell's two faces per component; its whole volume and force in that cell).
 //!
 //! Every stencil is a tensor product of two samples per axis whose weights sum to 1. Near a
 //! boundary the reading stencil uses the boundary faces and ghost values (so a velocity read
@@ -200,7 +200,7 @@ impl GridTransfer {
         }
     }
 
-    /// The staggered vector field `faces` (padded, ghosts filled) at `x` (eq. 14).
+    /// The staggered vector field `faces` (padded, ghosts filled) at `x` (paper eq. 14).
     pub fn interpolate_faces(
         &self,
         faces: &[Vec<f64>; 3],
@@ -257,8 +257,8 @@ impl GridTransfer {
         st.gather(cells)
     }
 
-    /// Adds `value[c] · w` to the momentum faces of each component `c` (eq. 16 without the
-    /// `−1/h³`, which the caller applies).
+    /// Adds `value[c] · w` to the momentum faces of each component `c` (paper eq. 16 without
+    /// the `−1/h³`, which the caller applies).
     pub fn spread_to_faces(
         &self,
         target: &mut [Vec<f64>; 3],
@@ -285,7 +285,7 @@ impl GridTransfer {
 }
 
 /// One particle's stencil on one sample set: the tensor product of two samples per axis
-/// (weights `w = w₀[a] w₁[b] w₂[c]`, eq. 14–15), the samples' padded index being
+/// (weights `w = w₀[a] w₁[b] w₂[c]`, paper eq. 14–15), the samples' padded index being
 /// `offset₀[a] + offset₁[b] + offset₂[c]`. Computed once per particle and step, it serves every
 /// read and write of that step; zero-weight samples are skipped.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -433,8 +433,8 @@ mod tests {
         }
     }
 
-    /// The per-sample algorithm the stencils replaced (one axis at a time, library `floor`),
-    /// kept as the reference they must reproduce bit for bit.
+    /// A per-sample reference (one axis at a time, library `floor`) that the stencils must
+    /// reproduce bit for bit.
     fn reference_axis(
         t: &GridTransfer,
         face: Option<usize>,
