@@ -1,14 +1,15 @@
 //! The drag-law model's two validation curves of the paper (§3.1–3.2), for
 //! `examples/drag_law_figures` and its test:
 //!
-//! - Fig. 2: the non-dimensional drag `K = f_h / (6 π μ r U)` (eq. 19, `U` the superficial mean
-//!   velocity) of a simple cubic array of fixed spheres against the solid fraction φ, at
-//!   `h ≈ 2r` (the box of one sphere has `round(L/2r)` cells), driven by a uniform pressure
-//!   gradient `G` at Re ≪ 1; with Sangani & Acrivos (eq. 17) and Ergun/Wen–Yu (eq. 18).
+//! - Fig. 2: the non-dimensional drag `K = f_h / (6 π μ r U)` (paper eq. 19, `U` the
+//!   superficial mean velocity) of a simple cubic array of fixed spheres against the solid
+//!   fraction φ, at `h ≈ 2r` (the box of one sphere has `round(L/2r)` cells), driven by a
+//!   uniform pressure gradient `G` at Re ≪ 1; with Sangani & Acrivos (paper eq. 17) and
+//!   Ergun/Wen–Yu (paper eq. 18).
 //! - Fig. 3: the mean sedimentation velocity of a simple cubic lattice of free spheres in a
 //!   periodic box against φ, relative to the zero-volume-flux frame and to the isolated
-//!   sphere's terminal velocity `V₀` under the same closure, with Richardson & Zaki (eq. 21,
-//!   n = 4.65).
+//!   sphere's terminal velocity `V₀` under the same closure, with Richardson & Zaki (paper
+//!   eq. 21, n = 4.65).
 
 use fsim::coupling::drag::{Convention, DragClosure, DragInput, DragLawCoupling, DragLawSettings};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver};
@@ -46,8 +47,8 @@ pub fn k_sangani(phi: f64) -> f64 {
         - 3.0734 * phi.powf(10.0 / 3.0))
 }
 
-/// Paper eq. 18 (read with DESIGN.md's OCR fixes): `(1 − φ)^−4.7` below φ = 0.2,
-/// `(25/3) φ/(1 − φ)³` above.
+/// Paper eq. 18, as docs/numerics.md reads the garbled OCR copy: `(1 − φ)^−4.7` below
+/// φ = 0.2, `(25/3) φ/(1 − φ)³` above.
 pub fn k_ergun(phi: f64) -> f64 {
     if phi < 0.2 {
         (1.0 - phi).powf(-4.7)

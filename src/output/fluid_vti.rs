@@ -4,8 +4,8 @@
 //! meshio does not read `.vti`; it reads the legacy twin written beside it
 //! ([`super::write_fluid_vtk`]).
 //!
-//! Written directly rather than with vtkio: vtkio writes inline base64 only (about 7× slower
-//! than raw bytes at 128³, measured in DESIGN.md) and keeps origin and spacing as `f32`.
+//! Written directly rather than with vtkio: vtkio writes inline base64 only (several times
+//! slower than raw bytes: docs/benchmarks/output.md) and keeps origin and spacing as `f32`.
 //!
 //! Layout: an XML header whose `DataArray`s point (`offset`) into the `<AppendedData
 //! encoding="raw">` block after `_`; each array there is a `UInt64` byte count followed by its

@@ -2,10 +2,9 @@
 //! `CELL_DATA`, every value a big-endian `f64`.
 //!
 //! Why this format: meshio reads legacy `.vtk` and `.vtu` but not `.vti`; pyvista and ParaView
-//! read all three; and legacy binary is the fastest of them to write (measured in DESIGN.md:
-//! 128³ cells, U and p, about 0.1 s and 67 MB, against 0.7 s for base64 XML). ParaView's
-//! collection reader cannot take a legacy file, so the `.pvd` lists the `.vti` twin written
-//! beside it ([`super::write_fluid_vti`]).
+//! read all three; and legacy binary is the fastest of them to write
+//! (docs/benchmarks/output.md). ParaView's collection reader cannot take a legacy file, so
+//! the `.pvd` lists the `.vti` twin written beside it ([`super::write_fluid_vti`]).
 //! Values stay `f64` so that checks can compare the file with what the solver computed to the
 //! last bit; `f32` would halve the size but lose that.
 //!
@@ -28,8 +27,8 @@ pub enum CellData<'a> {
     Scalar(&'a str, &'a [f64]),
     Vector(&'a str, &'a [[f64; 3]]),
     /// A vector field of `len` cells computed cell by cell as it is written (the solver's
-    /// cell-centred velocity, so that a write holds no copy of the field: at 648,000 cells
-    /// that copy was the run's peak memory). `Sync`: the two files of a time directory are
+    /// cell-centred velocity, so that a write holds no copy of the field, which would set the
+    /// run's peak memory). `Sync`: the two files of a time directory are
     /// written at once ([`super::write_fluid`]).
     ComputedVector(&'a str, usize, &'a (dyn Fn(usize) -> [f64; 3] + Sync)),
 }

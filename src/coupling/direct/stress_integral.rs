@@ -36,7 +36,7 @@ pub struct ShellMomentum {
 /// pressure `−ρ b·x` acts on everything inside `R` as `ρ b V_R`. At `R = r` this is paper
 /// eq. 4 (`f_h = I_S + f_h0`), the flux term vanishes (rigid motion) and so does the shell;
 /// off the surface the grid resolves the flow far better than on the staircase of forced
-/// faces (DESIGN.md, numerical leads). The shell term is the caller's:
+/// faces (docs/direct_model.md, "The stress integral"). The shell term is the caller's:
 /// [`shell_momentum`] at two times. Torque: the same with `(x − x_p) ×` (a uniform `b`
 /// gives none).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,8 +113,8 @@ pub fn stress_integral_force(
         let u = Vector3::from(u);
         // ∇u with rows i and columns j: ∂u_i/∂x_j
         let grad = Matrix3::from_fn(|i, j| g[i][j]);
-        // σ/ρ = −p I + ν(∇u + ∇uᵀ) (eq. 5), minus the momentum flux through a surface that is
-        // not the sphere's own: traction t = σ·n − u ((u − v_p)·n)
+        // σ/ρ = −p I + ν(∇u + ∇uᵀ) (paper eq. 5), minus the momentum flux through a surface
+        // that is not the sphere's own: traction t = σ·n − u ((u − v_p)·n)
         let stress = Matrix3::from_diagonal_element(-p) + nu * (grad + grad.transpose());
         let traction = stress * n - u * (u - v_sphere).dot(&n);
         let weight = w * radius * radius;
