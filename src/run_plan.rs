@@ -18,12 +18,9 @@ const TIMED_STEPS: usize = 8;
 const TIMING_BUDGET_SECONDS: f64 = 10.0;
 
 /// The fluid speed a settling suspension reaches, in terminal velocities of its spheres,
-/// for the plan's Courant step. Measured (the largest speed from the monitor, `CoMax h/Δt`):
-/// 2.26 on average over the benchmark's 0.1 s (gas–solid: the gas streams up past nearly
-/// still spheres), 1.3 for eight random spheres of its kind (`tests/run/dry_run_plan.rs`),
-/// 0.5–0.8 in `tutorials/sedimentation` (a liquid, where the viscous bound sets the step
-/// anyway). 2 plans the benchmark within an eighth and errs long for calmer suspensions,
-/// which is the side a batch's time limits want.
+/// for the plan's Courant step: 2 plans the benchmark within an eighth and errs long for
+/// calmer suspensions, the side a batch's time limits want (the measured speeds:
+/// docs/benchmarks/direct.md, "`-dry-run`'s plan on the benchmark").
 const SETTLING_SPEED: f64 = 2.0;
 
 /// Prints the plan of `case` (module docs), taking its first steps in `sim`.

@@ -23,9 +23,8 @@
 /// Damping `ε` of the Chebyshev polynomial. Verwer (1996) uses 0.05 for the first-order
 /// method (reach 1.94 s², |P| ≤ 0.95 on the damped part); 0.5 gives up a fifth of the
 /// reach (1.53 s²) for |P| ≤ 0.65. A sphere moving through the grid disturbs the stiff modes
-/// near it at every step, and they must die out quickly: the settling sphere at ten times
-/// RK3's viscous step settles 1.7 % fast with 0.05, 0.47 % with 0.5 and 0.37 % with 2
-/// (`tests/direct/motion.rs`, 2026-12-01); at four to six times it all agree within 0.03 %.
+/// near it at every step, and they must die out quickly (the settling sphere with each
+/// damping: docs/direct_model.md, "`EulerRKC`").
 const DAMPING: f64 = 0.5;
 
 /// Share of `β(s)` a step may use: the hook's constrained rows may reach a little beyond the

@@ -1,4 +1,4 @@
-//! Seeded coefficient fields for the variable-coefficient pressure solvers' tests and benchmark.
+//! Seeded coefficient fields for the variable-coefficient pressure solvers' tests.
 
 use std::f64::consts::PI;
 
@@ -13,10 +13,9 @@ pub fn seeded_uniform(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
-/// The three coefficient fields of the preconditioner comparison, per cell (x fastest):
-/// `"smooth"` (four random Fourier modes, β in [0.4, 1]), `"bed"` (a packed-bed surface,
-/// 0.36 below, 1 above) and `"jump"` (100× checkerboard blocks). Shared by the tests and
-/// `examples/variable_poisson_bench.rs`.
+/// The three coefficient fields of the preconditioner comparison (docs/numerics.md), per cell
+/// (x fastest): `"smooth"` (four random Fourier modes, β in [0.4, 1]), `"bed"` (a packed-bed
+/// surface, 0.36 below, 1 above) and `"jump"` (100× checkerboard blocks), for the tests.
 pub fn comparison_beta(case: &str, n: [usize; 3], seed: u64) -> Vec<f64> {
     let mut next = seeded_uniform(seed);
     // Four random Fourier modes of wavenumber ≤ 2 for the smooth field.

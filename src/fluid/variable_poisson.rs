@@ -8,8 +8,7 @@
 //! `A p = −f` is solved by CG. The preconditioner is the exact constant-coefficient inverse
 //! `M⁻¹ = −(β̄ L)⁻¹` with `β̄` the mean face coefficient: where `β` varies smoothly the
 //! preconditioned operator is close to the identity and CG converges in a few iterations
-//! (15–16 on a packed bed's surface at 32³–128³; a geometric-multigrid V-cycle needed fewer
-//! iterations but more time per solve: docs/numerics.md).
+//! (15–16 on a packed bed's surface at 32³–128³: docs/numerics.md, "Pressure solvers").
 
 use super::spectral_poisson::{AxisKind, PressureBoundary, SpectralPoisson};
 use rayon::prelude::*;

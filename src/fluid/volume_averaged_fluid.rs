@@ -3,21 +3,21 @@
 //! *interstitial* fluid velocity, its pressure the kinematic `p/ρ`).
 //!
 //! With fluid fraction `ε` (cells), face fraction `ε_f` (mean of the two cells), the particle
-//! reaction `s` (m/s², from eq. 13/16) and, for the semi-implicit source, the coefficient `K`
-//! (1/s) of the drag's velocity dependence, fsim solves
+//! reaction `s` (m/s², from paper eq. 13, 16) and, for the semi-implicit source, the
+//! coefficient `K` (1/s) of the drag's velocity dependence, fsim solves
 //!
 //! ```text
 //! ∂(εu)/∂t + ∇·(εuu) = −c ∇p + ν ∇·(ε∇u) + c g + s + K (uⁿ − uⁿ⁺¹),    ∂ε/∂t + ∇·(εu) = 0,
 //! ```
 //!
-//! with `c = ε` in the paper's form (eq. 7, "model A": the particles feel the pressure gradient
-//! themselves, eq. 10) or `c = 1` in DPMFoam's form ("model B": `fvm::ddt(alphac, Uc)` with
-//! `−∇p + g` undivided in its `UcEqn.H`/`pEqn.H`; the particles' `gravity` force carries their
-//! buoyancy and they feel no pressure gradient). In DPMFoam's non-conservative writing
-//! `ε ∂u/∂t + εu·∇u` is the same operator by continuity. Two simplifications against eq. 7–8:
-//! the viscous stress is `ν∇·(ε∇u)` (the transposed and `−⅔∇·u` parts of `T_ij` are dropped;
-//! they vanish where ε is uniform), and advection is first-order upwind (the bed's drag
-//! dominates; DPMFoam's tutorials use `linearUpwind`).
+//! with `c = ε` in the paper's form (paper eq. 7, "model A": the particles feel the pressure
+//! gradient themselves, paper eq. 10) or `c = 1` in DPMFoam's form ("model B":
+//! `fvm::ddt(alphac, Uc)` with `−∇p + g` undivided in its `UcEqn.H`/`pEqn.H`; the particles'
+//! `gravity` force carries their buoyancy and they feel no pressure gradient). In DPMFoam's
+//! non-conservative writing `ε ∂u/∂t + εu·∇u` is the same operator by continuity. Two
+//! simplifications against paper eq. 7–8: the viscous stress is `ν∇·(ε∇u)` (the transposed
+//! and `−⅔∇·u` parts of `T_ij` are dropped; they vanish where ε is uniform), and advection is
+//! first-order upwind (the bed's drag dominates; DPMFoam's tutorials use `linearUpwind`).
 //!
 //! One step (explicit Euler for advection and diffusion, implicit in `K`):
 //! 1. predictor `A_f u*_f = ε_fⁿ uⁿ/Δt + K uⁿ + [−∇·(εuu) + ν∇·(ε∇u)]ⁿ + c g + s` with
@@ -35,8 +35,8 @@
 //! (set by the coupling, [`VolumeAveragedFluid::set_mean_pressure_gradient`]) stands for the
 //! non-periodic part of the pressure: the body acceleration `c g` becomes `c (g − G)`. With
 //! `G = (ρ_mix/ρ_f) g`, `ρ_mix = (M_fluid + M_particles)/V_box`, fluid and particles together
-//! feel no net external force (in the paper's form the particles' share `−V_p ρ_f G` of eq. 10
-//! is added by the coupling).
+//! feel no net external force (in the paper's form the particles' share `−V_p ρ_f G` of paper
+//! eq. 10 is added by the coupling).
 
 use super::boundary_conditions::{BoundaryConditions, FaceCondition};
 use super::fluid_solver::FluidSolver;
@@ -51,7 +51,7 @@ use rayon::prelude::*;
 /// Which volume-averaged momentum equation the fluid solves (see the module notes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VolumeAveragedForm {
-    /// Paper eq. 7: `−ε∇p + εg`; particles feel `−V∇p` (eq. 10).
+    /// Paper eq. 7: `−ε∇p + εg`; particles feel `−V∇p` (paper eq. 10).
     Paper,
     /// DPMFoam v1912: `−∇p + g`; particles feel no pressure gradient.
     DpmFoam,
@@ -185,9 +185,9 @@ impl VolumeAveragedFluid {
 
     /// Treats the viscous term implicitly (`true`, the `EulerImplicit` scheme: backward Euler
     /// as OpenFOAM's `Euler` with `fvm::laplacian`; no viscous bound on `Δt`) or explicitly
-    /// (`false`, the default). Crank–Nicolson (θ = ½) was tried first: its stiff viscous modes
-    /// are not damped (`(1 − a)/(1 + a) → −1`), and with walls or a varying ε the pressure
-    /// splitting made them grow at six times the explicit bound; backward Euler damps them.
+    /// (`false`, the default). Backward Euler damps the stiff viscous modes; Crank–Nicolson
+    /// does not (`(1 − a)/(1 + a) → −1`), and with walls or a varying ε the pressure
+    /// splitting makes them grow (docs/numerics.md, "The drag-law model").
     pub fn set_implicit_viscosity(&mut self, on: bool) {
         if !on {
             self.viscous = None;

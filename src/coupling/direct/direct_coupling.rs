@@ -382,8 +382,8 @@ impl DirectCoupling {
         let (offsets, interpolations) = (&self.offsets, &self.interpolations);
         let quadratures = &self.quadratures;
         // The brick pays with its four-lane trilinear stencils (fully periodic boxes); for
-        // the tricubic ones, 64 samples a field, copying it cost as much as it saved
-        // (measured, docs/direct_model.md).
+        // the tricubic ones, 64 samples a field, the copy costs what it saves
+        // (docs/direct_model.md, "Cost").
         let use_brick =
             integral.interpolation == Interpolation::Linear && self.periodic == [true; 3];
         let workers = rayon::current_num_threads();
@@ -508,8 +508,8 @@ impl DirectCoupling {
                 .fold(f64::INFINITY, f64::min)
         }));
         // Gaps of (nominal + 1) h and more leave the nominal offset: only nearer pairs
-        // matter, found with linked cells (all pairs cost 2 % of the benchmark's step at
-        // 500 spheres, and grow as their square).
+        // matter, found with linked cells (a search of all pairs grows as the square of
+        // the sphere count: docs/benchmarks/direct.md).
         let reach = (nominal + 1.0) * h;
         let domain = PeriodicBox {
             lo: self.origin,
@@ -524,8 +524,8 @@ impl DirectCoupling {
             &domain,
             reach + h,
             |i, j, _, dist, _| {
-                // each sphere's own radius subtracted first, as its gap to every neighbour
-                // always was: the same offsets bit for bit
+                // each sphere's own radius subtracted first, as a comparison with every
+                // other sphere does: the same offsets bit for bit
                 let (ri, rj) = (spheres[i].radius, spheres[j].radius);
                 gaps[i] = gaps[i].min(dist - ri - rj);
                 gaps[j] = gaps[j].min(dist - rj - ri);
@@ -603,7 +603,7 @@ pub fn wall_surface_offset(gap: f64) -> f64 {
 }
 
 /// The interpolation of an integration surface `clearance` cells from a bounding face:
-/// `nominal`, but trilinear closer than [`WALL_TRILINEAR_CLEARANCE_CELLS`]: there a
+/// `nominal`, but trilinear closer than `WALL_TRILINEAR_CLEARANCE_CELLS`: there a
 /// tricubic stencil reaches the ghost layer beyond the wall, and the integral of a moving
 /// sphere drifts (docs/direct_model.md, "Walls").
 pub fn wall_interpolation(clearance: f64, nominal: Interpolation) -> Interpolation {

@@ -86,7 +86,7 @@ impl GapFace {
 /// A forcing face in a throat: its first face out along the line is inside a sphere, or
 /// forced with the face after it inside one (the walls less than about two cells apart), so
 /// no fluid face lies between them and the stencil falls back to the staircase. Rigid, such
-/// a face closes the throat to the flow (the dense arrays' K +38 % at gaps of 1.2 cells).
+/// a face closes the throat to the flow (the dense arrays' K +39 % at gaps of 1.2 cells).
 /// Instead it takes the lubrication profile between the two walls: linear between their
 /// velocities (Couette), plus the flow the pressure drives along the gap (Poiseuille),
 /// averaged over the face's patch across the gap so that the face carries the flux through
@@ -123,10 +123,9 @@ pub struct ThroatFace {
 impl ThroatFace {
     /// The pressure a face reads is the last projection's, so the throat and the
     /// projection form a loop whose gain is `k / (ν τ)` for a projection of weight `τ`.
-    /// Where the gain would pass [`THROAT_RELAXATION_GAIN`], the face relaxes toward its
-    /// profile at the rate `gain · ν / k` over the time its stages span (so `EulerRKC`'s
-    /// several stages per projection relax it once): the steady state is the profile's,
-    /// whatever the step.
+    /// Where the gain would pass this value, the face relaxes toward its profile at the rate
+    /// `gain · ν / k` over the time its stages span (so `EulerRKC`'s several stages per
+    /// projection relax it once): the steady state is the profile's, whatever the step.
     pub const RELAXED_GAIN: f64 = THROAT_RELAXATION_GAIN;
 
     /// The target for stages whose span (s) times the loop's gain is `reach`: the profile

@@ -23,8 +23,8 @@
 //! faces ([`ImmersedBoundary::set_quadratic`]). In a gap, where the second of them is forced
 //! and the face after it inside a sphere, the far wall takes its place ([`GapFace`]); where
 //! no second point is found the stencil is linear, and where `f₂` above is itself in a
-//! sphere or forced (a gap narrower than about two cells) the face takes `w` (staircase
-//! fallback).
+//! sphere or forced (a gap narrower than about two cells) the face takes the lubrication
+//! profile between the two walls ([`ThroatFace`]; the walls' line when the throats are rigid).
 //!
 //! Against the alternatives (measured in `docs/direct_model.md`): the pure staircase gives
 //! first-order, position-dependent drag; Uhlmann's (J. Comput. Phys. 209, 448–476, 2005)
@@ -63,8 +63,8 @@ pub struct ImmersedBoundary {
     /// Advanced face slots per component and direction (inclusive), as the fluid solver's.
     ranges: [[(usize, usize); 3]; 3],
     labels: [Vec<u32>; 3],
-    /// The slots labelled at the last update, reset at the next (u32 as the lists: 1.2 MB
-    /// less at the benchmark than usize).
+    /// The slots labelled at the last update, reset at the next (u32 as the lists: half the
+    /// memory of usize).
     touched: [Vec<u32>; 3],
     interior: [Vec<InteriorFace>; 3],
     forcing: [Vec<ForcingFace>; 3],
@@ -290,11 +290,7 @@ impl ImmersedBoundary {
     /// Between builds each sphere is thus imposed where it was built, with its current
     /// rigid motion: its true shape, up to `skin` behind, and its surface jumps to where it
     /// is at the next build. Like a neighbour list's skin in the DEM, the skin trades that
-    /// lag for builds. Measured (tests/direct/rebuild_distance.rs, a sphere pulled three
-    /// cells along a diagonal, r/h = 4, Re = 0.2): mean drag +0.10 % at 0.05 h, +0.20 % at
-    /// 0.1 h, +0.29 % at 0.25 h. Letting the weights follow the moving surface while the
-    /// faces' roles stay (a forcing face overtaken by the sphere, an inside face left
-    /// behind) mixes two surfaces: +1.8 %, +3.5 % and +7.5 %; not kept.
+    /// lag for builds (the drag error per skin: docs/direct_model.md, "Between builds").
     pub fn follow(&mut self, spheres: &[RigidSphere], skin: f64) -> bool {
         let length = self.grid.length();
         let periodic = self.periodic;

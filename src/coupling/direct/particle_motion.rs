@@ -29,9 +29,8 @@
 //!
 //! (the first term cancels the current rate of change, the second returns `M` to zero by
 //! half each step). `b_c` over the analytic drive is reported (`driveCorrection` in the
-//! sedimentation monitor): it measures the momentum defect of the stress integral, below
-//! 2 % for one sphere at r/h = 8 and larger for dense suspensions at r/h = 3
-//! (`tests/direct/motion.rs`).
+//! sedimentation monitor): it measures the momentum defect of the stress integral
+//! (docs/numerics.md, "Sedimentation in a periodic box").
 //!
 //! Stability: the hydrodynamic force is lagged by one step. Its added-mass part
 //! (`−m_a dv/dt`, from the fluid carried inside and near the sphere, whose velocity the
@@ -52,15 +51,9 @@
 //! with `I_v = C_v (ρ_f/ρ_p) I_p`. `virtualMass C_v;` in `constant/couplingProperties`
 //! (default [`DEFAULT_VIRTUAL_MASS`]; 0: the plain explicit coupling).
 //!
-//! Measured (`tests/direct/motion.rs`, one sphere at r/h = 8 in a periodic box, φ = 0.046,
-//! the step at the scheme's viscous bound, 1 ms of settling from rest): the plain coupling
-//! holds down to ρ_p/ρ_f = 0.3 with `Euler` and diverges at 0.2; with `RK3` it holds at 1.3
-//! and diverges at 0.6; with `C_v = 2` both hold at ρ_p/ρ_f = 0.1. (`RK3CN` diverged at any
-//! density ratio while its forcing was imposed after the implicit viscous solve; with the
-//! constrained solve (`implicit_forcing.rs`) it settles at ρ_p/ρ_f = 2 at ten times RK3's
-//! step: `tests/direct/motion.rs`.)
 //! [`ParticleMotion::new`] refuses free particles lighter than [`MIN_DENSITY_RATIO`] times
-//! the fluid, below what was tried.
+//! the fluid, twice the lightest shown stable (thresholds per scheme: docs/direct_model.md,
+//! "Time stepping").
 
 // Plain indexed loops over the particle arrays, by design.
 #![allow(clippy::needless_range_loop)]

@@ -9,12 +9,9 @@
 //!
 //! that lag turns into an oscillation of the sphere's velocity, which the fluid's own bounds
 //! (Courant, viscous) do not see: in a Stokes flow they lie orders of magnitude higher.
-//! Measured (one sphere settling in a periodic box, `tutorials/settlingSphere`'s fluid,
-//! ρ_p/ρ_f = 2 and 4, `EulerRKC`, the default virtual mass; docs/direct_model.md, "Known
-//! limits"): steady up to 0.27 τ_p at r/h = 3.1 and 4, 0.36 τ_p at r/h = 8; oscillating by
-//! several times the settling velocity at 0.36 τ_p (r/h = 4) and 0.54 τ_p (r/h = 8). fsim
-//! holds an adjustable step to [`RESPONSE_STEP_FRACTION`] of the shortest `τ_p` (the step
-//! before a write time may stretch by 1 % to land on it) and warns about a fixed step above
+//! fsim holds an adjustable step to [`RESPONSE_STEP_FRACTION`] of the shortest `τ_p`, below
+//! the measured onset of the oscillation (docs/direct_model.md, "Known limits"; the step
+//! before a write time may stretch by 1 % to land on it), and warns about a fixed step above
 //! it.
 
 pub use super::tuning::RESPONSE_STEP_FRACTION;

@@ -4,11 +4,11 @@
 
 /// Distance from a sphere's surface to its stress-integration surface, in cells. Three
 /// cells out, read tricubically, was the most accurate on the exact Stokes references
-/// (docs/direct_model.md, "Stress integral"); neighbours and walls pull it closer.
+/// (docs/direct_model.md, "The stress integral"); neighbours and walls pull it closer.
 pub const SURFACE_OFFSET_CELLS: f64 = 3.0;
 
 /// Edge of the integration surface's quadrangles, in cells: as accurate as half a cell
-/// three cells out, at a quarter of the cost (docs/direct_model.md, "Stress integral").
+/// three cells out, at a quarter of the cost (docs/direct_model.md, "The stress integral").
 pub const QUADRATURE_EDGE_CELLS: f64 = 1.0;
 
 /// An integration surface closer to a bounding face than this (cells) is read trilinearly:
@@ -18,7 +18,7 @@ pub const WALL_TRILINEAR_CLEARANCE_CELLS: f64 = 1.5;
 
 /// Loop gain of the throats' relaxation toward their lubrication profile: at 1 `RK3`
 /// diverged on a dense array (φ = 0.343, r/h = 3.9), at ½ every scheme held
-/// (docs/direct_model.md, "Throats").
+/// (docs/direct_model.md, "Throats: gaps under two cells").
 pub const THROAT_RELAXATION_GAIN: f64 = 0.5;
 
 /// The share of the shortest Stokes response time `ρ_p d²/(18 μ)` a step of free spheres
@@ -33,7 +33,7 @@ pub const DRIVE_MOMENTUM_GAIN: f64 = 0.5;
 
 /// Default virtual-mass coefficient `C_v`: the plain lagged coupling diverges below
 /// ρ_p/ρ_f ≈ 0.3–1.3 (by scheme); with 2 both schemes held at ρ_p/ρ_f = 0.1
-/// (docs/direct_model.md, "Free spheres").
+/// (docs/direct_model.md, "Time stepping").
 pub const DEFAULT_VIRTUAL_MASS: f64 = 2.0;
 
 /// Free spheres lighter than this times the fluid are refused: the lightest measured stable
@@ -53,7 +53,7 @@ pub const LUBRICATION_MIN_GAP: f64 = 1e-3;
 pub const MIN_CELLS_PER_RADIUS: f64 = 2.0;
 
 /// Spheres below this many cells per radius get a note: expect drag errors of 2 % and more
-/// (docs/direct_model.md, the K and settling sweeps).
+/// (docs/direct_model.md, "Porous media: K against the literature").
 pub const COARSE_CELLS_PER_RADIUS: f64 = 4.0;
 
 /// Narrowest gap, in cells, the grid is taken to resolve (the paper's §3.1: denser media

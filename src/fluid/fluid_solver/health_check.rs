@@ -108,8 +108,8 @@ impl FluidSolver {
                     }
                     // the row's last cells: the lanes past its end read the next cells'
                     // faces (the padding holds them), and their results are dropped (the
-                    // maxima restored after: a lane count in their loop cost 53 against 44 M
-                    // instructions a call)
+                    // maxima restored after: cheaper than a lane count in their loop,
+                    // docs/benchmarks/direct.md)
                     if i <= n[0] {
                         let (kept, used) = (peak, n[0] + 1 - i);
                         add(&mut peak, &mut sums, part, base + i, used);
