@@ -106,7 +106,7 @@ pub(crate) fn minimum_image(d: Vec3, length: Vec3, inv_l: Vec3) -> Vec3 {
 }
 
 /// `s.round()` for the small |s| met here, by a truncating cast: `f64::round` is a libm call
-/// on the baseline x86-64 target and cost 11% of a pair loop in a profile.
+/// on the baseline x86-64 target, too slow for the pair loop (docs/benchmarks/dem.md).
 #[inline(always)]
 fn nearest_integer(s: f64) -> f64 {
     (s + 0.5f64.copysign(s)) as i64 as f64

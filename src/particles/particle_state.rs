@@ -2,12 +2,10 @@
 //!
 //! Vector quantities are `Vec<[f64; 3]>`: every pair evaluation reads all three components of
 //! the same particle, so keeping them in one 24-byte record touches one cache line where three
-//! separate component arrays would touch three. Measured with `examples/dem_layout.rs` (a
-//! spring-dashpot pair loop, identical results): 9.8–10.3 ns per listed pair with records
-//! against 11.8–12.3 ns with three `Vec<f64>` at 30,000 particles, 11.4–11.5 against
-//! 12.9–13.9 ns at 10⁶ (records 14–21% faster). The engine reorders all arrays together (a
-//! counting sort by cell at each neighbour-list rebuild), so index `i` names a particle only
-//! until the next rebuild; `id` is the permanent name.
+//! separate component arrays would touch three (faster per pair: docs/benchmarks/dem.md,
+//! `examples/dem_layout.rs`). The engine reorders all arrays together (a counting sort by
+//! cell at each neighbour-list rebuild), so index `i` names a particle only until the next
+//! rebuild; `id` is the permanent name.
 
 use std::f64::consts::PI;
 
