@@ -31,7 +31,7 @@ fn coarse_settling_velocity(scheme: TimeScheme, factor: f64) -> f64 {
 
 /// The settling sphere's terminal velocity with `EulerRKC` at 1, 4 and 10 times the explicit
 /// viscous bound equals the explicit RK3 run's within 1 % (the no-slip forcing constrains
-/// every Chebyshev stage). Coarse (r/h = 4) for speed: the accuracy against eq. 17 is the
+/// every Chebyshev stage). Coarse (r/h = 4) for speed: the accuracy against paper eq. 17 is the
 /// tutorial test's below.
 #[test]
 fn settling_velocity_does_not_depend_on_the_chebyshev_step() {
@@ -91,9 +91,9 @@ fn suspension_settling(scheme: TimeScheme, dt: f64, steps: usize) -> Vec<f64> {
 
 /// `EulerRKC` carries the pressure from step to step (`p ← p + φ`). Where spheres
 /// move on, fluid cells become closed cells, and the pressure there must still end as a full
-/// projection leaves it: before the closed cells' mass source took `τ∇²pⁿ`, the settling
-/// velocity drifted with the number of steps (−0.1 % after 300 steps, −2 % after 1,821 on
-/// the sweep's φ = 0.1 case). With one Chebyshev stage `EulerRKC` is `Euler` in exact
+/// projection leaves it: the closed cells' mass source takes `τ∇²pⁿ`, else the settling
+/// velocity drifts with the number of steps (docs/direct_model.md, "Closed cells and the
+/// incremental pressure"). With one Chebyshev stage `EulerRKC` is `Euler` in exact
 /// arithmetic, so the two runs must agree to rounding.
 #[test]
 fn incremental_pressure_does_not_drift_with_moving_spheres() {
@@ -194,10 +194,10 @@ fn settling_sphere_matches_the_periodic_array_correction() {
 /// periodic box: the imposed mean pressure gradient (SettlingDrive with its momentum-holding
 /// correction) keeps the total momentum of fluid and particles at zero, within 1 % of
 /// `Σ m|v|` at every step once the correction has settled (after 5 ms, 30 steps; during the
-/// start-up it reaches 16 %, measured), while the particles fall and the fluid streams up. The correction this coarse, dense case needs measures the stress
-/// integral's momentum defect there: measured 0.0155 of the analytic drive (0.198 with an
-/// earlier two-cell integration surface that overlapped the neighbours); held within ±0.01
-/// of that (a drive 5 % too strong moves it to 0.035).
+/// start-up it reaches 16 %, measured), while the particles fall and the fluid streams up.
+/// The correction this coarse, dense case needs measures the stress integral's momentum
+/// defect there: measured 0.0155 of the analytic drive, held within ±0.01 of that (a drive
+/// 5 % too strong moves it to 0.035).
 #[test]
 fn settling_suspension_keeps_zero_momentum() {
     let s = Scratch::new("suspension-momentum");

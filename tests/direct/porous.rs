@@ -44,9 +44,9 @@ fn k_matches_sangani_acrivos_and_zick_homsy_at_r_over_h_8_and_16() {
 }
 
 /// Dense arrays on coarse grids leave gaps of two to three cells between neighbours; the
-/// forcing faces there take the far wall into their quadratic stencil (`GapFace`), where the
-/// linear fallback over-resisted the gap (+10.3 % and +5.3 % here; now −1.74 % and −2.34 %,
-/// the second with the throats' flow on the faces next to the walls).
+/// forcing faces there take the far wall into their quadratic stencil (`GapFace`), since a
+/// linear stencil over-resists the gap (measured −1.74 % and −2.34 %, the second with the
+/// throats' flow on the faces next to the walls).
 #[test]
 fn dense_arrays_on_coarse_grids_resolve_their_gaps_of_two_to_three_cells() {
     let cases = [

@@ -2,8 +2,7 @@
 //! moved that far from where they were built, and follow it in between. A sphere driven
 //! across the grid along a diagonal (three cells, Re = 0.2, r/h = 4) feels the same drag
 //! whether its faces are rebuilt every step or only after it has moved 0.05, 0.1 or 0.25
-//! cells: measured +0.10 %, +0.20 %, +0.29 % (bounds 0.2, 0.3, 0.5 %). Letting the weights
-//! follow the surface while the roles stay gave +1.8 %, +3.5 %, +7.5 % and would fail.
+//! cells: measured +0.10 %, +0.20 %, +0.29 % (bounds 0.2, 0.3, 0.5 %).
 
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver};

@@ -39,11 +39,6 @@ fn a_sphere_midway_between_walls_feels_faxens_drag() {
 /// one 2·10⁻³. The resistance rises as the gap closes; down to 2.5 cells it agrees within
 /// 3 % (measured +2.6 % and −0.1 %), at 2.25 and 2 cells, the resolution's limit, within
 /// 10 % (measured +4.1 % and +6.5 %; docs/direct_model.md, "Walls").
-///
-/// What failed before: three cells out, the coarse surface crossed the wall and enclosed a
-/// patch of it, whose pressure carried part of the resistance (−40 % at 2 cells); kept
-/// inside the flow but read tricubically, its stencils reached the ghost layer beyond the
-/// wall and the drag wandered with the sphere's position (+2.9, +0.7, −11.6, +27.9 %).
 #[test]
 fn approaching_a_wall_the_drag_rises_as_at_twice_the_resolution() {
     let gaps = [2.75, 2.5, 2.25, 2.0];

@@ -57,8 +57,7 @@ fn plan_then_run(case: &Path) -> (f64, f64) {
 }
 
 /// The porous tutorial's adaptive step grows from `deltaT` (1e-5 s) to the viscous bound
-/// within its first steps; the plan reads the step after its timed steps, not `deltaT`
-/// (1500 steps planned before, against the 721 taken).
+/// within its first steps; the plan reads the step after its timed steps, not `deltaT`.
 #[test]
 fn dry_run_plans_the_steps_of_the_porous_tutorial() {
     let scratch = Scratch::new("plan-porous");
