@@ -13,6 +13,7 @@
 //! With `--lammps DIR` it also writes `DIR/settling.data` (the same initial state as a LAMMPS
 //! data file) and `DIR/params.in` (the same coefficients) for `tools/bench/dem_settling.lmp`.
 
+use fsim::Vec3;
 use std::io::Write;
 use std::time::Instant;
 
@@ -48,11 +49,11 @@ fn main() {
     let mut p = ParticleState::with_capacity(centres.len());
     for (k, x) in centres.iter().enumerate() {
         p.push(k as u64 + 1, *x, D, RHO);
-        p.velocity[k] = [
+        p.velocity[k] = Vec3::new(
             0.2 * (rng.next_f64() - 0.5),
             0.2 * (rng.next_f64() - 0.5),
             0.2 * (rng.next_f64() - 0.5),
-        ];
+        );
     }
     let n = p.len();
     let linear = PairModel::LinearSpringDashpot {
@@ -72,7 +73,7 @@ fn main() {
         collision_resolution_steps: 50.0,
     };
     let mut cfg = DemConfig::new(linear, wall);
-    cfg.gravity = [0.0, 0.0, -9.81];
+    cfg.gravity = Vec3::new(0.0, 0.0, -9.81);
     cfg.skin_fraction = 0.1;
     let domain = DomainBox::walled([0.0; 3], hi);
     let mut warm = Dem::new(cfg.clone(), domain.clone(), p.clone()).expect("valid input");

@@ -10,6 +10,7 @@ use fsim::coupling::direct::{DirectCoupling, DirectSettings, Interpolation, Rigi
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver};
 use fsim::grid::Grid;
 use fsim::particles::SplitMix64;
+use fsim::Vec3;
 use std::time::Instant;
 
 fn main() {
@@ -60,7 +61,7 @@ fn run() {
         });
         if clear {
             let mut s = RigidSphere::fixed(c, r);
-            s.velocity = [0.0, -0.01, 0.0];
+            s.velocity = Vec3::new(0.0, -0.01, 0.0);
             spheres.push(s);
         }
     }

@@ -16,6 +16,7 @@ use fsim::output::{
     write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, ParticleFields,
     RestartHeader, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
+use fsim::Vec3;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -101,14 +102,18 @@ fn fluid(grid: &Grid, t: f64) -> (Vec<[f64; 3]>, Vec<f64>) {
 fn write_particles(path: &std::path::Path, t: f64, count: usize) -> Result<(), OutputError> {
     let idx = |i: usize| i as f64;
     let positions: Vec<_> = (0..count)
-        .map(|i| [-0.4 + 0.15 * idx(i), 0.5, 1.25 + t])
+        .map(|i| Vec3::new(-0.4 + 0.15 * idx(i), 0.5, 1.25 + t))
         .collect();
     let id: Vec<i64> = (0..count as i64).map(|i| 100 + i).collect();
     let d: Vec<_> = (0..count).map(|i| 1e-3 * (1.0 + idx(i))).collect();
-    let velocity: Vec<_> = (0..count).map(|i| [idx(i), t, -1.0]).collect();
-    let omega: Vec<_> = (0..count).map(|i| [0.0, 0.0, idx(i) * t]).collect();
-    let hydro: Vec<_> = (0..count).map(|i| [1e-6 * idx(i), 0.0, 0.0]).collect();
-    let contact: Vec<_> = (0..count).map(|_| [0.0, -1e-7, t]).collect();
+    let velocity: Vec<_> = (0..count).map(|i| Vec3::new(idx(i), t, -1.0)).collect();
+    let omega: Vec<_> = (0..count)
+        .map(|i| Vec3::new(0.0, 0.0, idx(i) * t))
+        .collect();
+    let hydro: Vec<_> = (0..count)
+        .map(|i| Vec3::new(1e-6 * idx(i), 0.0, 0.0))
+        .collect();
+    let contact: Vec<_> = (0..count).map(|_| Vec3::new(0.0, -1e-7, t)).collect();
     ParticleFields {
         positions: &positions,
         id: &id,

@@ -17,3 +17,9 @@ pub mod run_signals;
 pub mod simulation;
 pub mod step_reporter;
 pub mod time_control;
+
+/// The one small-vector type: positions, velocities, forces, normals (nalgebra's, as rapier
+/// uses it). Fields on the grid stay contiguous `Vec<f64>` per component.
+pub type Vec3 = nalgebra::Vector3<f64>;
+/// 3×3 matrices (the stress tensor).
+pub type Mat3 = nalgebra::Matrix3<f64>;

@@ -4,6 +4,7 @@
 use crate::error::FsimError;
 use crate::output::{Log, Monitor, OutputError};
 use crate::simulation::{CloudReport, Coupling, DirectModel, DragLawModel, Simulation, TakenStep};
+use crate::Vec3;
 use std::io::Stdout;
 use std::path::Path;
 use std::time::Duration;
@@ -207,7 +208,7 @@ impl StepReporter {
         }
         if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
             log_cloud(&mut self.log, c)?;
-            let [ux, uy, uz] = c.mean_velocity;
+            let [ux, uy, uz] = c.mean_velocity.into();
             m.row(&[
                 sim.time.time,
                 c.count as f64,
@@ -340,7 +341,7 @@ impl StepReporter {
         if let Some(m) = self.drag.as_mut() {
             let e = &d.last;
             let g = d.settings.gravity;
-            let axis = if g == [0.0; 3] {
+            let axis = if g == Vec3::zeros() {
                 2
             } else {
                 (0..3)
@@ -350,7 +351,7 @@ impl StepReporter {
             // Measured against the flow that holds the bed up: upstream (the side gravity
             // points to) minus downstream.
             let drop = d.pressure_drop(&sim.fluid, axis) * if g[axis] > 0.0 { -1.0 } else { 1.0 };
-            let up = cloud.map_or([0.0; 3], |c| c.mean_velocity);
+            let up = cloud.map_or(Vec3::zeros(), |c| c.mean_velocity);
             let (iterations, continuity) = d.last_fluid.map_or((0.0, 0.0), |r| {
                 (r.pressure.iterations as f64, r.continuity_error)
             });
@@ -419,7 +420,7 @@ impl StepReporter {
 
 /// The cloud's lines of the step log, in the manner of DPMFoam's.
 fn log_cloud(log: &mut Log<std::io::Stdout>, c: &CloudReport) -> std::io::Result<()> {
-    let [ux, uy, uz] = c.mean_velocity;
+    let [ux, uy, uz] = c.mean_velocity.into();
     log.line(&format!(
         "Cloud: {} particles, {} collision sub-steps\n    Linear kinetic energy = {:.6e}\n    \
          Rotational kinetic energy = {:.6e}\n    Mean velocity = ({:.6e} {:.6e} {:.6e})\n    \

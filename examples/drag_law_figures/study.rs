@@ -18,6 +18,7 @@ use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
 use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
+use fsim::Vec3;
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
@@ -59,7 +60,7 @@ pub fn k_ergun(phi: f64) -> f64 {
 
 fn periodic_dem(particles: ParticleState, length: f64, gravity: f64) -> Dem {
     let mut config = DemConfig::new(PairModel::linear(0.05, 0.5, 0.0), WallModel::None);
-    config.gravity = [0.0, 0.0, -gravity];
+    config.gravity = Vec3::new(0.0, 0.0, -gravity);
     config.fluid_density = RHO;
     let domain = DomainBox::uniform([0.0; 3], [length; 3], ParticleFace::Periodic);
     Dem::new(config, domain, particles).expect("a valid cloud")
@@ -115,7 +116,7 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
             let dem = periodic_dem(particles, length, 0.0);
             // G small enough for Re ≪ 1: U ~ G L³/(6πμr K).
             let g = 1e-3;
-            let mut s = DragLawSettings::paper(RHO, NU, [0.0, 0.0, g]);
+            let mut s = DragLawSettings::paper(RHO, NU, Vec3::new(0.0, 0.0, g));
             s.closure = Some(closure);
             s.form = match closure.convention() {
                 Convention::DragOnly => fsim::fluid::VolumeAveragedForm::Paper,
@@ -236,7 +237,7 @@ pub fn sedimentation(
             // The fluid carries the mean pressure gradient that holds the suspension's
             // buoyant weight, so the whole box does not accelerate.
             let hold = phi * (rho_p - RHO) / RHO * g;
-            let mut s = DragLawSettings::paper(RHO, NU, [0.0, 0.0, hold]);
+            let mut s = DragLawSettings::paper(RHO, NU, Vec3::new(0.0, 0.0, hold));
             s.closure = Some(closure);
             s.form = match closure.convention() {
                 Convention::DragOnly => fsim::fluid::VolumeAveragedForm::Paper,

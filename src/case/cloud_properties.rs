@@ -439,7 +439,7 @@ impl Cloud {
                 for (x, loc) in positions.into_iter().zip(locs) {
                     let id = particles.len() as u64;
                     particles.push(id, x, sizes.sample(&mut rng), rho0);
-                    *particles.velocity.last_mut().expect("pushed") = u0;
+                    *particles.velocity.last_mut().expect("pushed") = u0.into();
                     origins.push(loc);
                 }
             } else {
@@ -466,12 +466,18 @@ impl Cloud {
                 }
                 // largest first packs best
                 diameters.sort_by(|a, b| b.total_cmp(a));
-                let centres = random_packing_sizes(lo, hi, &diameters, phi, seed.wrapping_add(1))
-                    .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
+                let centres = random_packing_sizes(
+                    lo.into(),
+                    hi.into(),
+                    &diameters,
+                    phi,
+                    seed.wrapping_add(1),
+                )
+                .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
                 for (x, d) in centres.into_iter().zip(diameters) {
                     let id = particles.len() as u64;
                     particles.push(id, x, d, rho0);
-                    *particles.velocity.last_mut().expect("pushed") = u0;
+                    *particles.velocity.last_mut().expect("pushed") = u0.into();
                     origins.push(e.key_loc.clone());
                 }
             }
@@ -483,7 +489,7 @@ impl Cloud {
         }
 
         let mut config = DemConfig::new(pair_model, wall_model);
-        config.gravity = gravity;
+        config.gravity = gravity.into();
         config.fluid_density = case.transport.rho;
         config.pair_collisions = collision == 0;
 

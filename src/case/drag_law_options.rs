@@ -164,7 +164,7 @@ impl DragLawOptions {
             alpha_max: self.alpha_max,
             rho: transport.rho,
             nu: transport.nu,
-            gravity,
+            gravity: gravity.into(),
         }
     }
 
@@ -542,6 +542,7 @@ pub(crate) fn fraction_name(phase: &str) -> String {
 mod tests {
     use super::*;
     use crate::case::parse_dict;
+    use crate::Vec3;
 
     const GOLDSCHMIDT_LIKE: &str = "\
 solution
@@ -623,7 +624,7 @@ subModels
                 alpha_max: 0.99,
                 rho: 1.2,
                 nu: 1e-5,
-                gravity: [0.0, 0.0, -9.81],
+                gravity: Vec3::new(0.0, 0.0, -9.81),
             }
         );
         // cellPoint: the cell-point rule for the velocity, no note

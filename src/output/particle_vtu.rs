@@ -6,6 +6,7 @@
 
 use super::fluid_vtk::validate_name;
 use super::output_error::OutputError;
+use crate::Vec3;
 use std::fs::File;
 use std::io::Write;
 use std::path::Path;
@@ -19,7 +20,7 @@ use vtkio::model::{
 pub enum PointData<'a> {
     Int(&'a str, &'a [i64]),
     Scalar(&'a str, &'a [f64]),
-    Vector(&'a str, &'a [[f64; 3]]),
+    Vector(&'a str, &'a [Vec3]),
 }
 
 impl PointData<'_> {
@@ -42,18 +43,18 @@ impl PointData<'_> {
 /// engine hands its own arrays over without copying them into a new structure.
 #[derive(Clone, Copy, Debug)]
 pub struct ParticleFields<'a> {
-    pub positions: &'a [[f64; 3]],
+    pub positions: &'a [Vec3],
     pub id: &'a [i64],
     /// Diameter, metres.
     pub d: &'a [f64],
     /// Velocity, m/s.
-    pub velocity: &'a [[f64; 3]],
+    pub velocity: &'a [Vec3],
     /// Angular velocity, rad/s.
-    pub omega: &'a [[f64; 3]],
+    pub omega: &'a [Vec3],
     /// Hydrodynamic force on each particle, N.
-    pub hydrodynamic_force: &'a [[f64; 3]],
+    pub hydrodynamic_force: &'a [Vec3],
     /// Sum of contact forces on each particle, N.
-    pub contact_force: &'a [[f64; 3]],
+    pub contact_force: &'a [Vec3],
 }
 
 impl ParticleFields<'_> {
@@ -78,7 +79,7 @@ impl ParticleFields<'_> {
 /// conventionally `<time>/particles.vtu`.
 pub fn write_particles_vtu(
     path: &Path,
-    positions: &[[f64; 3]],
+    positions: &[Vec3],
     data: &[PointData],
 ) -> Result<(), OutputError> {
     let count = positions.len();
@@ -199,13 +200,21 @@ mod tests {
     fn particles_read_back_with_all_arrays() {
         let dir = ScratchDir::new("particles");
         let path = dir.path().join("particles.vtu");
-        let positions = [[0.1, 0.2, 0.3], [1.0, -2.0, 3.5], [1e-5, 0.0, 7.0]];
+        let positions = [
+            Vec3::new(0.1, 0.2, 0.3),
+            Vec3::new(1.0, -2.0, 3.5),
+            Vec3::new(1e-5, 0.0, 7.0),
+        ];
         let id = [7, 3, 11];
         let d = [1e-4, 2e-4, 1.5e-4];
-        let velocity = [[1.0, 2.0, 3.0], [0.0, 0.0, -1.0], [0.5, 0.5, 0.5]];
-        let omega = [[0.0, 0.0, 9.0]; 3];
-        let hydro = [[1e-9, 2e-9, 3e-9]; 3];
-        let contact = [[-1e-6, 0.0, 0.0]; 3];
+        let velocity = [
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.5, 0.5, 0.5),
+        ];
+        let omega = [Vec3::new(0.0, 0.0, 9.0); 3];
+        let hydro = [Vec3::new(1e-9, 2e-9, 3e-9); 3];
+        let contact = [Vec3::new(-1e-6, 0.0, 0.0); 3];
         ParticleFields {
             positions: &positions,
             id: &id,
@@ -273,8 +282,12 @@ mod tests {
     fn mismatched_lengths_are_refused() {
         let dir = ScratchDir::new("particles-bad");
         let path = dir.path().join("particles.vtu");
-        let err = write_particles_vtu(&path, &[[0.0; 3]; 2], &[PointData::Scalar("d", &[1.0])])
-            .unwrap_err();
+        let err = write_particles_vtu(
+            &path,
+            &[Vec3::zeros(); 2],
+            &[PointData::Scalar("d", &[1.0])],
+        )
+        .unwrap_err();
         assert!(
             err.to_string().contains("1 values for 2 particles"),
             "{err}"

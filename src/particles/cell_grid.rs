@@ -2,7 +2,7 @@
 //! sort of particles by cell so that particles of one cell are contiguous.
 
 use super::domain_box::DomainBox;
-use super::vec3::Vec3;
+use crate::Vec3;
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct CellGrid {
@@ -33,7 +33,7 @@ impl CellGrid {
             }
             size *= 1.25;
         }
-        let mut inv_size = [0.0; 3];
+        let mut inv_size = Vec3::zeros();
         let mut periodic = [false; 3];
         for a in 0..3 {
             inv_size[a] = n[a] as f64 / l[a];
@@ -171,15 +171,15 @@ mod tests {
 
     #[test]
     fn counting_sort_groups_by_cell_and_is_stable() {
-        let b = DomainBox::walled([0.0; 3], [4.0, 1.0, 1.0]);
+        let b = DomainBox::walled(Vec3::zeros(), [4.0, 1.0, 1.0]);
         let g = CellGrid::new(&b, 1.0, 1000);
         assert_eq!(g.n, [4, 1, 1]);
         let x = [
-            [3.5, 0.5, 0.5],
-            [0.5, 0.5, 0.5],
-            [3.2, 0.5, 0.5],
-            [1.5, 0.5, 0.5],
-            [-0.1, 0.5, 0.5],
+            Vec3::new(3.5, 0.5, 0.5),
+            Vec3::new(0.5, 0.5, 0.5),
+            Vec3::new(3.2, 0.5, 0.5),
+            Vec3::new(1.5, 0.5, 0.5),
+            Vec3::new(-0.1, 0.5, 0.5),
         ];
         let (mut c, mut s, mut o) = (Vec::new(), Vec::new(), Vec::new());
         g.counting_sort(&x, &mut c, &mut s, &mut o);
@@ -189,7 +189,7 @@ mod tests {
 
     #[test]
     fn cell_count_is_capped() {
-        let b = DomainBox::walled([0.0; 3], [1.0; 3]);
+        let b = DomainBox::walled(Vec3::zeros(), [1.0; 3]);
         let g = CellGrid::new(&b, 1e-6, 1000);
         assert!(g.cell_count() <= 1000 && g.cell_count() >= 500, "{:?}", g.n);
         let g = CellGrid::new(&b, 0.0, 1000);
@@ -198,7 +198,7 @@ mod tests {
 
     #[test]
     fn neighbour_cells_are_distinct_when_periodic_axis_is_short() {
-        let mut b = DomainBox::walled([0.0; 3], [2.0, 5.0, 1.0]);
+        let mut b = DomainBox::walled(Vec3::zeros(), [2.0, 5.0, 1.0]);
         for f in [0, 1, 4, 5] {
             b.faces[f] = FaceCondition::Periodic;
         }

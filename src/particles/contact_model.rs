@@ -27,7 +27,7 @@
 
 use std::f64::consts::PI;
 
-use super::vec3::{dot, norm, scale, sub, Vec3};
+use crate::Vec3;
 
 /// What the tangential spring does when `|F_t|` would exceed `μ |F_n|`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -304,17 +304,17 @@ impl ContactLaw {
             delta.powf(b)
         };
         let f_n_mag = k_n * delta_b - eta_n * u_n;
-        let f_n = scale(n, f_n_mag);
-        let mut x = [
+        let f_n = n * f_n_mag;
+        let mut x = Vec3::new(
             xi[0] + slip[0] * dt,
             xi[1] + slip[1] * dt,
             xi[2] + slip[2] * dt,
-        ];
+        );
         if rule == TangentialRule::CappedSpring {
-            x = sub(x, scale(n, dot(x, n)));
+            x = x - (n * x.dot(&n));
         }
-        let x_mag = norm(x);
-        let mut f_t = [0.0; 3];
+        let x_mag = x.norm();
+        let mut f_t = Vec3::zeros();
         if x_mag > VSMALL {
             let k_t = 8.0 * (r_eff * delta).sqrt() * g_star;
             let eta_t = eta_n;
@@ -322,48 +322,51 @@ impl ContactLaw {
             match rule {
                 TangentialRule::DpmFoamReset => {
                     if k_t * x_mag > limit {
-                        let s = norm(slip);
+                        let s = slip.norm();
                         // û_t; when the contact point is momentarily at rest the spring
                         // direction is the only one defined.
                         let dir = if s > VSMALL {
-                            scale(slip, 1.0 / s)
+                            slip * (1.0 / s)
                         } else {
-                            scale(x, 1.0 / x_mag)
+                            x * (1.0 / x_mag)
                         };
-                        f_t = scale(dir, -limit);
-                        x = [0.0; 3];
+                        f_t = dir * (-limit);
+                        x = Vec3::zeros();
                     } else {
-                        f_t = [
+                        f_t = Vec3::new(
                             -k_t * x[0] - eta_t * slip[0],
                             -k_t * x[1] - eta_t * slip[1],
                             -k_t * x[2] - eta_t * slip[2],
-                        ];
+                        );
                     }
                 }
                 TangentialRule::CappedSpring => {
-                    f_t = [
+                    f_t = Vec3::new(
                         -k_t * x[0] - eta_t * slip[0],
                         -k_t * x[1] - eta_t * slip[1],
                         -k_t * x[2] - eta_t * slip[2],
-                    ];
+                    );
                     // squared test: no square root while the contact sticks
-                    let f_t_sq = dot(f_t, f_t);
+                    let f_t_sq = f_t.dot(&f_t);
                     if f_t_sq > limit * limit {
                         let f_t_mag = f_t_sq.sqrt();
-                        f_t = scale(f_t, limit / f_t_mag);
+                        f_t *= limit / f_t_mag;
                         // spring such that −k_T ξ − η_T u_t equals the capped force
                         let inv_k = 1.0 / k_t;
-                        x = [
+                        x = Vec3::new(
                             -(f_t[0] + eta_t * slip[0]) * inv_k,
                             -(f_t[1] + eta_t * slip[1]) * inv_k,
                             -(f_t[2] + eta_t * slip[2]) * inv_k,
-                        ];
+                        );
                     }
                 }
             }
         }
         *xi = x;
-        ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
+        (
+            Vec3::new(f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]),
+            f_t,
+        )
     }
 
     /// [`ContactLaw::force`] for a law known to be `Linear`.
@@ -395,42 +398,45 @@ impl ContactLaw {
         let f_n_mag = kn * delta - c_n * u_n;
         let c_t = tangential_damping_ratio * c_n;
         // LAMMPS gran/hooke/history: accumulate, then drop the normal component.
-        let mut x = [
+        let mut x = Vec3::new(
             xi[0] + slip[0] * dt,
             xi[1] + slip[1] * dt,
             xi[2] + slip[2] * dt,
-        ];
-        x = sub(x, scale(n, dot(x, n)));
-        let mut f_t = [
+        );
+        x = x - (n * x.dot(&n));
+        let mut f_t = Vec3::new(
             -(kt * x[0] + c_t * slip[0]),
             -(kt * x[1] + c_t * slip[1]),
             -(kt * x[2] + c_t * slip[2]),
-        ];
-        let f_t_sq = dot(f_t, f_t);
+        );
+        let f_t_sq = f_t.dot(&f_t);
         let limit = mu * f_n_mag.abs();
         // squared test: no square root while the contact sticks
         if f_t_sq > limit * limit {
             let f_t_mag = f_t_sq.sqrt();
-            if kt > 0.0 && dot(x, x) > 0.0 {
+            if kt > 0.0 && x.dot(&x) > 0.0 {
                 let ratio = limit / f_t_mag;
                 let damp = c_t / kt;
-                x = [
+                x = Vec3::new(
                     ratio * (x[0] + damp * slip[0]) - damp * slip[0],
                     ratio * (x[1] + damp * slip[1]) - damp * slip[1],
                     ratio * (x[2] + damp * slip[2]) - damp * slip[2],
-                ];
-                f_t = scale(f_t, ratio);
+                );
+                f_t *= ratio;
             } else {
                 f_t = if f_t_mag > 0.0 {
-                    scale(f_t, limit / f_t_mag)
+                    f_t * (limit / f_t_mag)
                 } else {
-                    [0.0; 3]
+                    Vec3::zeros()
                 };
-                x = [0.0; 3];
+                x = Vec3::zeros();
             }
         }
         *xi = x;
-        let f_n = scale(n, f_n_mag);
-        ([f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]], f_t)
+        let f_n = n * f_n_mag;
+        (
+            Vec3::new(f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]),
+            f_t,
+        )
     }
 }

@@ -5,7 +5,7 @@
 use super::contact_model::ContactLaw;
 use super::domain_box::{minimum_image, DomainBox};
 use super::neighbour_list::{wall_distance, wall_normal};
-use super::vec3::{cross, dot, scale, Vec3};
+use crate::Vec3;
 
 /// Read-only inputs of the pair pass.
 pub(super) struct ContactContext<'a> {
@@ -67,13 +67,13 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
             let j = c.partner[k] as usize;
             let kk = k - k0;
             let far = j >= far_from;
-            let mut d = [xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]];
+            let mut d = Vec3::new(xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]);
             if PERIODIC {
                 d = minimum_image(d, c.length, c.inv_l);
             }
             let rj = radius[j];
             let reach = ri + rj;
-            let dist2 = dot(d, d);
+            let dist2 = d.dot(&d);
             if dist2 >= reach * reach {
                 // most listed pairs stay apart: read before writing saves bandwidth
                 if far {
@@ -82,31 +82,31 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
                     }
                     far_k += 1;
                 }
-                if wk.hist[kk] != [0.0; 3] {
-                    wk.hist[kk] = [0.0; 3];
+                if wk.hist[kk] != Vec3::zeros() {
+                    wk.hist[kk] = Vec3::zeros();
                 }
                 continue;
             }
             let dist = dist2.sqrt();
-            let nrm = scale(d, 1.0 / dist);
+            let nrm = d * (1.0 / dist);
             let delta = reach - dist;
-            let u = [vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]];
-            let u_n = dot(u, nrm);
-            let spin = [
+            let u = Vec3::new(vi[0] - v[j][0], vi[1] - v[j][1], vi[2] - v[j][2]);
+            let u_n = u.dot(&nrm);
+            let spin = Vec3::new(
                 ri * wi[0] + rj * w[j][0],
                 ri * wi[1] + rj * w[j][1],
                 ri * wi[2] + rj * w[j][2],
-            ];
-            let sc = cross(spin, nrm);
-            let slip = [
+            );
+            let sc = spin.cross(&nrm);
+            let slip = Vec3::new(
                 u[0] - u_n * nrm[0] - sc[0],
                 u[1] - u_n * nrm[1] - sc[1],
                 u[2] - u_n * nrm[2] - sc[2],
-            ];
+            );
             let m_eff = 1.0 / (inv_m[i] + inv_m[j]);
             let r_eff = ri * rj / reach;
             let (f, ft) = pair_force(nrm, delta, r_eff, m_eff, u_n, slip, dt, &mut wk.hist[kk]);
-            let tq = cross(nrm, ft);
+            let tq = nrm.cross(&ft);
             let load = [f[0], f[1], f[2], -tq[0], -tq[1], -tq[2]];
             add_load(&mut wk.own[i - p0], load, 1.0);
             if j < p1 {
@@ -125,22 +125,22 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
                 let f = c.wall_face[m] as usize;
                 let delta = ri - wall_distance(c.domain, f, xi);
                 if delta <= 0.0 {
-                    wk.whist[mm] = [0.0; 3];
-                    wk.wforce[mm] = [0.0; 3];
-                    wk.wtorque[mm] = [0.0; 3];
+                    wk.whist[mm] = Vec3::zeros();
+                    wk.wforce[mm] = Vec3::zeros();
+                    wk.wtorque[mm] = Vec3::zeros();
                     continue;
                 }
                 let nrm = wall_normal(f);
                 // relative to the wall's own motion (exactly vi for a wall at rest)
                 let uw = c.domain.wall_velocity[f];
-                let vr = [vi[0] - uw[0], vi[1] - uw[1], vi[2] - uw[2]];
-                let u_n = dot(vr, nrm);
-                let sc = cross(scale(wi, ri), nrm);
-                let slip = [
+                let vr = Vec3::new(vi[0] - uw[0], vi[1] - uw[1], vi[2] - uw[2]);
+                let u_n = vr.dot(&nrm);
+                let sc = (wi * ri).cross(&nrm);
+                let slip = Vec3::new(
                     vr[0] - u_n * nrm[0] - sc[0],
                     vr[1] - u_n * nrm[1] - sc[1],
                     vr[2] - u_n * nrm[2] - sc[2],
-                ];
+                );
                 let (fw, ft) = law.force(
                     nrm,
                     delta,
@@ -152,7 +152,7 @@ pub(super) fn evaluate_chunk<const PERIODIC: bool, L>(
                     &mut wk.whist[mm],
                 );
                 wk.wforce[mm] = fw;
-                wk.wtorque[mm] = scale(cross(nrm, ft), -ri);
+                wk.wtorque[mm] = nrm.cross(&ft) * (-ri);
             }
         }
     }

@@ -33,7 +33,7 @@ use super::domain_box::{minimum_image, DomainBox};
 use super::motion::{Gather, Motion, Moving};
 use super::neighbour_list::{wall_mask, ContactHistory, NeighbourList, CHUNK};
 use super::particle_state::ParticleState;
-use super::vec3::{dot, Vec3};
+use crate::Vec3;
 
 mod collision_step;
 mod monitors;
@@ -257,11 +257,11 @@ impl Dem {
             for k in self.lists.row_start[i] as usize..self.lists.row_start[i + 1] as usize {
                 let j = self.lists.partner[k] as usize;
                 let d = minimum_image(
-                    [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]],
+                    Vec3::new(x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]),
                     length,
                     inv_l,
                 );
-                let overlap = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
+                let overlap = self.radius[i] + self.radius[j] - d.dot(&d).sqrt();
                 let d_min = 2.0 * self.radius[i].min(self.radius[j]);
                 if overlap > self.config.overlap_tolerance * d_min {
                     let (a, b) = (input_index[i] as usize, input_index[j] as usize);
@@ -521,7 +521,7 @@ impl Dem {
                 });
             }
         }
-        let periodic = ctx.inv_l != [0.0; 3];
+        let periodic = ctx.inv_l != Vec3::zeros();
         let ctx = &ctx;
         let run = |wk: &mut ContactWork| match (periodic, pair_law) {
             (true, ContactLaw::Linear { .. }) => {
@@ -618,7 +618,6 @@ mod tests {
     use crate::particles::contact_model::{PairModel, TangentialRule, WallModel};
     use crate::particles::domain_box::FaceCondition;
     use crate::particles::random_packing::random_packing;
-    use crate::particles::vec3::{cross, norm, scale};
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)
@@ -636,7 +635,7 @@ mod tests {
         }
     }
 
-    fn two_particles(xa: Vec3, xb: Vec3, da: f64, db: f64) -> ParticleState {
+    fn two_particles(xa: impl Into<Vec3>, xb: impl Into<Vec3>, da: f64, db: f64) -> ParticleState {
         let mut p = ParticleState::default();
         p.push(1, xa, da, 2500.0);
         p.push(2, xb, db, 1500.0);
@@ -645,7 +644,7 @@ mod tests {
 
     fn lenient(pair: PairModel, wall: WallModel) -> DemConfig {
         let mut c = DemConfig::new(pair, wall);
-        c.gravity = [0.0; 3];
+        c.gravity = Vec3::zeros();
         c.overlap_tolerance = 1.0;
         c
     }
@@ -663,35 +662,53 @@ mod tests {
         let (da, db) = (2e-3, 1.5e-3);
         let cases: [(f64, Vec3, Vec3, Vec3, f64); 4] = [
             // (overlap, U_A − U_B, ω_A, ω_B, Δt)
-            (1e-5, [0.0, 0.0, -0.2], [0.0; 3], [0.0; 3], 1e-6),
             (
-                3e-5,
-                [0.05, -0.01, -0.1],
-                [10.0, 0.0, -3.0],
-                [0.0, 5.0, 1.0],
+                1e-5,
+                Vec3::new(0.0, 0.0, -0.2),
+                Vec3::zeros(),
+                Vec3::zeros(),
                 1e-6,
             ),
-            (2e-5, [0.3, 0.2, 0.05], [0.0; 3], [0.0, 0.0, 40.0], 1e-4),
-            (5e-6, [0.001, 0.0, 0.3], [1.0, 1.0, 0.0], [0.0; 3], 1e-7),
+            (
+                3e-5,
+                Vec3::new(0.05, -0.01, -0.1),
+                Vec3::new(10.0, 0.0, -3.0),
+                Vec3::new(0.0, 5.0, 1.0),
+                1e-6,
+            ),
+            (
+                2e-5,
+                Vec3::new(0.3, 0.2, 0.05),
+                Vec3::zeros(),
+                Vec3::new(0.0, 0.0, 40.0),
+                1e-4,
+            ),
+            (
+                5e-6,
+                Vec3::new(0.001, 0.0, 0.3),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::zeros(),
+                1e-7,
+            ),
         ];
         let (e, nu, alpha, b, mu) = (1e7f64, 0.35f64, 0.12f64, 1.5f64, 0.3f64);
         let mut slid = 0;
         let mut stuck = 0;
         for (delta, u, wa, wb, dt) in cases {
-            let dir = [0.3f64, -0.5, 0.81];
-            let rhat = scale(dir, 1.0 / norm(dir));
+            let dir = Vec3::new(0.3f64, -0.5, 0.81);
+            let rhat = dir * (1.0 / dir.norm());
             let sep = 0.5 * (da + db) - delta;
             let xb = [0.01, 0.01, 0.01];
-            let xa = [
+            let xa = Vec3::new(
                 xb[0] + sep * rhat[0],
                 xb[1] + sep * rhat[1],
                 xb[2] + sep * rhat[2],
-            ];
-            let mut p = two_particles(xa, xb, da, db);
+            );
+            let mut p = two_particles(xa, Vec3::from(xb), da, db);
             p.velocity[0] = u;
             p.angular_velocity[0] = wa;
             p.angular_velocity[1] = wb;
-            let domain = DomainBox::uniform([0.0; 3], [0.02; 3], FaceCondition::Periodic);
+            let domain = DomainBox::uniform(Vec3::zeros(), [0.02; 3], FaceCondition::Periodic);
             let mut dem = Dem::new(
                 lenient(hertz_pair(TangentialRule::DpmFoamReset), WallModel::None),
                 domain,
@@ -711,41 +728,41 @@ mod tests {
             let m = ma * mb / (ma + mb);
             let kn = 4.0 / 3.0 * r.sqrt() * e_star;
             let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
-            let un = dot(u, rhat);
+            let un = u.dot(&rhat);
             let fn_mag = kn * delta.powf(b) - eta_n * un;
-            let f_n = scale(rhat, fn_mag);
-            let spin = [
+            let f_n = rhat * fn_mag;
+            let spin = Vec3::new(
                 da / 2.0 * wa[0] + db / 2.0 * wb[0],
                 da / 2.0 * wa[1] + db / 2.0 * wb[1],
                 da / 2.0 * wa[2] + db / 2.0 * wb[2],
-            ];
-            let c = cross(spin, rhat);
-            let slip = [
+            );
+            let c = spin.cross(&rhat);
+            let slip = Vec3::new(
                 u[0] - un * rhat[0] - c[0],
                 u[1] - un * rhat[1] - c[1],
                 u[2] - un * rhat[2] - c[2],
-            ];
-            let xi = scale(slip, dt);
+            );
+            let xi = slip * dt;
             let kt = 8.0 * (r * delta).sqrt() * g_star;
-            let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
+            let f_t = if kt * xi.norm() > mu * fn_mag.abs() {
                 slid += 1;
-                scale(slip, -mu * fn_mag.abs() / norm(slip))
+                slip * (-mu * fn_mag.abs() / slip.norm())
             } else {
                 stuck += 1;
-                [
+                Vec3::new(
                     -kt * xi[0] - eta_n * slip[0],
                     -kt * xi[1] - eta_n * slip[1],
                     -kt * xi[2] - eta_n * slip[2],
-                ]
+                )
             };
-            let f_a = [f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]];
-            let t_a = cross(scale(rhat, -da / 2.0), f_t);
-            let t_b = cross(scale(rhat, db / 2.0), scale(f_t, -1.0));
+            let f_a = Vec3::new(f_n[0] + f_t[0], f_n[1] + f_t[1], f_n[2] + f_t[2]);
+            let t_a = (rhat * (-da / 2.0)).cross(&f_t);
+            let t_b = (rhat * (db / 2.0)).cross(&(f_t * (-1.0)));
             let fa = dem.particles.contact_force[ia];
             let fb = dem.particles.contact_force[ib];
             let ta = dem.particles.contact_torque[ia];
             let tb = dem.particles.contact_torque[ib];
-            let scale_f = norm(f_a);
+            let scale_f = f_a.norm();
             for k in 0..3 {
                 assert!(
                     (fa[k] - f_a[k]).abs() < 1e-12 * scale_f,
@@ -791,8 +808,13 @@ mod tests {
         };
         let d = 2e-3;
         for (delta, v, w, dt) in [
-            (2e-5, [0.01, 0.0, -0.3], [0.0, 2.0, 0.0], 1e-6),
-            (1e-5, [0.5, 0.2, -0.1], [0.0; 3], 1e-5),
+            (
+                2e-5,
+                Vec3::new(0.01, 0.0, -0.3),
+                Vec3::new(0.0, 2.0, 0.0),
+                1e-6,
+            ),
+            (1e-5, Vec3::new(0.5, 0.2, -0.1), Vec3::zeros(), 1e-5),
         ] {
             let mut p = ParticleState::default();
             p.push(9, [0.01, 0.01, d / 2.0 - delta], d, 2500.0);
@@ -800,7 +822,7 @@ mod tests {
             p.angular_velocity[0] = w;
             let mut dem = Dem::new(
                 lenient(hertz_pair(TangentialRule::DpmFoamReset), wall.clone()),
-                DomainBox::walled([0.0; 3], [0.02; 3]),
+                DomainBox::walled(Vec3::zeros(), [0.02; 3]),
                 p,
             )
             .unwrap();
@@ -809,39 +831,39 @@ mod tests {
             let e_star = 1.0 / ((1.0 - np * np) / ep + (1.0 - nw * nw) / ew);
             let kn = 4.0 / 3.0 * r.sqrt() * e_star;
             let g_star = 1.0 / (2.0 * ((2.0 + np - np * np) / ep + (2.0 + nw - nw * nw) / ew));
-            let n = [0.0, 0.0, 1.0];
+            let n = Vec3::new(0.0, 0.0, 1.0);
             let eta_n = alpha * (m * kn).sqrt() * delta.powf(0.25);
-            let fn_mag = kn * delta.powf(b) - eta_n * dot(v, n);
-            let c = cross(w, scale(n, -r));
-            let slip = [v[0] + c[0], v[1] + c[1], 0.0];
+            let fn_mag = kn * delta.powf(b) - eta_n * v.dot(&n);
+            let c = w.cross(&(n * (-r)));
+            let slip = Vec3::new(v[0] + c[0], v[1] + c[1], 0.0);
             let kt = 8.0 * (r * delta).sqrt() * g_star;
-            let mut xi = [0.0; 3];
+            let mut xi = Vec3::zeros();
             let mut slid = Vec::new();
             for _ in 0..2 {
                 dem.compute_contact_forces(dt);
-                xi = [xi[0] + slip[0] * dt, xi[1] + slip[1] * dt, 0.0];
-                let f_t = if kt * norm(xi) > mu * fn_mag.abs() {
-                    xi = [0.0; 3];
+                xi = Vec3::new(xi[0] + slip[0] * dt, xi[1] + slip[1] * dt, 0.0);
+                let f_t = if kt * xi.norm() > mu * fn_mag.abs() {
+                    xi = Vec3::zeros();
                     slid.push(true);
-                    scale(slip, -mu * fn_mag.abs() / norm(slip))
+                    slip * (-mu * fn_mag.abs() / slip.norm())
                 } else {
                     slid.push(false);
-                    [
+                    Vec3::new(
                         -kt * xi[0] - eta_n * slip[0],
                         -kt * xi[1] - eta_n * slip[1],
                         0.0,
-                    ]
+                    )
                 };
-                let f = [f_t[0], f_t[1], fn_mag];
-                let t = cross(scale(n, -r), f_t);
+                let f = Vec3::new(f_t[0], f_t[1], fn_mag);
+                let t = (n * (-r)).cross(&f_t);
                 let (fo, to) = (
                     dem.particles.contact_force[0],
                     dem.particles.contact_torque[0],
                 );
                 for k in 0..3 {
-                    assert!((fo[k] - f[k]).abs() < 1e-12 * norm(f), "{fo:?} vs {f:?}");
+                    assert!((fo[k] - f[k]).abs() < 1e-12 * f.norm(), "{fo:?} vs {f:?}");
                     assert!(
-                        (to[k] - t[k]).abs() < 1e-12 * norm(f) * r,
+                        (to[k] - t[k]).abs() < 1e-12 * f.norm() * r,
                         "{to:?} vs {t:?}"
                     );
                 }
@@ -879,8 +901,8 @@ mod tests {
             let mut p = ParticleState::default();
             p.push(9, [0.01, 0.01, d / 2.0 - 2e-5], d, 2500.0);
             p.velocity[0] = v;
-            p.angular_velocity[0] = [0.0, 3.0, 0.0];
-            let mut dom = DomainBox::walled([0.0; 3], [0.02; 3]);
+            p.angular_velocity[0] = Vec3::new(0.0, 3.0, 0.0);
+            let mut dom = DomainBox::walled(Vec3::zeros(), [0.02; 3]);
             dom.wall_velocity[4] = uw;
             let mut dem = Dem::new(
                 lenient(hertz_pair(TangentialRule::DpmFoamReset), wall.clone()),
@@ -894,13 +916,13 @@ mod tests {
                 dem.particles.contact_torque[0],
             )
         };
-        let uw = [0.5, -0.2, 0.0];
-        let moving = loads([0.01, 0.0, -0.3], uw);
-        let relative = loads([0.01 - uw[0], 0.0 - uw[1], -0.3], [0.0; 3]);
+        let uw = Vec3::new(0.5, -0.2, 0.0);
+        let moving = loads(Vec3::new(0.01, 0.0, -0.3), uw);
+        let relative = loads(Vec3::new(0.01 - uw[0], 0.0 - uw[1], -0.3), Vec3::zeros());
         assert_eq!(moving, relative);
         // the wall drags the particle its way
         assert!(moving.0[0] > 0.0 && moving.0[1] < 0.0, "{moving:?}");
-        assert_ne!(moving, loads([0.01, 0.0, -0.3], [0.0; 3]));
+        assert_ne!(moving, loads(Vec3::new(0.01, 0.0, -0.3), Vec3::zeros()));
     }
 
     /// DPMFoam's sub-cycle count, by hand (`PairSpringSliderDashpot::nSubCycles`):
@@ -908,9 +930,9 @@ mod tests {
     #[test]
     fn substeps_follow_the_dpmfoam_rule() {
         let mut p = two_particles([0.005, 0.01, 0.01], [0.015, 0.01, 0.01], 1e-3, 2e-3);
-        p.velocity[0] = [0.3, 0.0, 0.4];
-        p.angular_velocity[1] = [0.0, 100.0, 0.0];
-        let mut dom = DomainBox::walled([0.0; 3], [0.02; 3]);
+        p.velocity[0] = Vec3::new(0.3, 0.0, 0.4);
+        p.angular_velocity[1] = Vec3::new(0.0, 100.0, 0.0);
+        let mut dom = DomainBox::walled(Vec3::zeros(), [0.02; 3]);
         dom.faces = [FaceCondition::Periodic; 6];
         let dem = Dem::new(
             lenient(hertz_pair(TangentialRule::CappedSpring), WallModel::None),
@@ -938,7 +960,7 @@ mod tests {
             collision_resolution_steps: 20.0,
         };
         let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), wall);
-        let dom = DomainBox::walled([0.0; 3], [0.01; 3]);
+        let dom = DomainBox::walled(Vec3::zeros(), [0.01; 3]);
         let mut p = ParticleState::default();
         for k in 0..4 {
             p.push(
@@ -971,7 +993,7 @@ mod tests {
         ));
 
         let mut q = p.clone();
-        q.position[3] = [0.005, 0.011, 0.005];
+        q.position[3] = Vec3::new(0.005, 0.011, 0.005);
         let e = run(&q, &cfg);
         assert!(
             matches!(
@@ -987,7 +1009,7 @@ mod tests {
         assert!(e.to_string().contains("outside the domain"));
 
         let mut q = p.clone();
-        q.position[3] = [0.0062, 0.005, 0.0052]; // 0.8e-3 from particle 2: overlap 0.2 d
+        q.position[3] = Vec3::new(0.0062, 0.005, 0.0052); // 0.8e-3 from particle 2: overlap 0.2 d
         let e = run(&q, &cfg);
         match &e {
             DemError::Overlap {
@@ -1056,11 +1078,11 @@ mod tests {
     /// is sorted on restore and gives the same contact forces.
     #[test]
     fn restore_sorts_a_shuffled_snapshot() {
-        let centres = random_packing([0.0; 3], [0.006; 3], 1e-3, 0.3, 5).unwrap();
+        let centres = random_packing(Vec3::zeros(), [0.006; 3], 1e-3, 0.3, 5).unwrap();
         let mut p = ParticleState::default();
         for (k, x) in centres.iter().enumerate() {
             p.push(k as u64, *x, 1e-3, 2500.0);
-            p.velocity[k] = [0.0, 0.0, -0.2];
+            p.velocity[k] = Vec3::new(0.0, 0.0, -0.2);
         }
         let wall = WallModel::LinearSpringDashpot {
             kn: 500.0,
@@ -1071,7 +1093,7 @@ mod tests {
             collision_resolution_steps: 30.0,
         };
         let cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), wall);
-        let dom = DomainBox::walled([0.0; 3], [0.006; 3]);
+        let dom = DomainBox::walled(Vec3::zeros(), [0.006; 3]);
         let mut dem = Dem::new(cfg.clone(), dom.clone(), p).unwrap();
         let h = dem.collision_time_step();
         for _ in 0..3000 {
@@ -1093,14 +1115,14 @@ mod tests {
         let mut touching = 0;
         for id in 0..n as u64 {
             let (a, b) = (force_of(&dem, id), force_of(&again, id));
-            let scale_f = norm(a).max(1e-12);
+            let scale_f = a.norm().max(1e-12);
             for k in 0..3 {
                 assert!(
                     (a[k] - b[k]).abs() <= 1e-9 * scale_f,
                     "id {id}: {a:?} vs {b:?}"
                 );
             }
-            touching += (norm(a) > 0.0) as usize;
+            touching += (a.norm() > 0.0) as usize;
         }
         assert!(touching > n / 4, "{touching} of {n} particles touch");
     }
@@ -1110,14 +1132,14 @@ mod tests {
         let cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
         let mut dem = Dem::new(
             cfg,
-            DomainBox::uniform([0.0; 3], [1.0; 3], FaceCondition::Periodic),
+            DomainBox::uniform(Vec3::zeros(), [1.0; 3], FaceCondition::Periodic),
             ParticleState::default(),
         )
         .unwrap();
         assert_eq!(dem.advance(1e-3), 1);
         assert_eq!(dem.kinetic_energy(), (0.0, 0.0));
         assert_eq!(dem.max_overlap_ratio(), 0.0);
-        assert_eq!(dem.mean_velocity(), [0.0; 3]);
+        assert_eq!(dem.mean_velocity(), Vec3::zeros());
     }
 
     #[test]
@@ -1126,11 +1148,11 @@ mod tests {
         // velocities exactly (no force, one sub-step per outer step); with collisions on
         // the same input is rejected as overlapping
         let mut p = two_particles([0.004, 0.005, 0.005], [0.0045, 0.005, 0.005], 1e-3, 1e-3);
-        p.velocity[0] = [0.1, 0.0, 0.0];
-        p.velocity[1] = [-0.1, 0.0, 0.0];
+        p.velocity[0] = Vec3::new(0.1, 0.0, 0.0);
+        p.velocity[1] = Vec3::new(-0.1, 0.0, 0.0);
         let mut cfg = DemConfig::new(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
-        cfg.gravity = [0.0; 3];
-        let domain = DomainBox::uniform([0.0; 3], [0.01; 3], FaceCondition::Periodic);
+        cfg.gravity = Vec3::zeros();
+        let domain = DomainBox::uniform(Vec3::zeros(), [0.01; 3], FaceCondition::Periodic);
         assert!(matches!(
             Dem::new(cfg.clone(), domain.clone(), p.clone()),
             Err(DemError::Overlap { .. })
@@ -1143,20 +1165,20 @@ mod tests {
         let q = dem.particles();
         for i in 0..2 {
             let v = if q.id[i] == 1 { 0.1 } else { -0.1 };
-            assert_eq!(q.velocity[i], [v, 0.0, 0.0]);
-            assert_eq!(q.contact_force[i], [0.0; 3]);
+            assert_eq!(q.velocity[i], Vec3::new(v, 0.0, 0.0));
+            assert_eq!(q.contact_force[i], Vec3::zeros());
         }
         assert_eq!(dem.pair_count(), 0);
     }
 
     #[test]
     fn rebound_face_applies_openfoam_rule() {
-        let mut dom = DomainBox::uniform([0.0; 3], [0.01; 3], FaceCondition::Periodic);
+        let mut dom = DomainBox::uniform(Vec3::zeros(), [0.01; 3], FaceCondition::Periodic);
         dom.faces[4] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
         dom.faces[5] = FaceCondition::Rebound { e: 0.6, mu: 0.2 };
         let mut p = ParticleState::default();
         p.push(1, [0.005, 0.005, 0.0004], 1e-3, 2500.0);
-        p.velocity[0] = [0.3, 0.0, -1.0];
+        p.velocity[0] = Vec3::new(0.3, 0.0, -1.0);
         let mut dem = Dem::new(
             lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None),
             dom,
@@ -1176,20 +1198,21 @@ mod tests {
     /// `constrainDirection`), whatever the loads along y; in the plane they move freely.
     #[test]
     fn a_planar_axis_keeps_particles_on_the_mid_plane() {
-        let mut dom = DomainBox::uniform([0.0; 3], [0.01, 0.001, 0.01], FaceCondition::Periodic);
+        let mut dom =
+            DomainBox::uniform(Vec3::zeros(), [0.01, 0.001, 0.01], FaceCondition::Periodic);
         dom.faces[2] = FaceCondition::Rebound { e: 1.0, mu: 0.0 };
         dom.faces[3] = FaceCondition::Rebound { e: 1.0, mu: 0.0 };
         dom.planar = [false, true, false];
         let mut p = ParticleState::default();
         p.push(1, [0.005, 0.0003, 0.005], 1e-3, 2500.0);
-        p.velocity[0] = [0.1, 0.3, 0.0];
+        p.velocity[0] = Vec3::new(0.1, 0.3, 0.0);
         let mut config = lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None);
-        config.gravity = [0.0, -9.81, -9.81];
+        config.gravity = Vec3::new(0.0, -9.81, -9.81);
         let mut dem = Dem::new(config, dom, p).unwrap();
         assert_eq!(dem.particles().position[0][1], 0.0005);
         assert_eq!(dem.particles().velocity[0][1], 0.0);
         for _ in 0..10 {
-            dem.external_loads_mut().0[0] = [0.0, 1e-6, 0.0];
+            dem.external_loads_mut().0[0] = Vec3::new(0.0, 1e-6, 0.0);
             dem.advance(1e-3);
         }
         let p = dem.particles();
@@ -1206,19 +1229,19 @@ mod tests {
     /// many steps with rebuilds, periodic axes included.
     #[test]
     fn lists_contain_every_contact_and_threads_do_not_change_bits() {
-        let mut dom = DomainBox::walled([0.0; 3], [0.008, 0.008, 0.012]);
+        let mut dom = DomainBox::walled(Vec3::zeros(), [0.008, 0.008, 0.012]);
         for f in 0..4 {
             dom.faces[f] = FaceCondition::Periodic;
         }
-        let centres = random_packing([0.0; 3], [0.008, 0.008, 0.012], 1e-3, 0.3, 7).unwrap();
+        let centres = random_packing(Vec3::zeros(), [0.008, 0.008, 0.012], 1e-3, 0.3, 7).unwrap();
         let mut p = ParticleState::default();
         for (k, x) in centres.iter().enumerate() {
             p.push(k as u64, *x, 1e-3, 2500.0);
-            p.velocity[k] = [
+            p.velocity[k] = Vec3::new(
                 0.1 * ((k % 7) as f64 - 3.0),
                 0.05 * ((k % 5) as f64 - 2.0),
                 -0.1,
-            ];
+            );
         }
         let wall = WallModel::LinearSpringDashpot {
             kn: 500.0,
@@ -1244,15 +1267,15 @@ mod tests {
         for i in 0..q.len() {
             for j in i + 1..q.len() {
                 let d = minimum_image(
-                    [
+                    Vec3::new(
                         q.position[i][0] - q.position[j][0],
                         q.position[i][1] - q.position[j][1],
                         q.position[i][2] - q.position[j][2],
-                    ],
+                    ),
                     l,
                     inv,
                 );
-                if norm(d) < 1e-3 {
+                if d.norm() < 1e-3 {
                     contacts += 1;
                     assert!(
                         listed.contains(&(i, j)),
@@ -1272,21 +1295,21 @@ mod tests {
     #[test]
     fn block_scatter_balances_forces_across_blocks_and_seams() {
         let size = [0.02, 0.02, 0.02];
-        let mut dom = DomainBox::walled([0.0; 3], size);
+        let mut dom = DomainBox::walled(Vec3::zeros(), size);
         dom.faces = [FaceCondition::Periodic; 6];
-        let centres = random_packing([0.0; 3], size, 1e-3, 0.3, 11).unwrap();
+        let centres = random_packing(Vec3::zeros(), size, 1e-3, 0.3, 11).unwrap();
         let mut rng = crate::particles::SplitMix64::new(5);
         let mut p = ParticleState::default();
         for (k, x) in centres.iter().enumerate() {
             p.push(k as u64, *x, 1e-3, 2500.0);
-            p.velocity[k] = [
+            p.velocity[k] = Vec3::new(
                 2.0 * (rng.next_f64() - 0.5),
                 2.0 * (rng.next_f64() - 0.5),
                 2.0 * (rng.next_f64() - 0.5),
-            ];
+            );
         }
         let mut cfg = DemConfig::new(PairModel::linear(500.0, 0.5, 0.3), WallModel::None);
-        cfg.gravity = [0.0; 3];
+        cfg.gravity = Vec3::zeros();
         // the balance every step, across rebuilds that change the block size
         let mut sizes = std::collections::BTreeSet::new();
         let mut any_far = false;
@@ -1298,7 +1321,7 @@ mod tests {
                 .map(|a| f.iter().map(|x| x[a]).sum::<f64>().powi(2))
                 .sum::<f64>()
                 .sqrt();
-            let scale_f: f64 = f.iter().map(|x| norm(*x)).sum();
+            let scale_f: f64 = f.iter().map(|x| (*x).norm()).sum();
             assert!(
                 net <= 1e-12 * scale_f.max(1e-300),
                 "step {step}: net {net} of {scale_f}"
@@ -1310,15 +1333,11 @@ mod tests {
         assert!(n / smallest >= 3, "{n} particles, blocks {sizes:?}");
         assert!(any_far, "no far pairs");
         let f = &dem.particles().contact_force;
-        let total: Vec3 = (0..3)
-            .map(|a| f.iter().map(|x| x[a]).sum())
-            .collect::<Vec<f64>>()
-            .try_into()
-            .unwrap();
-        let scale_f: f64 = f.iter().map(|x| norm(*x)).sum();
+        let total = Vec3::from_fn(|a, _| f.iter().map(|x| x[a]).sum());
+        let scale_f: f64 = f.iter().map(|x| (*x).norm()).sum();
         assert!(scale_f > 0.0, "no contacts");
         assert!(
-            norm(total) < 1e-12 * scale_f,
+            total.norm() < 1e-12 * scale_f,
             "net force {total:?} of {scale_f}"
         );
         let one = run_on_threads(1, &cfg, &dom, &p, 300, |_, _| {});

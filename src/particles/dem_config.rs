@@ -7,7 +7,7 @@ use super::dem_error::DemError;
 use super::domain_box::{DomainBox, FaceCondition};
 use super::neighbour_list::wall_distance;
 use super::particle_state::ParticleState;
-use super::vec3::Vec3;
+use crate::Vec3;
 
 /// Engine settings besides the particles and the box.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,7 +37,7 @@ impl DemConfig {
         DemConfig {
             pair_model,
             wall_model,
-            gravity: [0.0, 0.0, -9.81],
+            gravity: Vec3::new(0.0, 0.0, -9.81),
             fluid_density: 0.0,
             skin_fraction: 0.1,
             overlap_tolerance: 1e-3,
@@ -232,7 +232,7 @@ pub(super) fn validate_config(c: &DemConfig) -> Result<(), DemError> {
         c.overlap_tolerance >= 0.0,
         ">= 0",
     )?;
-    for g in c.gravity {
+    for &g in c.gravity.iter() {
         check("g", g, true, "finite")?;
     }
     if let Some(h) = c.max_substep {

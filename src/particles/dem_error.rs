@@ -1,6 +1,7 @@
 //! Errors of the DEM engine: bad particles name the particle (index in the input and id),
 //! bad coefficients name the keyword.
 
+use crate::Vec3;
 use std::fmt;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -17,7 +18,7 @@ pub enum DemError {
     OutsideDomain {
         index: usize,
         id: u64,
-        position: [f64; 3],
+        position: Vec3,
     },
     /// Sphere cuts a wall face by more than the tolerance (fraction of `d`).
     WallOverlap {
@@ -59,7 +60,7 @@ pub enum DemError {
     /// Particle arrays of different lengths.
     InconsistentArrays,
     /// The box is empty or inverted.
-    BadDomain { lo: [f64; 3], hi: [f64; 3] },
+    BadDomain { lo: Vec3, hi: Vec3 },
 }
 
 const FACE_NAMES: [&str; 6] = ["x-min", "x-max", "y-min", "y-max", "z-min", "z-max"];

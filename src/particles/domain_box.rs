@@ -1,7 +1,7 @@
 //! The box the particles live in: six faces, each a wall, a rebound patch or periodic.
 
 use super::particle_state::ParticleState;
-use super::vec3::Vec3;
+use crate::Vec3;
 
 /// What one face of the box does to particles.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,27 +37,27 @@ pub struct DomainBox {
 
 impl DomainBox {
     /// A box whose six faces are all walls.
-    pub fn walled(lo: Vec3, hi: Vec3) -> Self {
+    pub fn walled(lo: impl Into<Vec3>, hi: impl Into<Vec3>) -> Self {
         Self::uniform(lo, hi, FaceCondition::Wall)
     }
 
     /// A box whose six faces share one condition.
-    pub fn uniform(lo: Vec3, hi: Vec3, face: FaceCondition) -> Self {
+    pub fn uniform(lo: impl Into<Vec3>, hi: impl Into<Vec3>, face: FaceCondition) -> Self {
         DomainBox {
-            lo,
-            hi,
+            lo: lo.into(),
+            hi: hi.into(),
             faces: [face; 6],
             planar: [false; 3],
-            wall_velocity: [[0.0; 3]; 6],
+            wall_velocity: [Vec3::zeros(); 6],
         }
     }
 
     pub fn length(&self) -> Vec3 {
-        [
+        Vec3::new(
             self.hi[0] - self.lo[0],
             self.hi[1] - self.lo[1],
             self.hi[2] - self.lo[2],
-        ]
+        )
     }
 
     /// Puts the particles on the mid-plane of each [`Self::planar`] axis, with no velocity
@@ -74,7 +74,7 @@ impl DomainBox {
 
     /// 1 along a free axis, 0 along a [`Self::planar`] one: the velocity's factor.
     pub(crate) fn free_axes(&self) -> Vec3 {
-        std::array::from_fn(|a| if self.planar[a] { 0.0 } else { 1.0 })
+        Vec3::from_fn(|a, _| if self.planar[a] { 0.0 } else { 1.0 })
     }
 
     pub fn is_periodic(&self, axis: usize) -> bool {
@@ -85,7 +85,7 @@ impl DomainBox {
     /// `d − L round(d/L)` leaves non-periodic axes untouched without a branch.
     pub(crate) fn inverse_periodic_length(&self) -> Vec3 {
         let l = self.length();
-        let mut inv = [0.0; 3];
+        let mut inv = Vec3::zeros();
         for a in 0..3 {
             if self.is_periodic(a) {
                 inv[a] = 1.0 / l[a];
@@ -98,11 +98,11 @@ impl DomainBox {
 /// Minimum-image separation on periodic axes (`inv_l` from `inverse_periodic_length`).
 #[inline(always)]
 pub(crate) fn minimum_image(d: Vec3, length: Vec3, inv_l: Vec3) -> Vec3 {
-    [
+    Vec3::new(
         d[0] - length[0] * nearest_integer(d[0] * inv_l[0]),
         d[1] - length[1] * nearest_integer(d[1] * inv_l[1]),
         d[2] - length[2] * nearest_integer(d[2] * inv_l[2]),
-    ]
+    )
 }
 
 /// `s.round()` for the small |s| met here, by a truncating cast: `f64::round` is a libm call
@@ -118,12 +118,12 @@ mod tests {
 
     #[test]
     fn minimum_image_wraps_only_periodic_axes() {
-        let mut b = DomainBox::walled([0.0; 3], [1.0, 2.0, 4.0]);
+        let mut b = DomainBox::walled(Vec3::zeros(), [1.0, 2.0, 4.0]);
         b.faces[0] = FaceCondition::Periodic;
         b.faces[1] = FaceCondition::Periodic;
         let inv = b.inverse_periodic_length();
-        assert_eq!(inv, [1.0, 0.0, 0.0]);
-        let d = minimum_image([0.9, 1.9, -3.9], b.length(), inv);
+        assert_eq!(inv, Vec3::new(1.0, 0.0, 0.0));
+        let d = minimum_image(Vec3::new(0.9, 1.9, -3.9), b.length(), inv);
         assert!((d[0] + 0.1).abs() < 1e-15);
         assert_eq!(d[1], 1.9);
         assert_eq!(d[2], -3.9);

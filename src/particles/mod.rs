@@ -29,13 +29,13 @@
 //! let mut p = ParticleState::default();
 //! p.push(1, [0.004, 0.005, 0.005], 1e-3, 2500.0);
 //! p.push(2, [0.006, 0.005, 0.005], 1e-3, 2500.0);
-//! p.velocity[0] = [0.5, 0.0, 0.0];
+//! p.velocity[0] = Vec3::new(0.5, 0.0, 0.0);
 //! let wall = WallModel::LinearSpringDashpot {
 //!     kn: 200.0, restitution: 0.5, kt: 200.0 * 2.0 / 7.0, mu: 0.5,
 //!     tangential_damping_ratio: 0.5, collision_resolution_steps: 50.0,
 //! };
 //! let config = DemConfig::new(PairModel::linear(200.0, 0.5, 0.5), wall);
-//! let mut dem = Dem::new(config, DomainBox::walled([0.0; 3], [0.01; 3]), p).unwrap();
+//! let mut dem = Dem::new(config, DomainBox::walled(Vec3::zeros(), [0.01; 3]), p).unwrap();
 //! for _ in 0..100 {
 //!     dem.advance(1e-4); // one fluid step, several collision sub-steps
 //! }
@@ -56,8 +56,8 @@ mod neighbour_list;
 mod particle_state;
 mod random_packing;
 mod snapshot_arrays;
-mod vec3;
 
+pub use crate::Vec3;
 pub use contact_model::{PairModel, TangentialRule, WallModel};
 pub use dem::{sphere_volume, Dem, DemSnapshot};
 pub use dem_config::DemConfig;
@@ -67,4 +67,3 @@ pub use neighbour_list::ContactHistory;
 pub use particle_state::ParticleState;
 pub use random_packing::{random_packing, random_packing_sizes, PackingError, SplitMix64};
 pub use snapshot_arrays::DEM_RESTART_NAMES;
-pub use vec3::Vec3;

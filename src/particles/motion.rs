@@ -4,7 +4,7 @@
 
 use super::domain_box::{minimum_image, FaceCondition};
 use super::neighbour_list::NeighbourList;
-use super::vec3::{dot, scale, Vec3};
+use crate::Vec3;
 
 /// What the half-kick and the drift of one particle read, shared by the separate passes and
 /// the fused gather + kick + drift pass between two sub-steps (the same arithmetic in both).
@@ -100,8 +100,12 @@ impl<'a> Motion<'a> {
             }
         }
         let r = self.reference[i];
-        let d = minimum_image([x[0] - r[0], x[1] - r[1], x[2] - r[2]], length, self.inv_l);
-        dot(d, d) > self.limit
+        let d = minimum_image(
+            Vec3::new(x[0] - r[0], x[1] - r[1], x[2] - r[2]),
+            length,
+            self.inv_l,
+        );
+        d.dot(&d) > self.limit
     }
 }
 
@@ -120,8 +124,8 @@ impl<'a> Gather<'a> {
     pub(super) fn loads(&self, i: usize) -> (Vec3, Vec3) {
         let lists = self.lists;
         let (a, b) = (self.own[i], self.prev[i]);
-        let mut f = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-        let mut t = [a[3] + b[3], a[4] + b[4], a[5] + b[5]];
+        let mut f = Vec3::new(a[0] + b[0], a[1] + b[1], a[2] + b[2]);
+        let mut t = Vec3::new(a[3] + b[3], a[4] + b[4], a[5] + b[5]);
         for &q in
             &lists.far_rev[lists.far_rev_start[i] as usize..lists.far_rev_start[i + 1] as usize]
         {
@@ -131,7 +135,7 @@ impl<'a> Gather<'a> {
                 t[a] += l[a + 3];
             }
         }
-        t = scale(t, self.radius[i]);
+        t *= self.radius[i];
         for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
             for a in 0..3 {
                 f[a] += lists.wall_force[m][a];
@@ -155,10 +159,10 @@ pub(super) struct Moving<'a> {
 /// `U_n = U·n`, `U_t = U − U_n n`; `U ← U − (1+e) U_n n` if `U_n > 0`; `U ← U − μ U_t`.
 #[inline]
 fn rebound(v: &mut Vec3, a: usize, side: usize, e: f64, mu: f64) {
-    let mut n = [0.0; 3];
+    let mut n = Vec3::zeros();
     n[a] = if side == 0 { -1.0 } else { 1.0 };
-    let u_n = dot(*v, n);
-    let u_t = [v[0] - u_n * n[0], v[1] - u_n * n[1], v[2] - u_n * n[2]];
+    let u_n = (*v).dot(&n);
+    let u_t = Vec3::new(v[0] - u_n * n[0], v[1] - u_n * n[1], v[2] - u_n * n[2]);
     if u_n > 0.0 {
         for c in 0..3 {
             v[c] -= (1.0 + e) * u_n * n[c];

@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 use super::cell_grid::CellGrid;
 use super::domain_box::{minimum_image, DomainBox, FaceCondition};
-use super::vec3::{dot, Vec3};
+use crate::Vec3;
 
 /// Particles per parallel work unit of the per-particle passes.
 pub(crate) const CHUNK: usize = 512;
@@ -107,7 +107,7 @@ impl NeighbourList {
         let length = domain.length();
         let inv_l = domain.inverse_periodic_length();
         let skin = self.skin;
-        let periodic = inv_l != [0.0; 3];
+        let periodic = inv_l != Vec3::zeros();
         let any_fixed = fixed.iter().any(|&f| f);
         let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
@@ -137,12 +137,12 @@ impl NeighbourList {
                                 continue;
                             }
                             let xj = positions[j];
-                            let mut d = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                            let mut d = Vec3::new(xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
                             if periodic {
                                 d = minimum_image(d, length, inv_l);
                             }
                             let cut = radius[i] + radius[j] + skin;
-                            if dot(d, d) < cut * cut {
+                            if d.dot(&d) < cut * cut {
                                 list.push(j as u32);
                             }
                         }
@@ -166,7 +166,7 @@ impl NeighbourList {
         }
         let np = self.partner.len();
         self.history.clear();
-        self.history.resize(np, [0.0; 3]);
+        self.history.resize(np, Vec3::zeros());
 
         self.block = block_size(&self.row_start, &self.partner);
         self.far_pair.clear();
@@ -214,11 +214,11 @@ impl NeighbourList {
         }
         let nw = self.wall_face.len();
         self.wall_history.clear();
-        self.wall_history.resize(nw, [0.0; 3]);
+        self.wall_history.resize(nw, Vec3::zeros());
         self.wall_force.clear();
-        self.wall_force.resize(nw, [0.0; 3]);
+        self.wall_force.resize(nw, Vec3::zeros());
         self.wall_torque.clear();
-        self.wall_torque.resize(nw, [0.0; 3]);
+        self.wall_torque.resize(nw, Vec3::zeros());
 
         self.reference.clear();
         self.reference.extend_from_slice(positions);
@@ -230,13 +230,13 @@ impl NeighbourList {
         self.carry_walls.clear();
         for i in 0..self.row_start.len().saturating_sub(1) {
             for k in self.row_start[i] as usize..self.row_start[i + 1] as usize {
-                if self.history[k] != [0.0; 3] {
+                if self.history[k] != Vec3::zeros() {
                     self.carry_pairs
                         .push((i as u32, self.partner[k], self.history[k]));
                 }
             }
             for w in self.wall_start[i] as usize..self.wall_start[i + 1] as usize {
-                if self.wall_history[w] != [0.0; 3] {
+                if self.wall_history[w] != Vec3::zeros() {
                     self.carry_walls
                         .push((i as u32, self.wall_face[w], self.wall_history[w]));
                 }
@@ -258,7 +258,7 @@ impl NeighbourList {
             let (owner, other, x) = if ni < nj {
                 (ni, nj, xi)
             } else {
-                (nj, ni, [-xi[0], -xi[1], -xi[2]])
+                (nj, ni, Vec3::new(-xi[0], -xi[1], -xi[2]))
             };
             let (s, e) = (
                 self.row_start[owner as usize] as usize,
@@ -284,17 +284,17 @@ impl NeighbourList {
         for i in 0..self.row_start.len().saturating_sub(1) {
             for k in self.row_start[i] as usize..self.row_start[i + 1] as usize {
                 let xi = self.history[k];
-                if xi != [0.0; 3] {
+                if xi != Vec3::zeros() {
                     let (a, b) = (ids[i], ids[self.partner[k] as usize]);
                     if a < b {
                         h.pairs.push((a, b, xi));
                     } else {
-                        h.pairs.push((b, a, [-xi[0], -xi[1], -xi[2]]));
+                        h.pairs.push((b, a, Vec3::new(-xi[0], -xi[1], -xi[2])));
                     }
                 }
             }
             for w in self.wall_start[i] as usize..self.wall_start[i + 1] as usize {
-                if self.wall_history[w] != [0.0; 3] {
+                if self.wall_history[w] != Vec3::zeros() {
                     h.walls
                         .push((ids[i], self.wall_face[w], self.wall_history[w]));
                 }
@@ -321,7 +321,7 @@ impl NeighbourList {
                         self.history[k] = x;
                     }
                 } else if let Some(&x) = pairs.get(&(b, a)) {
-                    self.history[k] = [-x[0], -x[1], -x[2]];
+                    self.history[k] = Vec3::new(-x[0], -x[1], -x[2]);
                 }
             }
             for w in self.wall_start[i] as usize..self.wall_start[i + 1] as usize {
@@ -391,7 +391,7 @@ pub(crate) fn wall_distance(domain: &DomainBox, f: usize, x: Vec3) -> f64 {
 /// Unit normal of face `f` pointing into the box.
 #[inline(always)]
 pub(crate) fn wall_normal(f: usize) -> Vec3 {
-    let mut n = [0.0; 3];
+    let mut n = Vec3::zeros();
     n[f / 2] = if f.is_multiple_of(2) { 1.0 } else { -1.0 };
     n
 }

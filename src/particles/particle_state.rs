@@ -1,6 +1,7 @@
 //! Particle state as structure-of-arrays: one contiguous array per quantity.
 //!
-//! Vector quantities are `Vec<[f64; 3]>`: every pair evaluation reads all three components of
+//! Vector quantities are `Vec<Vec3>` (nalgebra's `Vector3<f64>`, 24 bytes, `[f64; 3]` in
+//! memory): every pair evaluation reads all three components of
 //! the same particle, so keeping them in one 24-byte record touches one cache line where three
 //! separate component arrays would touch three (faster per pair: docs/benchmarks/dem.md,
 //! `examples/dem_layout.rs`). The engine reorders all arrays together (a counting sort by
@@ -9,7 +10,7 @@
 
 use std::f64::consts::PI;
 
-use super::vec3::Vec3;
+use crate::Vec3;
 
 /// Positions, velocities and loads of every particle (SI units).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -57,18 +58,18 @@ impl ParticleState {
     }
 
     /// Appends one free particle at rest with no loads.
-    pub fn push(&mut self, id: u64, position: Vec3, diameter: f64, density: f64) {
-        self.position.push(position);
-        self.velocity.push([0.0; 3]);
-        self.angular_velocity.push([0.0; 3]);
+    pub fn push(&mut self, id: u64, position: impl Into<Vec3>, diameter: f64, density: f64) {
+        self.position.push(position.into());
+        self.velocity.push(Vec3::zeros());
+        self.angular_velocity.push(Vec3::zeros());
         self.diameter.push(diameter);
         self.density.push(density);
         self.id.push(id);
         self.fixed.push(false);
-        self.external_force.push([0.0; 3]);
-        self.external_torque.push([0.0; 3]);
-        self.contact_force.push([0.0; 3]);
-        self.contact_torque.push([0.0; 3]);
+        self.external_force.push(Vec3::zeros());
+        self.external_torque.push(Vec3::zeros());
+        self.contact_force.push(Vec3::zeros());
+        self.contact_torque.push(Vec3::zeros());
     }
 
     pub fn len(&self) -> usize {
@@ -167,7 +168,7 @@ mod tests {
     #[test]
     fn mass_and_inertia_of_a_sphere() {
         let mut p = ParticleState::default();
-        p.push(7, [0.0; 3], 2.0, 3.0);
+        p.push(7, Vec3::zeros(), 2.0, 3.0);
         // m = 3 π 8 / 6 = 4π; I = m d²/10 = 4π·4/10
         assert!((p.mass(0) - 4.0 * PI).abs() < 1e-14);
         assert!((p.moment_of_inertia(0) - 1.6 * PI).abs() < 1e-14);
@@ -184,7 +185,7 @@ mod tests {
         let (mut s3, mut s1) = (Vec::new(), Vec::new());
         p.permute(&[2, 0, 3, 1], &mut s3, &mut s1);
         assert_eq!(p.id, vec![12, 10, 13, 11]);
-        assert_eq!(p.position[0], [2.0, 0.0, 0.0]);
+        assert_eq!(p.position[0], Vec3::new(2.0, 0.0, 0.0));
         assert_eq!(p.diameter, vec![3.0, 1.0, 4.0, 2.0]);
         assert_eq!(p.fixed, vec![true, false, false, false]);
     }

@@ -9,7 +9,7 @@
 use std::fmt;
 
 use super::dem::sphere_volume;
-use super::vec3::Vec3;
+use crate::Vec3;
 
 /// Why a packing could not be made.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,12 +68,13 @@ const MAX_CONSECUTIVE_REJECTIONS: usize = 200_000;
 /// Centres of equal spheres of diameter `d` filling the box `[lo, hi]` (spheres entirely
 /// inside) to the solid fraction `target = N π d³ / 6 / V`, with a fixed `seed`.
 pub fn random_packing(
-    lo: Vec3,
-    hi: Vec3,
+    lo: impl Into<Vec3>,
+    hi: impl Into<Vec3>,
     d: f64,
     target: f64,
     seed: u64,
 ) -> Result<Vec<Vec3>, PackingError> {
+    let (lo, hi) = (lo.into(), hi.into());
     if !(d > 0.0 && d.is_finite()) {
         return Err(PackingError::BadInput(format!(
             "diameter {d} must be positive"
@@ -108,7 +109,7 @@ pub fn random_packing_sizes(
         }
         d_max = d_max.max(d);
     }
-    let length = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let length = Vec3::new(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
     if diameters.is_empty() {
         return Ok(Vec::new());
     }
@@ -123,11 +124,11 @@ pub fn random_packing_sizes(
     for a in 0..3 {
         n[a] = ((length[a] / d_max).floor() as usize).clamp(1, 1 << 10);
     }
-    let cell_len = [
+    let cell_len = Vec3::new(
         length[0] / n[0] as f64,
         length[1] / n[1] as f64,
         length[2] / n[2] as f64,
-    ];
+    );
     let coord = |x: f64, a: usize| -> usize {
         (((x - lo[a]) / cell_len[a]).floor().max(0.0) as usize).min(n[a] - 1)
     };
@@ -139,11 +140,11 @@ pub fn random_packing_sizes(
     for &d in diameters {
         let mut rejections = 0usize;
         loop {
-            let x = [
+            let x = Vec3::new(
                 lo[0] + 0.5 * d + rng.next_f64() * (length[0] - d),
                 lo[1] + 0.5 * d + rng.next_f64() * (length[1] - d),
                 lo[2] + 0.5 * d + rng.next_f64() * (length[2] - d),
-            ];
+            );
             let c = [coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)];
             let mut free = true;
             'search: for cz in c[2].saturating_sub(1)..=(c[2] + 1).min(n[2] - 1) {
@@ -207,7 +208,7 @@ mod tests {
 
     #[test]
     fn packing_hits_target_without_overlap_and_is_reproducible() {
-        let (lo, hi, d) = ([0.0; 3], [10.0, 8.0, 12.0], 1.0);
+        let (lo, hi, d) = (Vec3::zeros(), [10.0, 8.0, 12.0], 1.0);
         let c = random_packing(lo, hi, d, 0.25, 42).unwrap();
         let phi = c.len() as f64 * sphere_volume(d) / (10.0 * 8.0 * 12.0);
         assert!((phi - 0.25).abs() < 0.002, "phi = {phi}");
@@ -226,8 +227,8 @@ mod tests {
         let mut rng = SplitMix64::new(9);
         let mut d: Vec<f64> = (0..300).map(|_| 0.5 + rng.next_f64()).collect();
         d.sort_by(|a, b| b.partial_cmp(a).unwrap());
-        let (lo, hi) = ([0.0; 3], [8.0, 8.0, 8.0]);
-        let c = random_packing_sizes(lo, hi, &d, 0.0, 3).unwrap();
+        let (lo, hi) = (Vec3::zeros(), [8.0, 8.0, 8.0]);
+        let c = random_packing_sizes(lo, Vec3::from(hi), &d, 0.0, 3).unwrap();
         assert_eq!(c.len(), d.len());
         // brute-force reference (allowed in tests only)
         for i in 0..c.len() {
@@ -243,7 +244,7 @@ mod tests {
 
     #[test]
     fn unreachable_target_reports_the_fraction_reached() {
-        let err = random_packing([0.0; 3], [6.0; 3], 1.0, 0.5, 1).unwrap_err();
+        let err = random_packing(Vec3::zeros(), [6.0; 3], 1.0, 0.5, 1).unwrap_err();
         match err {
             PackingError::Unreachable { reached, .. } => {
                 // RSA with walls stalls below the bulk jamming limit 0.384
@@ -253,11 +254,11 @@ mod tests {
             e => panic!("unexpected {e}"),
         }
         assert!(matches!(
-            random_packing([0.0; 3], [0.5, 6.0, 6.0], 1.0, 0.1, 1),
+            random_packing(Vec3::zeros(), [0.5, 6.0, 6.0], 1.0, 0.1, 1),
             Err(PackingError::BadInput(_))
         ));
         assert!(matches!(
-            random_packing([0.0; 3], [6.0; 3], -1.0, 0.1, 1),
+            random_packing(Vec3::zeros(), [6.0; 3], -1.0, 0.1, 1),
             Err(PackingError::BadInput(_))
         ));
     }

@@ -6,7 +6,7 @@
 use super::dem::DemSnapshot;
 use super::neighbour_list::ContactHistory;
 use super::particle_state::ParticleState;
-use super::vec3::Vec3;
+use crate::Vec3;
 
 /// Names of the arrays, all prefixed `dem.` so they sit beside the fluid's.
 pub const DEM_RESTART_NAMES: [&str; 15] = [
@@ -32,7 +32,9 @@ fn flat(v: &[Vec3]) -> Vec<f64> {
 }
 
 fn unflat(v: &[f64]) -> Vec<Vec3> {
-    v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    v.chunks_exact(3)
+        .map(|c| Vec3::new(c[0], c[1], c[2]))
+        .collect()
 }
 
 impl DemSnapshot {
@@ -111,11 +113,11 @@ impl DemSnapshot {
         let history = ContactHistory {
             pairs: records("dem.pairHistory")?
                 .chunks_exact(5)
-                .map(|r| (r[0] as u64, r[1] as u64, [r[2], r[3], r[4]]))
+                .map(|r| (r[0] as u64, r[1] as u64, Vec3::new(r[2], r[3], r[4])))
                 .collect(),
             walls: records("dem.wallHistory")?
                 .chunks_exact(5)
-                .map(|r| (r[0] as u64, r[1] as u8, [r[2], r[3], r[4]]))
+                .map(|r| (r[0] as u64, r[1] as u8, Vec3::new(r[2], r[3], r[4])))
                 .collect(),
         };
         let clock = need("dem.clock")?;
@@ -141,15 +143,15 @@ mod tests {
         let mut p = ParticleState::default();
         p.push(7, [0.1, 0.2, 0.3], 1e-3, 2500.0);
         p.push(3, [0.4, 0.5, 0.6], 2e-3, 1500.0);
-        p.velocity[1] = [1.0 / 3.0, -2.5e-7, 9.0];
+        p.velocity[1] = Vec3::new(1.0 / 3.0, -2.5e-7, 9.0);
         p.fixed[0] = true;
-        p.contact_force[0] = [f64::MIN_POSITIVE, 1e300, -0.0];
+        p.contact_force[0] = Vec3::new(f64::MIN_POSITIVE, 1e300, -0.0);
         let s = DemSnapshot {
             reference_position: p.position.clone(),
             particles: p,
             history: ContactHistory {
-                pairs: vec![(3, 7, [1e-9, -2e-9, 3e-9])],
-                walls: vec![(7, 4, [0.0, 1e-12, 0.0])],
+                pairs: vec![(3, 7, Vec3::new(1e-9, -2e-9, 3e-9))],
+                walls: vec![(7, 4, Vec3::new(0.0, 1e-12, 0.0))],
             },
             time: 0.123456789,
             steps: 98765,

@@ -13,6 +13,7 @@ use crate::fluid::{
     BoundaryConditions, Convergence, FaceCondition, FluidSolver, MeanVelocityForce, TimeScheme,
 };
 use crate::particles::Dem;
+use crate::Vec3;
 
 /// `fsim { timeScheme EulerImplicit; }`: the drag-law predictor with its viscous term implicit.
 const DRAG_LAW_IMPLICIT: &str = "EulerImplicit";
@@ -254,8 +255,8 @@ pub(super) fn check_direct_resolution(
     let bc = fluid.boundary_conditions();
     let length = grid.length();
     let domain = PeriodicBox {
-        lo: grid.origin,
-        hi: std::array::from_fn(|a| grid.origin[a] + length[a]),
+        lo: grid.origin.into(),
+        hi: Vec3::from_fn(|a, _| grid.origin[a] + length[a]),
         periodic: std::array::from_fn(|a| matches!(bc.faces[2 * a], FaceCondition::Periodic)),
     };
     let walls: [bool; 6] =

@@ -7,13 +7,14 @@ use crate::coupling::direct::{
 };
 use crate::fluid::{FluidSolver, StepReport};
 use crate::output::RestartState;
+use crate::Vec3;
 
 /// The hydrodynamic loads of one step, summed over the particles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HydrodynamicReport {
     /// Total force and torque on all particles, N and N·m.
-    pub force: [f64; 3],
-    pub torque: [f64; 3],
+    pub force: Vec3,
+    pub torque: Vec3,
     /// Mean force per particle along the fluid's bulk flow over `6π μ r U` (paper eq. 19),
     /// `U` the bulk (superficial) velocity, `r` the mean radius: the porous-media `K`.
     pub drag_coefficient: f64,
@@ -68,7 +69,7 @@ impl DirectModel {
             }
         }
         // periodic sedimentation: the mean pressure gradient that carries the mixture
-        fluid.set_body_force(motion.fluid_body_force());
+        fluid.set_body_force(motion.fluid_body_force().into());
         Ok(DirectModel {
             particles,
             coupling,
@@ -103,8 +104,8 @@ impl DirectModel {
             dt,
         );
         let mut report = HydrodynamicReport {
-            force: [0.0; 3],
-            torque: [0.0; 3],
+            force: Vec3::zeros(),
+            torque: Vec3::zeros(),
             drag_coefficient: 0.0,
         };
         for load in loads.iter() {
@@ -132,10 +133,10 @@ impl DirectModel {
         if p.fixed.iter().all(|&f| f) {
             return;
         }
-        let mean = [0, 1, 2].map(|c| fluid.mean_component(c));
+        let mean = Vec3::from_fn(|c, _| fluid.mean_component(c));
         let report = self.motion.sedimentation(mean, p);
         let body = self.motion.hold_zero_momentum(report.momentum, dt);
-        fluid.set_body_force(body);
+        fluid.set_body_force(body.into());
         self.settling = Some(report);
     }
 

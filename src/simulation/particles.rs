@@ -4,6 +4,7 @@ use crate::case::Cloud;
 use crate::error::FsimError;
 use crate::output::ParticleFields;
 use crate::particles::Dem;
+use crate::Vec3;
 
 /// The cloud of a run: the DEM engine and what the log says about it.
 pub struct Particles {
@@ -23,7 +24,7 @@ pub struct CloudReport {
     pub count: usize,
     /// `(Σ ½ m v², Σ ½ I ω²)`, J.
     pub kinetic_energy: (f64, f64),
-    pub mean_velocity: [f64; 3],
+    pub mean_velocity: Vec3,
     /// Largest overlap over the diameter.
     pub max_overlap: f64,
     pub substeps: usize,

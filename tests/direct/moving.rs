@@ -7,6 +7,7 @@
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, PeriodicStokesArray, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
 use fsim::grid::Grid;
+use fsim::Vec3;
 use std::f64::consts::PI;
 
 #[test]
@@ -21,11 +22,11 @@ fn a_translating_sphere_reaches_the_fixed_array_drag() {
     // position: measured 2.91 a quarter cell on, 2.87 one cell on, 2.86 at the start).
     let speed = 0.2;
     let mut sphere = RigidSphere::fixed([0.5 + 0.1 * h, 0.5, 0.5 + 0.3 * h], radius);
-    sphere.velocity = [0.0, speed, 0.0];
+    sphere.velocity = Vec3::new(0.0, speed, 0.0);
 
     // The fixed-array reference on the same grid, from the steady solver.
     let mut still = sphere;
-    still.velocity = [0.0; 3];
+    still.velocity = Vec3::repeat(0.0);
     let k_fixed = PeriodicStokesArray::new(grid.clone(), nu, &[still])
         .solve([1.0, 0.0, 0.0], 1e-4, 600)
         .body_force[0]
@@ -40,7 +41,7 @@ fn a_translating_sphere_reaches_the_fixed_array_drag() {
     let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
     let dt = 0.9 * fluid.stability_bound();
     let steps = (0.3 / dt) as usize;
-    let mut force = [0.0; 3];
+    let mut force = fsim::Vec3::zeros();
     for _ in 0..steps {
         coupling.set_spheres(&[sphere], &[1]);
         fluid.step_with(dt, &mut |stage| coupling.impose(stage));

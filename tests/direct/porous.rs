@@ -5,6 +5,7 @@
 
 use fsim::coupling::direct::{sangani_acrivos_k, PeriodicStokesArray, RigidSphere};
 use fsim::grid::Grid;
+use fsim::Vec3;
 use std::f64::consts::PI;
 
 /// K for volume fraction `phi` on `n³` cells (unit cell, ν = 1, U = 1); the sphere is off
@@ -65,7 +66,7 @@ fn the_steady_solve_holds_the_forced_faces_of_a_sphere_spinning_across_a_gap() {
     let h = 1.0 / n as f64;
     let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
     let mut sphere = RigidSphere::fixed([0.51, 0.47, 0.53], 0.421875);
-    sphere.angular_velocity = [0.0, 0.0, 2.0];
+    sphere.angular_velocity = Vec3::new(0.0, 0.0, 2.0);
     let mut array = PeriodicStokesArray::new(grid, 1.0, &[sphere]);
     let gaps: usize = (0..3).map(|c| array.boundary().gap_faces(c).len()).sum();
     assert!(gaps > 100, "{gaps} faces in gaps");
@@ -137,8 +138,8 @@ fn moving_sphere(
     let h = 1.0 / n as f64;
     let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
     let mut sphere = RigidSphere::fixed([0.5 + 0.1 * h, 0.5 + 0.2 * h, 0.5 + 0.3 * h], radius);
-    sphere.velocity = velocity;
-    sphere.angular_velocity = omega;
+    sphere.velocity = Vec3::from(velocity);
+    sphere.angular_velocity = Vec3::from(omega);
     let mut array = PeriodicStokesArray::new(grid.clone(), 1.0, &[sphere]);
     let flow = array.solve(mean, 1e-4, 600);
     let layout = fsim::fluid::PaddedLayout::new(grid.n);

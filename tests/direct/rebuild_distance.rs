@@ -7,6 +7,7 @@
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver};
 use fsim::grid::Grid;
+use fsim::Vec3;
 
 /// Drag along the motion on a sphere (r = 4h) pulled at `speed` along (1, 1, 1)/√3 through
 /// a periodic box of 16³ cells, averaged over the second half of a travel of three cells,
@@ -32,10 +33,10 @@ fn mean_drag(rebuild_distance: f64) -> (f64, usize) {
     for step in 0..steps {
         let t = step as f64 * dt;
         let sphere = RigidSphere {
-            centre: std::array::from_fn(|d| start[d] + velocity[d] * t),
+            centre: Vec3::from_fn(|d, _| start[d] + velocity[d] * t),
             radius,
-            velocity,
-            angular_velocity: [0.0; 3],
+            velocity: Vec3::from(velocity),
+            angular_velocity: Vec3::zeros(),
         };
         coupling.set_spheres(&[sphere], &[0]);
         rebuilds += usize::from(coupling.last_rebuilt());

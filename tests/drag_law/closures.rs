@@ -15,6 +15,7 @@ use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
 use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
+use fsim::Vec3;
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
@@ -62,11 +63,11 @@ fn dem_in(
     pair: PairModel,
 ) -> Dem {
     let mut config = DemConfig::new(pair, WallModel::None);
-    config.gravity = [0.0, 0.0, -gravity];
+    config.gravity = Vec3::new(0.0, 0.0, -gravity);
     config.fluid_density = RHO;
     let domain = DomainBox {
-        lo,
-        hi,
+        lo: Vec3::from(lo),
+        hi: Vec3::from(hi),
         faces: [
             ParticleFace::Periodic,
             ParticleFace::Periodic,
@@ -76,13 +77,13 @@ fn dem_in(
             ParticleFace::Rebound { e: 0.5, mu: 0.0 },
         ],
         planar: [false; 3],
-        wall_velocity: [[0.0; 3]; 6],
+        wall_velocity: [Vec3::repeat(0.0); 6],
     };
     Dem::new(config, domain, particles).unwrap()
 }
 
 fn settings(closure: DragClosure, gravity: f64) -> DragLawSettings {
-    let mut s = DragLawSettings::paper(RHO, NU, [0.0, 0.0, -gravity]);
+    let mut s = DragLawSettings::paper(RHO, NU, Vec3::new(0.0, 0.0, -gravity));
     s.closure = Some(closure);
     // Each closure in the form its convention belongs to.
     s.form = match closure.convention() {

@@ -3,6 +3,7 @@
 //! boundary conditions, the particles and the grid are those of its files. Broken copies (in a
 //! scratch directory) give clear errors at the file, line and column.
 
+use fsim::Vec3;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -64,7 +65,7 @@ fn goldschmidt_loads_unchanged_with_its_drag_law_options() {
     assert_eq!(o.form, VolumeAveragedForm::DpmFoam);
     let settings = o.settings(&case.transport, case.gravity);
     assert!(settings.semi_implicit);
-    assert_eq!(settings.gravity, [0.0, 0.0, -9.81]);
+    assert_eq!(settings.gravity, Vec3::new(0.0, 0.0, -9.81));
 
     // 0/U.air and 0/p: frontAndBack symmetry (x), walls noSlip + fixedFluxPressure (y),
     // bottom interstitialInletVelocity (0 0 1.875) + fixedFluxPressure, top

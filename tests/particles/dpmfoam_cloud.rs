@@ -2,6 +2,7 @@
 //! never copied): its cloud loads into the DEM engine's types with the coefficients of its
 //! `constant/kinematicCloudProperties`, checked here by hand against that file.
 
+use fsim::Vec3;
 use std::path::Path;
 
 use fsim::case::{Case, Cloud};
@@ -26,14 +27,14 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
     // kinematicCloudPositions.gz: 24,750 lines of (x y z) between '(' and ')'
     let p = &cloud.particles;
     assert_eq!(p.len(), 24_750);
-    assert_eq!(p.position[0], [-0.0060, -0.0735, 0.0015]);
-    assert_eq!(p.position[24_749], [0.0060, 0.0735, 0.2955]);
+    assert_eq!(p.position[0], Vec3::new(-0.0060, -0.0735, 0.0015));
+    assert_eq!(p.position[24_749], Vec3::new(0.0060, 0.0735, 0.2955));
     let (line, col) = cloud.origins[0].line_col();
     assert_eq!((line, col), (18, 1));
     // constantProperties { rho0 2526; }, fixedValueDistribution { value 0.0025; }, U0 (0 0 0)
     assert!(p.diameter.iter().all(|&d| d == 0.0025));
     assert!(p.density.iter().all(|&r| r == 2526.0));
-    assert!(p.velocity.iter().all(|&v| v == [0.0; 3]));
+    assert!(p.velocity.iter().all(|&v| v == Vec3::repeat(0.0)));
     assert_eq!(p.id[24_749], 24_749);
     // pairSpringSliderDashpotCoeffs { alpha 0.02; b 1.5; mu 0.10; collisionResolutionSteps 12; }
     // with the particle's youngsModulus 1e8, poissonsRatio 0.35; DPMFoam's tangential reset
@@ -67,7 +68,7 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
     );
     // particleForces { ErgunWenYuDrag {…} gravity; }: gravity from constant/g, buoyancy in air
     assert_eq!(cloud.forces, ["ErgunWenYuDrag", "gravity"]);
-    assert_eq!(cloud.config.gravity, [0.0, 0.0, -9.81]);
+    assert_eq!(cloud.config.gravity, Vec3::new(0.0, 0.0, -9.81));
     assert_eq!(cloud.config.fluid_density, 1.2);
     // walls (top, bottom, walls) are soft walls of the wall model; frontAndBack (symmetry)
     // rebounds with its localInteraction coefficients e 0.97, mu 0.09
@@ -83,7 +84,7 @@ fn goldschmidt_cloud_maps_onto_the_engine() {
             FaceCondition::Wall
         ]
     );
-    assert_eq!(cloud.domain.lo, [-0.0075, -0.075, 0.0]);
+    assert_eq!(cloud.domain.lo, Vec3::new(-0.0075, -0.075, 0.0));
     assert!((cloud.domain.hi[2] - 0.45).abs() < 1e-15);
     // OpenFOAM settings fsim does not use are listed, each once
     assert!(cloud

@@ -3,6 +3,7 @@
 //! file, line and column, before anything is written.
 
 use crate::support::*;
+use fsim::Vec3;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -344,7 +345,11 @@ fn a_fixed_value_wall_moves_in_the_wall_model() {
         .expect("a cloud");
     for f in 0..6 {
         if cloud.domain.faces[f] == fsim::particles::FaceCondition::Wall {
-            assert_eq!(cloud.domain.wall_velocity[f], [0.5, 0.0, 0.0], "face {f}");
+            assert_eq!(
+                cloud.domain.wall_velocity[f],
+                Vec3::new(0.5, 0.0, 0.0),
+                "face {f}"
+            );
         }
     }
     assert!(cloud

@@ -1,5 +1,6 @@
 //! Validation of the DEM engine against analytic collision results.
 
+use fsim::Vec3;
 use std::f64::consts::PI;
 
 use fsim::particles::{
@@ -16,7 +17,7 @@ fn mass() -> f64 {
 
 fn config(pair: PairModel, wall: WallModel) -> DemConfig {
     let mut c = DemConfig::new(pair, wall);
-    c.gravity = [0.0; 3];
+    c.gravity = Vec3::repeat(0.0);
     c
 }
 
@@ -39,13 +40,13 @@ fn head_on(pair: PairModel, v: f64, h_over_tc: f64, periodic_across: bool) -> (f
         dom.faces = [FaceCondition::Periodic; 6];
         p.push(1, [0.0096, 0.005, 0.005], D, RHO);
         p.push(2, [0.0004 + 0.0002, 0.005, 0.005], D, RHO);
-        p.velocity[0] = [0.5 * v, 0.0, 0.0];
-        p.velocity[1] = [-0.5 * v, 0.0, 0.0];
+        p.velocity[0] = Vec3::new(0.5 * v, 0.0, 0.0);
+        p.velocity[1] = Vec3::new(-0.5 * v, 0.0, 0.0);
     } else {
         p.push(1, [0.0043, 0.005, 0.005], D, RHO);
         p.push(2, [0.0057, 0.005, 0.005], D, RHO);
-        p.velocity[0] = [0.5 * v, 0.0, 0.0];
-        p.velocity[1] = [-0.5 * v, 0.0, 0.0];
+        p.velocity[0] = Vec3::new(0.5 * v, 0.0, 0.0);
+        p.velocity[1] = Vec3::new(-0.5 * v, 0.0, 0.0);
     }
     let mut dem = Dem::new(config(pair, WallModel::None), dom, p).unwrap();
     let h = dem.collision_time_step() * h_over_tc;
@@ -138,7 +139,7 @@ fn oblique(wall: WallModel, vn: f64, vt: f64, h_over_tc: f64) -> (f64, f64, f64)
     let dom = DomainBox::walled([0.0; 3], [0.02, 0.01, 0.01]);
     let mut p = ParticleState::default();
     p.push(1, [0.005, 0.005, 0.5 * D + 1e-5], D, RHO);
-    p.velocity[0] = [vt, 0.0, -vn];
+    p.velocity[0] = Vec3::new(vt, 0.0, -vn);
     let pair = PairModel::linear(1000.0, 0.5, 0.3);
     let mut dem = Dem::new(config(pair, wall), dom, p).unwrap();
     let h = dem.collision_time_step() * h_over_tc;
@@ -255,7 +256,7 @@ fn settling_case(seed: u64) -> (DemConfig, DomainBox, ParticleState) {
         collision_resolution_steps: 50.0,
     };
     let mut c = DemConfig::new(pair, wall);
-    c.gravity = [0.0, 0.0, -9.81];
+    c.gravity = Vec3::new(0.0, 0.0, -9.81);
     (c, DomainBox::walled([0.0; 3], hi), p)
 }
 
@@ -274,10 +275,20 @@ fn settling_packing_comes_to_rest_with_small_overlaps() {
     let e0 = energy(&dem);
     let mut e_prev = e0;
     let mut free_steps = 0;
-    while dem.particles().contact_force.iter().all(|f| *f == [0.0; 3]) {
+    while dem
+        .particles()
+        .contact_force
+        .iter()
+        .all(|f| *f == Vec3::repeat(0.0))
+    {
         dem.step(h);
         let e = energy(&dem);
-        if dem.particles().contact_force.iter().all(|f| *f == [0.0; 3]) {
+        if dem
+            .particles()
+            .contact_force
+            .iter()
+            .all(|f| *f == Vec3::repeat(0.0))
+        {
             assert!(
                 e <= e_prev + 1e-12 * e0.abs(),
                 "energy rose during free fall: {e_prev} -> {e}"
@@ -321,7 +332,7 @@ fn restart_mid_run_continues_bit_for_bit() {
     let (cfg, dom, mut p) = settling_case(11);
     for k in 0..p.len() {
         let s = (k as f64 * 0.618).fract() - 0.5;
-        p.velocity[k] = [0.3 * s, -0.2 * s, 0.1];
+        p.velocity[k] = Vec3::new(0.3 * s, -0.2 * s, 0.1);
     }
     let mut dem = Dem::new(cfg.clone(), dom.clone(), p).unwrap();
     let h = dem.collision_time_step();
@@ -367,8 +378,8 @@ fn advance_subcycles_a_long_fluid_step() {
     let mut p = ParticleState::default();
     p.push(1, [0.0040, 0.005, 0.005], D, RHO);
     p.push(2, [0.0060, 0.005, 0.005], D, RHO);
-    p.velocity[0] = [0.5, 0.0, 0.0];
-    p.velocity[1] = [-0.5, 0.0, 0.0];
+    p.velocity[0] = Vec3::new(0.5, 0.0, 0.0);
+    p.velocity[1] = Vec3::new(-0.5, 0.0, 0.0);
     let mut dem = Dem::new(config(model, WallModel::None), dom, p).unwrap();
     // the spheres meet after 1 ms and touch for ~0.1 ms; across the periodic boundary they
     // would meet again only after another 8 ms

@@ -7,6 +7,7 @@ use super::box_case::{step, BoxCase};
 use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, TimeScheme};
 use fsim::grid::Grid;
+use fsim::Vec3;
 
 /// Faxén's drag factor for a sphere midway between two walls, `λ = a/l` (Happel & Brenner,
 /// *Low Reynolds number hydrodynamics*, 1965, eq. 7-4.39).
@@ -116,14 +117,14 @@ pub fn approach_drag(
         }
         let gap = from - speed * dt * step as f64;
         let sphere = RigidSphere {
-            centre: [
+            centre: Vec3::new(
                 0.5 * lateral as f64 + 0.13,
                 radius + gap,
                 0.5 * lateral as f64 + 0.21,
-            ],
+            ),
             radius,
-            velocity: [0.0, -speed, 0.0],
-            angular_velocity: [0.0; 3],
+            velocity: Vec3::new(0.0, -speed, 0.0),
+            angular_velocity: Vec3::repeat(0.0),
         };
         coupling.set_spheres(&[sphere], &[0]);
         fluid.step_with(dt, &mut |stage| coupling.impose(stage));

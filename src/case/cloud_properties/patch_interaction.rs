@@ -11,6 +11,7 @@ use crate::case::fields::VelocityBc;
 use crate::case::source::Location;
 use crate::case::value::Value;
 use crate::particles::{DomainBox, FaceCondition};
+use crate::Vec3;
 
 /// The particle condition of each box face from its patch, the collision wall model and the
 /// patch interaction model.
@@ -67,11 +68,11 @@ pub(super) fn domain_box(
         };
     }
     Ok(DomainBox {
-        lo,
-        hi,
+        lo: lo.into(),
+        hi: hi.into(),
         faces,
         planar: std::array::from_fn(|a| case.mesh.is_planar(a)),
-        wall_velocity,
+        wall_velocity: wall_velocity.map(Vec3::from),
     })
 }
 

@@ -5,7 +5,8 @@
 //! distinct (also across periodic faces) and each pair is met once, from its lower index.
 //! Smaller boxes compare all pairs. The cell arrays are kept between calls.
 
-use crate::particles::{ParticleState, Vec3};
+use crate::particles::ParticleState;
+use crate::Vec3;
 
 /// The box as a pair search sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,7 +60,7 @@ impl ClosePairs {
         if n < 2 {
             return;
         }
-        let length: Vec3 = std::array::from_fn(|a| domain.hi[a] - domain.lo[a]);
+        let length: Vec3 = Vec3::from_fn(|a, _| domain.hi[a] - domain.lo[a]);
         let r_max = (0..n).map(&diameter).fold(0.0, f64::max) / 2.0;
         let reach = 2.0 * r_max + gap_limit.max(0.0);
         // Cells no narrower than the reach, and no more of them per axis than about
@@ -68,7 +69,7 @@ impl ClosePairs {
         let cells: [usize; 3] =
             std::array::from_fn(|a| ((length[a] / reach).floor() as usize).clamp(1, cap));
         let mut pair = |i: usize, j: usize| {
-            let mut d: Vec3 = std::array::from_fn(|a| position(j)[a] - position(i)[a]);
+            let mut d: Vec3 = Vec3::from_fn(|a, _| position(j)[a] - position(i)[a]);
             for a in 0..3 {
                 if domain.periodic[a] {
                     d[a] -= length[a] * (d[a] / length[a]).round();
@@ -180,8 +181,8 @@ mod tests {
                 p.push(id, x, 0.02 + 0.03 * rng.next_f64(), 1000.0);
             }
             let domain = PeriodicBox {
-                lo: [0.0; 3],
-                hi: [1.0; 3],
+                lo: Vec3::repeat(0.0),
+                hi: Vec3::repeat(1.0),
                 periodic,
             };
             let mut fast = Vec::new();
@@ -217,15 +218,15 @@ mod tests {
         let n = 300;
         let diameter: Vec<f64> = (0..n).map(|_| 0.02 + 0.03 * rng.next_f64()).collect();
         let wrapped: Vec<Vec3> = (0..n)
-            .map(|_| std::array::from_fn(|_| rng.next_f64()))
+            .map(|_| Vec3::from_fn(|_, _| rng.next_f64()))
             .collect();
         let shifted: Vec<Vec3> = wrapped
             .iter()
             .map(|x| x.map(|v| v + (rng.next_f64() * 5.0).floor() - 2.0))
             .collect();
         let domain = PeriodicBox {
-            lo: [0.0; 3],
-            hi: [1.0; 3],
+            lo: Vec3::repeat(0.0),
+            hi: Vec3::repeat(1.0),
             periodic: [true; 3],
         };
         let pairs = |x: &[Vec3]| {

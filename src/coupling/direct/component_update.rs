@@ -7,6 +7,7 @@ use super::forced_face::{
     ForcingFace, ForcingLine, GapFace, InteriorFace, ThroatFace, FLUID, FORCING, THROAT,
 };
 use super::rigid_sphere::RigidSphere;
+use crate::Vec3;
 use rayon::prelude::*;
 
 /// A candidate forcing face, 8 bytes: the interior face it neighbours (index into the
@@ -231,9 +232,9 @@ fn throat_face(
     // The lubrication profile across the gap: the distances to both surfaces through the
     // face, and this component's share across the gap (along the line of centres).
     let own = lat.relative(x, &spheres[line.sphere]);
-    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let norm = |v: Vec3| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let (r_own, r_far) = (norm(own), norm(rel));
-    let axis: [f64; 3] = std::array::from_fn(|d| own[d] / r_own - rel[d] / r_far);
+    let axis = Vec3::from_fn(|d, _| own[d] / r_own - rel[d] / r_far);
     let darcy = ThroatFace::darcy(
         (r_own - spheres[line.sphere].radius).max(0.0),
         (r_far - spheres[k].radius).max(0.0),

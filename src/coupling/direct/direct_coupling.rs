@@ -3,6 +3,7 @@
 use super::tuning::{
     COARSE_CELLS_PER_RADIUS, MIN_CELLS_PER_RADIUS, WALL_TRILINEAR_CLEARANCE_CELLS,
 };
+use crate::Vec3;
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -255,7 +256,7 @@ impl DirectCoupling {
         let mut out = Vec::with_capacity(5 * built.len());
         for (s, &id) in built.iter().zip(&self.ids) {
             out.push(id as f64);
-            out.extend_from_slice(&s.centre);
+            out.extend_from_slice(s.centre.as_slice());
             out.push(s.radius);
         }
         out
@@ -304,7 +305,7 @@ impl DirectCoupling {
             .chunks_exact(5)
             .zip(&self.spheres)
             .map(|(row, s)| RigidSphere {
-                centre: [row[1], row[2], row[3]],
+                centre: Vec3::new(row[1], row[2], row[3]),
                 radius: row[4],
                 ..*s
             })
@@ -512,8 +513,8 @@ impl DirectCoupling {
         // the sphere count: docs/benchmarks/direct.md).
         let reach = (nominal + 1.0) * h;
         let domain = PeriodicBox {
-            lo: self.origin,
-            hi: std::array::from_fn(|d| self.origin[d] + self.length[d]),
+            lo: self.origin.into(),
+            hi: Vec3::from_fn(|d, _| self.origin[d] + self.length[d]),
             periodic: self.periodic,
         };
         let gaps = &mut self.gaps;
@@ -562,8 +563,8 @@ impl DirectCoupling {
         for id in ids {
             let (time, offset, m) = &self.previous_shell[id];
             out.extend_from_slice(&[*id as f64, *time, *offset]);
-            out.extend_from_slice(&m.linear);
-            out.extend_from_slice(&m.angular);
+            out.extend_from_slice(m.linear.as_slice());
+            out.extend_from_slice(m.angular.as_slice());
         }
         out
     }
@@ -574,8 +575,8 @@ impl DirectCoupling {
         self.previous_shell.clear();
         for row in data.chunks_exact(9) {
             let m = ShellMomentum {
-                linear: [row[3], row[4], row[5]],
-                angular: [row[6], row[7], row[8]],
+                linear: Vec3::new(row[3], row[4], row[5]),
+                angular: Vec3::new(row[6], row[7], row[8]),
             };
             self.previous_shell
                 .insert(row[0] as u64, (row[1], row[2], m));
@@ -676,9 +677,9 @@ mod tests {
         fluid.set_velocity(|c, x| (x[(c + 1) % 3] * 3.0 + phase[c]).sin() + 0.3 * x[c].cos());
         let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
         let mut a = RigidSphere::fixed([0.4, 0.5, 0.6], 0.25);
-        a.velocity = [0.1, 0.0, -0.2];
+        a.velocity = Vec3::new(0.1, 0.0, -0.2);
         let mut b = RigidSphere::fixed([1.2, 1.1, 0.9], 0.25);
-        b.angular_velocity = [0.0, 1.0, 0.0];
+        b.angular_velocity = Vec3::new(0.0, 1.0, 0.0);
         coupling.set_spheres(&[a, b], &[7, 3]);
         assert!(coupling.last_rebuilt());
         let forward = coupling.compute_loads(&fluid, 1.0).to_vec();

@@ -5,6 +5,7 @@ use super::forced_face::ForcingLine;
 use super::rigid_sphere::RigidSphere;
 use crate::fluid::PaddedLayout;
 use crate::grid::{nearest_image, wrap_index, Grid};
+use crate::Vec3;
 
 /// One velocity component's lattice, as the forced-face search reads it.
 pub(super) struct FaceLattice<'a> {
@@ -68,7 +69,7 @@ impl FaceLattice<'_> {
     /// where the line enters the sphere (the nearer root of `|rel + s step e_d| = radius`),
     /// if it does.
     #[inline]
-    pub(super) fn entry_distance(rel: [f64; 3], radius: f64, d: usize, step: isize) -> Option<f64> {
+    pub(super) fn entry_distance(rel: Vec3, radius: f64, d: usize, step: isize) -> Option<f64> {
         let b = step as f64 * rel[d];
         let q = rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2] - radius * radius;
         let disc = b * b - q;
@@ -185,8 +186,8 @@ impl FaceLattice<'_> {
 
     /// `x − x_p` for the nearest periodic image of sphere `s`.
     #[inline]
-    pub(super) fn relative(&self, x: [f64; 3], s: &RigidSphere) -> [f64; 3] {
-        std::array::from_fn(|d| {
+    pub(super) fn relative(&self, x: [f64; 3], s: &RigidSphere) -> Vec3 {
+        Vec3::from_fn(|d, _| {
             let r = x[d] - s.centre[d];
             if self.periodic[d] {
                 nearest_image(r, self.length[d])

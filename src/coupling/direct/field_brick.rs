@@ -6,6 +6,7 @@ use super::field_sampler::{
 };
 use super::field_view::FieldView;
 use crate::grid::fast_floor;
+use crate::Vec3;
 
 /// The velocity and pressure samples that the stencils of points within `reach` of a centre
 /// read ([`FieldBrick::gather`]), copied with the periodic wraps resolved.
@@ -50,7 +51,7 @@ struct RowSpans {
     /// Node positions along y and z of the rows (the field's lattice), the centre, reach.
     y0: f64,
     z0: f64,
-    centre: [f64; 3],
+    centre: Vec3,
     reach: f64,
     /// How far (m) from a point its stencil's nodes lie at most, with slack.
     stencil: f64,
@@ -70,7 +71,7 @@ impl RowSpans {
     fn new(
         brick: &FieldBrick,
         field: usize,
-        centre: [f64; 3],
+        centre: Vec3,
         reach: f64,
         interpolation: Interpolation,
     ) -> Self {
@@ -158,7 +159,7 @@ impl FieldBrick {
     pub fn gather(
         &mut self,
         view: &FieldView,
-        centre: [f64; 3],
+        centre: Vec3,
         reach: f64,
         interpolation: Interpolation,
     ) {
@@ -312,7 +313,7 @@ impl FieldBrick {
     /// another, the fields spend most of their time in scalar index arithmetic). In a fully
     /// periodic box only: no stencil is shifted at a wall.
     #[inline]
-    fn linear_lanes(&self, x: [f64; 3], gradient: bool) -> ([f64; 4], [[f64; 4]; 3]) {
+    fn linear_lanes(&self, x: Vec3, gradient: bool) -> ([f64; 4], [[f64; 4]; 3]) {
         let g = &self.geometry;
         // Per axis: the first node's offset and the fraction on the faces (0) and centres (1).
         let mut first = [[0usize; 2]; 3];
@@ -376,7 +377,7 @@ impl FieldSampler for FieldBrick {
     #[inline]
     fn sample(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         interpolation: Interpolation,
         gradient: bool,
         pressure: bool,
@@ -580,19 +581,19 @@ mod tests {
         for &centre in centres {
             for interpolation in [Interpolation::Linear, Interpolation::Cubic] {
                 let reach = 0.37;
-                brick.gather(&view, centre, reach, interpolation);
+                brick.gather(&view, Vec3::from(centre), reach, interpolation);
                 for x in points(&mut rng, centre, reach) {
-                    let a = view.sample(x, interpolation, true, true);
-                    let b = brick.sample(x, interpolation, true, true);
+                    let a = view.sample(Vec3::from(x), interpolation, true, true);
+                    let b = brick.sample(Vec3::from(x), interpolation, true, true);
                     assert_eq!(a, b, "{interpolation:?} at {x:?} (centre {centre:?})");
                     assert_eq!(
-                        view.pressure_at(x, interpolation),
-                        brick.pressure_at(x, interpolation)
+                        view.pressure_at(Vec3::from(x), interpolation),
+                        brick.pressure_at(Vec3::from(x), interpolation)
                     );
                     // a linear brick serves the linear shell too
                     if interpolation == Interpolation::Cubic {
-                        let a = view.velocity_at(x, Interpolation::Linear);
-                        assert_eq!(a, brick.velocity_at(x, Interpolation::Linear));
+                        let a = view.velocity_at(Vec3::from(x), Interpolation::Linear);
+                        assert_eq!(a, brick.velocity_at(Vec3::from(x), Interpolation::Linear));
                     }
                 }
             }

@@ -4,6 +4,7 @@
 //! which differ only in where the samples are stored.
 
 use crate::grid::fast_floor;
+use crate::Vec3;
 
 /// Interpolation of grid samples to a point (paper eq. 6 evaluates the stress at the
 /// quadrangles' corners, between grid nodes).
@@ -83,7 +84,7 @@ pub trait FieldSampler {
     /// stencils.
     fn sample(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         interpolation: Interpolation,
         gradient: bool,
         pressure: bool,
@@ -98,7 +99,7 @@ pub trait FieldSampler {
     /// Velocity and its gradient at `x`.
     fn velocity_and_gradient(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         interpolation: Interpolation,
     ) -> ([f64; 3], [[f64; 3]; 3]) {
         let (u, g, _) = self.sample(x, interpolation, true, false);
@@ -108,20 +109,20 @@ pub trait FieldSampler {
     /// Velocity, its gradient and the kinematic pressure at `x` (what the stress needs).
     fn velocity_gradient_and_pressure(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         interpolation: Interpolation,
     ) -> ([f64; 3], [[f64; 3]; 3], f64) {
         self.sample(x, interpolation, true, true)
     }
 
     /// Kinematic pressure at `x`.
-    fn pressure_at(&self, x: [f64; 3], interpolation: Interpolation) -> f64 {
+    fn pressure_at(&self, x: Vec3, interpolation: Interpolation) -> f64 {
         self.sample(x, interpolation, false, true).2
     }
 
     /// Velocity at `x`.
-    fn velocity_at(&self, x: [f64; 3], interpolation: Interpolation) -> [f64; 3] {
-        self.sample(x, interpolation, false, false).0
+    fn velocity_at(&self, x: Vec3, interpolation: Interpolation) -> Vec3 {
+        self.sample(x, interpolation, false, false).0.into()
     }
 }
 
@@ -169,7 +170,7 @@ pub(super) trait StoredFields {
 #[inline]
 pub(super) fn sample_stored<S: StoredFields>(
     source: &S,
-    x: [f64; 3],
+    x: Vec3,
     interpolation: Interpolation,
     gradient: bool,
     pressure: bool,
@@ -369,7 +370,7 @@ struct Placement {
 
 impl Placement {
     #[inline]
-    fn new(geometry: &LatticeGeometry, x: [f64; 3], interpolation: Interpolation) -> Self {
+    fn new(geometry: &LatticeGeometry, x: Vec3, interpolation: Interpolation) -> Self {
         let half = interpolation.nodes() as isize / 2 - 1;
         let mut placement = Placement {
             interpolation,

@@ -6,6 +6,7 @@ use super::field_sampler::{
 };
 use crate::fluid::{BoundaryConditions, FaceCondition, FluidSolver, PaddedLayout};
 use crate::grid::{wrap_index, Grid};
+use crate::Vec3;
 
 /// Read-only view of a fluid state: the staggered velocity (padded, see [`PaddedLayout`])
 /// and the kinematic pressure (cell-centred, unpadded).
@@ -85,7 +86,7 @@ impl FieldSampler for FieldView<'_> {
     #[inline]
     fn sample(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         interpolation: Interpolation,
         gradient: bool,
         pressure: bool,
@@ -121,19 +122,25 @@ mod tests {
     fn cubic_reproduces_cubic_polynomials_and_linear_reproduces_linear_ones() {
         let mut s = periodic_solver(12);
         // Polynomials are not periodic; sample well inside so no stencil wraps.
-        let cubic = |x: [f64; 3]| x[0].powi(3) - 2.0 * x[0] * x[1] * x[2] + x[2] * x[2];
-        let linear = |x: [f64; 3]| 1.0 + 2.0 * x[0] - x[1] + 0.5 * x[2];
-        s.set_velocity(|c, x| if c == 0 { cubic(x) } else { linear(x) });
+        let cubic = |x: Vec3| x[0].powi(3) - 2.0 * x[0] * x[1] * x[2] + x[2] * x[2];
+        let linear = |x: Vec3| 1.0 + 2.0 * x[0] - x[1] + 0.5 * x[2];
+        s.set_velocity(|c, x| {
+            if c == 0 {
+                cubic(Vec3::from(x))
+            } else {
+                linear(Vec3::from(x))
+            }
+        });
         let p: Vec<f64> = (0..s.grid().cell_count())
             .map(|idx| {
                 let n = s.grid().n;
                 let (i, j, k) = (idx % n[0], (idx / n[0]) % n[1], idx / (n[0] * n[1]));
-                linear(s.grid().cell_centre(i, j, k))
+                linear(Vec3::from(s.grid().cell_centre(i, j, k)))
             })
             .collect();
         s.pressure_mut().copy_from_slice(&p);
         let view = FieldView::of(&s);
-        let x = [0.83, 0.31, 0.47];
+        let x = Vec3::new(0.83, 0.31, 0.47);
         let (u, g) = view.velocity_and_gradient(x, Interpolation::Cubic);
         assert!((u[0] - cubic(x)).abs() < 1e-12, "{} vs {}", u[0], cubic(x));
         let exact_grad = [
@@ -160,10 +167,10 @@ mod tests {
         let k = |d: usize, x: f64| 2.0 * std::f64::consts::PI * (x - o[d]) / l[d];
         s.set_velocity(|c, x| (k(0, x[0]) + c as f64).sin() * k(1, x[1]).cos() + k(2, x[2]).sin());
         let view = FieldView::of(&s);
-        let x = [0.35, 0.0, 0.5];
+        let x = Vec3::new(0.35, 0.0, 0.5);
         let shifted = [x[0] + l[0], x[1] - l[1], x[2] + 2.0 * l[2]];
         let a = view.velocity_and_gradient(x, Interpolation::Cubic);
-        let b = view.velocity_and_gradient(shifted, Interpolation::Cubic);
+        let b = view.velocity_and_gradient(Vec3::from(shifted), Interpolation::Cubic);
         for c in 0..3 {
             assert!((a.0[c] - b.0[c]).abs() < 1e-12);
         }

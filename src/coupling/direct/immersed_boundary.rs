@@ -805,6 +805,7 @@ fn closed_divergence(grid: &Grid, velocity: &[Vec<f64>; 3], cell: &ClosedCell) -
 mod tests {
     use super::*;
     use crate::coupling::direct::component_update::visit_inside;
+    use crate::Vec3;
 
     fn periodic_boundary(n: usize, h: f64) -> ImmersedBoundary {
         let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
@@ -816,8 +817,8 @@ mod tests {
         let h = 0.1;
         let mut ib = periodic_boundary(24, h);
         let mut sphere = RigidSphere::fixed([1.2, 1.23, 1.17], 0.61);
-        sphere.velocity = [0.3, 0.0, 0.0];
-        sphere.angular_velocity = [0.0, 0.0, 1.0];
+        sphere.velocity = Vec3::new(0.3, 0.0, 0.0);
+        sphere.angular_velocity = Vec3::new(0.0, 0.0, 1.0);
         ib.update(&[sphere]);
         for c in 0..3 {
             // Samples inside ≈ volume / h³ (staircase error of the count ~ area/h²).
@@ -875,8 +876,8 @@ mod tests {
             });
             if far {
                 let mut s = RigidSphere::fixed(centre, radius);
-                s.velocity = [0; 3].map(|_| rng.next_f64() - 0.5);
-                s.angular_velocity = [0; 3].map(|_| 4.0 * rng.next_f64() - 2.0);
+                s.velocity = Vec3::from([0; 3].map(|_| rng.next_f64() - 0.5));
+                s.angular_velocity = Vec3::from([0; 3].map(|_| 4.0 * rng.next_f64() - 2.0));
                 spheres.push(s);
             }
         }
@@ -890,7 +891,7 @@ mod tests {
             .map(|_| {
                 let centre = [0; 3].map(|_| rng.next_f64() * length);
                 let mut s = RigidSphere::fixed(centre, radius * (0.8 + 0.4 * rng.next_f64()));
-                s.velocity = [0; 3].map(|_| rng.next_f64() - 0.5);
+                s.velocity = Vec3::from([0; 3].map(|_| rng.next_f64() - 0.5));
                 s
             })
             .collect()
@@ -1025,8 +1026,8 @@ mod tests {
         // a move within the skin, and new rigid motions
         for (k, s) in spheres.iter_mut().enumerate() {
             s.centre[k % 3] += 0.04 * h;
-            s.velocity = [0.3, -0.2, 0.1 * k as f64];
-            s.angular_velocity = [1.0, 0.5, -2.0];
+            s.velocity = Vec3::new(0.3, -0.2, 0.1 * k as f64);
+            s.angular_velocity = Vec3::new(1.0, 0.5, -2.0);
         }
         assert!(!ib.follow(&spheres, 0.05 * h));
         let grid = Grid::new([24; 3], [h; 3], [0.0; 3]);
@@ -1046,7 +1047,7 @@ mod tests {
                     let r = x[d] - s.centre[d];
                     r - 2.4 * (r / 2.4).round()
                 });
-                assert!((now.target - s.velocity_at(rel)[c]).abs() < 1e-12);
+                assert!((now.target - s.velocity_at(Vec3::from(rel))[c]).abs() < 1e-12);
             }
             for (now, then) in ib.forcing_faces(c).iter().zip(forcing) {
                 assert_eq!(now.weights, then.weights);
@@ -1068,7 +1069,7 @@ mod tests {
         let h = 0.1;
         let mut ib = periodic_boundary(16, h);
         let mut sphere = RigidSphere::fixed([0.8, 0.8, 0.8], 0.33);
-        sphere.velocity = [1.0, -2.0, 0.5];
+        sphere.velocity = Vec3::new(1.0, -2.0, 0.5);
         ib.update(&[sphere]);
         let layout = PaddedLayout::new([16; 3]);
         let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![7.0; layout.len]);
@@ -1134,10 +1135,10 @@ mod tests {
         let mut ib = periodic_boundary(n, h);
         let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
         let mut a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
-        a.angular_velocity = [0.5, -1.0, 0.8];
+        a.angular_velocity = Vec3::new(0.5, -1.0, 0.8);
         let mut b = RigidSphere::fixed([1.013 + 1.2 + 0.26, 1.607, 1.594], 0.6);
-        b.velocity = [0.4, 1.5, -0.5];
-        b.angular_velocity = [-2.0, 0.3, 1.1];
+        b.velocity = Vec3::new(0.4, 1.5, -0.5);
+        b.angular_velocity = Vec3::new(-2.0, 0.3, 1.1);
         ib.update(&[a, b]);
         let built: Vec<Vec<GapFace>> = (0..3).map(|c| ib.gap_faces(c).to_vec()).collect();
         ib.refresh(&[a, b]);
@@ -1175,7 +1176,7 @@ mod tests {
                             let r = point - sphere.centre[k];
                             r - length * (r / length).round()
                         });
-                        sphere.velocity_at(rel)[c]
+                        sphere.velocity_at(Vec3::from(rel))[c]
                     };
                     let expected =
                         own_weight * wall(own, step * delta) + far_weight * wall(far, -step * s);
@@ -1189,7 +1190,7 @@ mod tests {
             }
             assert!(checked > 20, "{checked} faces in the gap");
             // Between builds the far wall takes the far sphere's current motion.
-            b.velocity = [-0.3, 0.7, 2.0];
+            b.velocity = Vec3::new(-0.3, 0.7, 2.0);
             ib.refresh(&[a, b]);
         }
     }
@@ -1203,7 +1204,7 @@ mod tests {
         ib.set_throat_viscosity(1e-2);
         let a = RigidSphere::fixed([1.013, 1.621, 1.583], 0.6);
         let mut b = RigidSphere::fixed([1.013 + 1.2 + 0.13, 1.607, 1.594], 0.6);
-        b.velocity = [0.0, 0.7, 0.0];
+        b.velocity = Vec3::new(0.0, 0.7, 0.0);
         ib.update(&[a, b]);
         let count: usize = (0..3).map(|c| ib.throat_faces(c).len()).sum();
         assert!(count > 20, "{count} throat faces");
@@ -1240,7 +1241,7 @@ mod tests {
         assert_eq!((0..3).map(|c| slots(&ib, c)).collect::<Vec<_>>(), before);
         // Between builds the far wall follows its sphere; the targets stay until the next
         // stage sets them.
-        b.velocity = [0.0, 0.0, 0.0];
+        b.velocity = Vec3::new(0.0, 0.0, 0.0);
         ib.refresh(&[a, b]);
         assert!(ib.throat_faces(1).iter().all(|t| t.wall == 0.0));
         assert_eq!((0..3).map(|c| slots(&ib, c)).collect::<Vec<_>>(), before);

@@ -38,7 +38,8 @@
 
 use super::close_pairs::{ClosePairs, PeriodicBox};
 use super::tuning::LUBRICATION_MIN_GAP;
-use crate::particles::{ParticleState, Vec3};
+use crate::particles::ParticleState;
+use crate::Vec3;
 use std::f64::consts::PI;
 
 /// Settings and scratch space of the lubrication correction.
@@ -200,11 +201,11 @@ fn damped(c: f64, inv_m_eff: f64, dt: f64) -> f64 {
 }
 
 fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    Vec3::new(a[0] - b[0], a[1] - b[1], a[2] - b[2])
 }
 
 fn scale(a: Vec3, s: f64) -> Vec3 {
-    [a[0] * s, a[1] * s, a[2] * s]
+    Vec3::new(a[0] * s, a[1] * s, a[2] * s)
 }
 
 fn dot(a: Vec3, b: Vec3) -> f64 {
@@ -217,8 +218,8 @@ mod tests {
 
     fn periodic_box(l: f64) -> LubricationBox {
         LubricationBox {
-            lo: [0.0; 3],
-            hi: [l; 3],
+            lo: Vec3::zeros(),
+            hi: Vec3::repeat(l),
             periodic: [true; 3],
             walls: [false; 6],
         }
@@ -229,8 +230,8 @@ mod tests {
         p.push(1, [0.5, 0.5, 0.5], 2.0 * a, 2500.0);
         p.push(2, [0.5 + 2.0 * a + gap, 0.5, 0.5], 2.0 * a, 2500.0);
         // approaching each other at `speed` in total
-        p.velocity[0] = [speed / 2.0, 0.0, 0.0];
-        p.velocity[1] = [-speed / 2.0, 0.0, 0.0];
+        p.velocity[0] = Vec3::new(speed / 2.0, 0.0, 0.0);
+        p.velocity[1] = Vec3::new(-speed / 2.0, 0.0, 0.0);
         p
     }
 
@@ -242,7 +243,7 @@ mod tests {
         let mut lub = Lubrication::new(mu, 0.01);
         for gap in [1e-3, 3e-3, 5e-3] {
             let p = two_spheres(a, gap, u);
-            let mut f = vec![[0.0; 3]; 2];
+            let mut f = vec![Vec3::zeros(); 2];
             let report = lub.add_forces(&p, &periodic_box(1.0), 0.0, &mut f);
             let expected = 1.5 * PI * mu * a * a * u * (1.0 / gap - 1.0 / 0.01);
             assert_eq!(report.active, 1);
@@ -272,13 +273,13 @@ mod tests {
         let (mu, a, gap, u) = (1e-3, 0.01, 1e-4, 0.02);
         let mut p = ParticleState::default();
         p.push(1, [0.5, 0.5, a + gap], 2.0 * a, 1000.0);
-        p.velocity[0] = [0.0, 0.0, -u];
+        p.velocity[0] = Vec3::new(0.0, 0.0, -u);
         let mut domain = periodic_box(1.0);
         domain.periodic[2] = false;
         domain.walls[4] = true;
         domain.walls[5] = true;
         let mut lub = Lubrication::new(mu, 1e-3);
-        let mut f = vec![[0.0; 3]];
+        let mut f = vec![Vec3::zeros()];
         let report = lub.add_forces(&p, &domain, 0.0, &mut f);
         let expected = 6.0 * PI * mu * a * a * u * (1.0 / gap - 1.0 / 1e-3);
         assert_eq!(report.active, 1);
@@ -294,13 +295,13 @@ mod tests {
         let p = two_spheres(a, gap, u);
         let m_eff = p.mass(0) / 2.0;
         for dt in [1e-9, 1e-6, 1e-4, 1e-2] {
-            let mut f = vec![[0.0; 3]; 2];
+            let mut f = vec![Vec3::zeros(); 2];
             lub.add_forces(&p, &periodic_box(1.0), dt, &mut f);
             let dv = -f[0][0] * dt / m_eff; // change of relative approach speed
             assert!(dv > 0.0 && dv <= u * (1.0 + 1e-12), "dt {dt}: dv {dv}");
         }
         let c = lub.coefficient(a / 2.0, gap);
-        let mut f = vec![[0.0; 3]; 2];
+        let mut f = vec![Vec3::zeros(); 2];
         lub.add_forces(&p, &periodic_box(1.0), 1e-15, &mut f);
         assert!((f[0][0] + c * u).abs() < 1e-6 * c * u);
     }

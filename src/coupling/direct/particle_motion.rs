@@ -58,6 +58,7 @@
 // Plain indexed loops over the particle arrays, by design.
 #![allow(clippy::needless_range_loop)]
 
+use crate::Vec3;
 use std::collections::HashMap;
 
 use super::lubrication::{Lubrication, LubricationBox, LubricationReport};
@@ -66,7 +67,7 @@ use super::settling_drive::{fluid_mean_velocity, mixture_momentum, SettlingDrive
 use super::tuning::{DRIVE_MOMENTUM_GAIN, LUBRICATION_CUTOFF_CELLS};
 use crate::fluid::{BoundaryConditions, FaceCondition};
 use crate::grid::Grid;
-use crate::particles::{Dem, ParticleState, Vec3};
+use crate::particles::{Dem, ParticleState};
 
 /// Default virtual-mass coefficient `C_v`.
 pub use super::tuning::DEFAULT_VIRTUAL_MASS;
@@ -167,7 +168,7 @@ impl ParticleMotion {
             ));
         }
         let length = grid.length();
-        let hi = std::array::from_fn(|a| grid.origin[a] + length[a]);
+        let hi = Vec3::from_fn(|a, _| grid.origin[a] + length[a]);
         let periodic: [bool; 3] =
             std::array::from_fn(|a| matches!(bc.faces[2 * a], FaceCondition::Periodic));
         let walls: [bool; 6] =
@@ -179,7 +180,7 @@ impl ParticleMotion {
         Ok(ParticleMotion {
             lubrication,
             lubrication_box: LubricationBox {
-                lo: grid.origin,
+                lo: grid.origin.into(),
                 hi,
                 periodic,
                 walls,
@@ -194,7 +195,7 @@ impl ParticleMotion {
             virtual_mass: settings.virtual_mass,
             previous: HashMap::new(),
             previous_dt: 0.0,
-            correction: [0.0; 3],
+            correction: Vec3::zeros(),
             last_momentum: None,
             step_bound: coupling_step_bound(p, rho * nu),
         })
@@ -216,9 +217,9 @@ impl ParticleMotion {
         match self.drive {
             Some(d) => {
                 let b = d.fluid_acceleration();
-                std::array::from_fn(|a| b[a] + self.correction[a])
+                Vec3::from_fn(|a, _| b[a] + self.correction[a])
             }
-            None => [0.0; 3],
+            None => Vec3::zeros(),
         }
     }
 
@@ -226,7 +227,7 @@ impl ParticleMotion {
     /// (module documentation) and returns the fluid's new body force.
     pub fn hold_zero_momentum(&mut self, momentum: Vec3, dt: f64) -> Vec3 {
         if self.drive.is_some() && dt > 0.0 {
-            let previous = self.last_momentum.unwrap_or([0.0; 3]);
+            let previous = self.last_momentum.unwrap_or(Vec3::zeros());
             let scale = 1.0 / (self.fluid_density * self.box_volume * dt);
             for a in 0..3 {
                 self.correction[a] -=
@@ -248,7 +249,7 @@ impl ParticleMotion {
     ) -> LubricationReport {
         let n = dem.particles().len();
         self.forces.clear();
-        self.forces.resize(n, [0.0; 3]);
+        self.forces.resize(n, Vec3::zeros());
         self.last_lubrication = self.lubrication.add_forces(
             dem.particles(),
             &self.lubrication_box,
@@ -257,7 +258,7 @@ impl ParticleMotion {
         );
         let mut torques = std::mem::take(&mut self.torques);
         torques.clear();
-        torques.resize(n, [0.0; 3]);
+        torques.resize(n, Vec3::zeros());
         for (i, (f, t)) in loads.take(n).enumerate() {
             for a in 0..3 {
                 self.forces[i][a] += f[a];
@@ -291,10 +292,10 @@ impl ParticleMotion {
             let (v, w) = (p.velocity[i], p.angular_velocity[i]);
             let (a_prev, alpha_prev) = match self.previous.get(&p.id[i]) {
                 Some((v0, w0)) if span > 0.0 => (
-                    std::array::from_fn(|a| (v[a] - v0[a]) / span),
-                    std::array::from_fn(|a| (w[a] - w0[a]) / span),
+                    Vec3::from_fn(|a, _| (v[a] - v0[a]) / span),
+                    Vec3::from_fn(|a, _| (w[a] - w0[a]) / span),
                 ),
-                _ => ([0.0; 3], [0.0; 3]),
+                _ => (Vec3::zeros(), Vec3::zeros()),
             };
             for a in 0..3 {
                 let weight = m * g[a] * (1.0 - ratio);
@@ -316,8 +317,8 @@ impl ParticleMotion {
     /// `[b_c(3), M(3), has M, Δt, (id, v(3), ω(3))…]`.
     pub fn restart_state(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(8 + 7 * self.previous.len());
-        out.extend_from_slice(&self.correction);
-        out.extend_from_slice(&self.last_momentum.unwrap_or([0.0; 3]));
+        out.extend_from_slice(self.correction.as_slice());
+        out.extend_from_slice(self.last_momentum.unwrap_or(Vec3::zeros()).as_slice());
         out.push(if self.last_momentum.is_some() {
             1.0
         } else {
@@ -329,8 +330,8 @@ impl ParticleMotion {
         for id in ids {
             let (v, w) = self.previous[id];
             out.push(*id as f64);
-            out.extend_from_slice(&v);
-            out.extend_from_slice(&w);
+            out.extend_from_slice(v.as_slice());
+            out.extend_from_slice(w.as_slice());
         }
         out
     }
@@ -344,14 +345,17 @@ impl ParticleMotion {
                 data.len()
             ));
         }
-        self.correction = [data[0], data[1], data[2]];
-        self.last_momentum = (data[6] != 0.0).then_some([data[3], data[4], data[5]]);
+        self.correction = Vec3::new(data[0], data[1], data[2]);
+        self.last_momentum = (data[6] != 0.0).then_some(Vec3::new(data[3], data[4], data[5]));
         self.previous_dt = data[7];
         self.previous.clear();
         for row in data[8..].chunks_exact(7) {
             self.previous.insert(
                 row[0] as u64,
-                ([row[1], row[2], row[3]], [row[4], row[5], row[6]]),
+                (
+                    Vec3::new(row[1], row[2], row[3]),
+                    Vec3::new(row[4], row[5], row[6]),
+                ),
             );
         }
         Ok(())
@@ -367,7 +371,7 @@ impl ParticleMotion {
         let free: Vec<usize> = (0..p.len()).filter(|&i| !p.fixed[i]).collect();
         let solid: f64 = free.iter().map(|&i| p.mass(i) / p.density[i]).sum();
         let phi = solid / self.box_volume;
-        let mut vp = [0.0; 3];
+        let mut vp = Vec3::zeros();
         let mut scale = 0.0;
         for &i in &free {
             let v = p.velocity[i];
@@ -395,7 +399,7 @@ impl ParticleMotion {
                 .drive
                 // the total imposed gradient, correction included: −ρ_f b
                 .map(|_| self.fluid_body_force().map(|x| -self.fluid_density * x))
-                .unwrap_or([0.0; 3]),
+                .unwrap_or(Vec3::zeros()),
             drive_correction: self
                 .drive
                 .map(|d| {
@@ -428,11 +432,11 @@ mod tests {
                 collision_resolution_steps: 20.0,
             },
         );
-        config.gravity = [0.0, -9.81, 0.0];
+        config.gravity = Vec3::new(0.0, -9.81, 0.0);
         config.fluid_density = rho_f;
         Dem::new(
             config,
-            DomainBox::uniform([0.0; 3], [1.0; 3], FaceCondition::Periodic),
+            DomainBox::uniform(Vec3::zeros(), [1.0; 3], FaceCondition::Periodic),
             p,
         )
         .unwrap()
@@ -460,7 +464,11 @@ mod tests {
                 let v = dem.particles().velocity[0][1];
                 let f = -m_a * (v - v_old) / dt - c * v;
                 v_old = v;
-                motion.set_loads(&mut dem, std::iter::once(([0.0, f, 0.0], [0.0; 3])), dt);
+                motion.set_loads(
+                    &mut dem,
+                    std::iter::once((Vec3::new(0.0, f, 0.0), Vec3::zeros())),
+                    dt,
+                );
                 dem.advance(dt);
                 if !v.is_finite() || v.abs() > 1e3 {
                     return f64::INFINITY;
@@ -486,11 +494,11 @@ mod tests {
         for _ in 0..3 {
             motion.set_loads(
                 &mut dem,
-                std::iter::once(([0.0, 1e-3, 0.0], [0.0; 3])),
+                std::iter::once((Vec3::new(0.0, 1e-3, 0.0), Vec3::zeros())),
                 1e-3,
             );
             dem.advance(1e-3);
-            motion.hold_zero_momentum([0.0, 1e-9, 0.0], 1e-3);
+            motion.hold_zero_momentum(Vec3::new(0.0, 1e-9, 0.0), 1e-3);
         }
         let saved = motion.restart_state();
         let mut other =

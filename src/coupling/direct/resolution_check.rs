@@ -145,6 +145,7 @@ pub fn check_resolution(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Vec3;
 
     fn grid(n: usize, l: f64) -> Grid {
         Grid::new([n; 3], [l / n as f64; 3], [0.0; 3])
@@ -152,8 +153,8 @@ mod tests {
 
     fn periodic(l: f64) -> PeriodicBox {
         PeriodicBox {
-            lo: [0.0; 3],
-            hi: [l; 3],
+            lo: Vec3::repeat(0.0),
+            hi: Vec3::repeat(l),
             periodic: [true; 3],
         }
     }

@@ -40,7 +40,8 @@
 // Plain indexed loops over the particle arrays, by design.
 #![allow(clippy::needless_range_loop)]
 
-use crate::particles::{ParticleState, Vec3};
+use crate::particles::ParticleState;
+use crate::Vec3;
 
 /// The imposed excess mean pressure gradient of periodic sedimentation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,7 +71,7 @@ impl SettlingDrive {
             .map(|i| p.mass(i) * (1.0 - fluid_density / p.density[i]))
             .sum();
         let gradient = gravity.map(|g| excess_mass * g / box_volume);
-        if gradient == [0.0; 3] {
+        if gradient == Vec3::zeros() {
             return None;
         }
         Some(SettlingDrive {
@@ -95,7 +96,7 @@ impl SettlingDrive {
     /// particles' mean velocity `v_p`, the fluid's mean over the fluid volume `u_f` and the
     /// solid fraction `phi`: `(1−φ)(v_p − u_f)`.
     pub fn settling_velocity(v_p: Vec3, u_f: Vec3, phi: f64) -> Vec3 {
-        std::array::from_fn(|a| (1.0 - phi) * (v_p[a] - u_f[a]))
+        Vec3::from_fn(|a, _| (1.0 - phi) * (v_p[a] - u_f[a]))
     }
 }
 
@@ -154,7 +155,7 @@ mod tests {
         let (rho_f, rho_p, d, n, volume) = (1.2, 1500.0, 1e-4, 50, 4e-9);
         let g = [0.0, -9.81, 0.0];
         let p = cloud(n, d, rho_p);
-        let drive = SettlingDrive::new(&p, rho_f, g, [true; 3], volume).unwrap();
+        let drive = SettlingDrive::new(&p, rho_f, Vec3::from(g), [true; 3], volume).unwrap();
         let vp = std::f64::consts::PI * d * d * d / 6.0;
         let phi = n as f64 * vp / volume;
         let expected = phi * (rho_p - rho_f) * g[1];
@@ -179,11 +180,11 @@ mod tests {
     fn none_when_something_else_carries_the_weight() {
         let g = [0.0, 0.0, -9.81];
         let mut p = cloud(3, 1e-3, 2500.0);
-        assert!(SettlingDrive::new(&p, 1000.0, g, [true, true, false], 1.0).is_none());
-        assert!(SettlingDrive::new(&p, 1000.0, [0.0; 3], [true; 3], 1.0).is_none());
-        assert!(SettlingDrive::new(&p, 2500.0, g, [true; 3], 1.0).is_none());
+        assert!(SettlingDrive::new(&p, 1000.0, Vec3::from(g), [true, true, false], 1.0).is_none());
+        assert!(SettlingDrive::new(&p, 1000.0, Vec3::zeros(), [true; 3], 1.0).is_none());
+        assert!(SettlingDrive::new(&p, 2500.0, Vec3::from(g), [true; 3], 1.0).is_none());
         p.fixed[1] = true;
-        assert!(SettlingDrive::new(&p, 1000.0, g, [true; 3], 1.0).is_none());
+        assert!(SettlingDrive::new(&p, 1000.0, Vec3::from(g), [true; 3], 1.0).is_none());
     }
 
     /// Fluid streaming up through falling particles at zero total momentum: the momentum is
@@ -196,16 +197,16 @@ mod tests {
         let phi = vp / volume;
         let v = -0.01;
         for i in 0..10 {
-            p.velocity[i] = [0.0, 0.0, v];
+            p.velocity[i] = Vec3::new(0.0, 0.0, v);
         }
         // zero momentum: (1−φ) ρ_f u_f + φ ρ_p v = 0
         let u_f = -phi * rho_p * v / ((1.0 - phi) * rho_f);
         let box_mean = ((1.0 - phi) * u_f + phi * v) * 1.0;
-        let m = mixture_momentum(rho_f, volume, [0.0, 0.0, box_mean], &p);
+        let m = mixture_momentum(rho_f, volume, Vec3::new(0.0, 0.0, box_mean), &p);
         assert!(m[2].abs() < 1e-12 * rho_p * vp * v.abs(), "{m:?}");
-        let uf = fluid_mean_velocity(volume, [0.0, 0.0, box_mean], &p);
+        let uf = fluid_mean_velocity(volume, Vec3::new(0.0, 0.0, box_mean), &p);
         assert!((uf[2] - u_f).abs() < 1e-14);
-        let vm = SettlingDrive::settling_velocity([0.0, 0.0, v], uf, phi);
+        let vm = SettlingDrive::settling_velocity(Vec3::new(0.0, 0.0, v), uf, phi);
         let j = (1.0 - phi) * u_f + phi * v;
         assert!((vm[2] - (v - j)).abs() < 1e-14);
     }

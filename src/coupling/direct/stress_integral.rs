@@ -4,21 +4,22 @@ use super::field_sampler::{FieldSampler, Interpolation};
 use super::rigid_sphere::RigidSphere;
 use super::sphere_quadrature::{SphereQuadrature, SphereQuadratureFamily};
 use super::tuning::{QUADRATURE_EDGE_CELLS, SURFACE_OFFSET_CELLS};
-use nalgebra::{Matrix3, Vector3};
+use crate::Mat3;
+use crate::Vec3;
 
 /// Force and torque on one particle, SI (N, N·m).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct HydrodynamicLoad {
-    pub force: [f64; 3],
-    pub torque: [f64; 3],
+    pub force: Vec3,
+    pub torque: Vec3,
 }
 
 /// Momentum (per unit density) of the fluid in the shell between a sphere and its
 /// integration surface: `∫ u dV` (m⁴/s) and `∫ (x − x_p) × u dV` (m⁵/s).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ShellMomentum {
-    pub linear: [f64; 3],
-    pub angular: [f64; 3],
+    pub linear: Vec3,
+    pub angular: Vec3,
 }
 
 /// Where and how the stress is integrated.
@@ -77,15 +78,6 @@ impl StressIntegral {
     }
 }
 
-#[inline]
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// Force and torque on `sphere` from the fluid `fields` (paper eq. 4–6, with the surface
 /// and terms of [`StressIntegral`], the shell's rate of change excluded): `rho` the fluid
 /// density (kg/m³), `body_force` the uniform body force on the fluid (m/s²), `quadrature`
@@ -101,21 +93,20 @@ pub fn stress_integral_force(
     let h = fields.cell_size();
     let radius = integral.surface_radius(sphere.radius, h);
     let nu = fields.nu();
-    let centre = Vector3::from(sphere.centre);
-    let v_sphere = Vector3::from(sphere.velocity);
-    let mut force = Vector3::zeros();
-    let mut torque = Vector3::zeros();
+    let (centre, v_sphere) = (sphere.centre, sphere.velocity);
+    let mut force = Vec3::zeros();
+    let mut torque = Vec3::zeros();
     for (&n, &w) in quadrature.points.iter().zip(&quadrature.weights) {
-        let n = Vector3::from(n);
+        let n = Vec3::from(n);
         let arm = radius * n;
         let x = centre + arm;
-        let (u, g, p) = fields.velocity_gradient_and_pressure(x.into(), integral.interpolation);
-        let u = Vector3::from(u);
+        let (u, g, p) = fields.velocity_gradient_and_pressure(x, integral.interpolation);
+        let u = Vec3::from(u);
         // ∇u with rows i and columns j: ∂u_i/∂x_j
-        let grad = Matrix3::from_fn(|i, j| g[i][j]);
+        let grad = Mat3::from_fn(|i, j| g[i][j]);
         // σ/ρ = −p I + ν(∇u + ∇uᵀ) (paper eq. 5), minus the momentum flux through a surface
         // that is not the sphere's own: traction t = σ·n − u ((u − v_p)·n)
-        let stress = Matrix3::from_diagonal_element(-p) + nu * (grad + grad.transpose());
+        let stress = Mat3::from_diagonal_element(-p) + nu * (grad + grad.transpose());
         let traction = stress * n - u * (u - v_sphere).dot(&n);
         let weight = w * radius * radius;
         force += weight * traction;
@@ -123,8 +114,8 @@ pub fn stress_integral_force(
     }
     let enclosed = 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
     HydrodynamicLoad {
-        force: std::array::from_fn(|i| rho * (force[i] + body_force[i] * enclosed)),
-        torque: std::array::from_fn(|i| rho * torque[i]),
+        force: Vec3::from_fn(|i, _| rho * (force[i] + body_force[i] * enclosed)),
+        torque: Vec3::from_fn(|i, _| rho * torque[i]),
     }
 }
 
@@ -154,10 +145,10 @@ pub fn shell_momentum(
         let radial_weight = wr * half * rad * rad;
         let quadrature = rules.at(rad);
         for (&n, &w) in quadrature.points.iter().zip(&quadrature.weights) {
-            let arm = [rad * n[0], rad * n[1], rad * n[2]];
-            let x = std::array::from_fn(|d| sphere.centre[d] + arm[d]);
+            let arm = Vec3::new(rad * n[0], rad * n[1], rad * n[2]);
+            let x = Vec3::from_fn(|d, _| sphere.centre[d] + arm[d]);
             let u = fields.velocity_at(x, Interpolation::Linear);
-            let moment = cross(arm, u);
+            let moment = arm.cross(&u);
             for i in 0..3 {
                 out.linear[i] += radial_weight * w * u[i];
                 out.angular[i] += radial_weight * w * moment[i];

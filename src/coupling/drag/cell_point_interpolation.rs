@@ -27,6 +27,7 @@
 //! The point values are refreshed once per step ([`CellPointInterpolation::update`]); a sample
 //! then reads 4 values per component ([`CellPointInterpolation::sample`]).
 
+use crate::Vec3;
 use rayon::prelude::*;
 
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
@@ -263,7 +264,7 @@ impl CellPointInterpolation {
 
     /// The velocity at `x` (clamped into the box).
     #[inline]
-    pub fn sample(&self, x: [f64; 3]) -> [f64; 3] {
+    pub fn sample(&self, x: Vec3) -> Vec3 {
         let (o, h, n) = (self.grid.origin, self.grid.h, self.grid.n);
         // Cell and local coordinates ξ ∈ [−1, 1] about its centre.
         let mut cell = [0usize; 3];
@@ -332,7 +333,7 @@ impl CellPointInterpolation {
         let (uc, p) = (self.cell[centre], &self.point);
         let (p0, p1, p2) = (p[corners[0]], p[corners[1]], p[corners[2]]);
         let [w0, w1, w2] = corner_weight;
-        std::array::from_fn(|c| centre_weight * uc[c] + w0 * p0[c] + w1 * p1[c] + w2 * p2[c])
+        Vec3::from_fn(|c, _| centre_weight * uc[c] + w0 * p0[c] + w1 * p1[c] + w2 * p2[c])
     }
 }
 
@@ -389,7 +390,7 @@ mod tests {
                 for j in 0..l.dims[1] {
                     for i in 0..l.dims[0] {
                         let slot = [i, j, k];
-                        let x: [f64; 3] = std::array::from_fn(|d| {
+                        let x = Vec3::from_fn(|d, _| {
                             let offset = if d == c { 1.0 } else { 0.5 };
                             g.origin[d] + (slot[d] as f64 - offset) * g.h[d]
                         });
@@ -402,7 +403,7 @@ mod tests {
         })
     }
 
-    fn linear_value(a: [f64; 3], b: [[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
+    fn linear_value(a: [f64; 3], b: [[f64; 3]; 3], x: Vec3) -> [f64; 3] {
         std::array::from_fn(|c| a[c] + b[c][0] * x[0] + b[c][1] * x[1] + b[c][2] * x[2])
     }
 
@@ -421,7 +422,7 @@ mod tests {
         let mut state = 7;
         for _ in 0..500 {
             // in cells 1..n−2: every corner point is interior
-            let x: [f64; 3] = std::array::from_fn(|d| {
+            let x = Vec3::from_fn(|d, _| {
                 g.origin[d] + g.h[d] * (1.0 + (g.n[d] - 2) as f64 * lcg(&mut state))
             });
             let (got, want) = (interp.sample(x), linear_value(a, b, x));
@@ -442,7 +443,7 @@ mod tests {
         let (i, j, k) = (2, 3, 4);
         let centre: [f64; 3] =
             std::array::from_fn(|d| g.origin[d] + ([i, j, k][d] as f64 + 0.5) * g.h[d]);
-        let at_centre = interp.sample(centre);
+        let at_centre = interp.sample(Vec3::from(centre));
         let f = l.index(i + 1, j + 1, k + 1);
         for c in 0..3 {
             let want = 0.5 * (faces[c][f] + faces[c][f + l.stride[c]]);
@@ -451,7 +452,7 @@ mod tests {
         // the corner (i+1, j+1, k+1) is the mean of the 8 cells around it
         let corner: [f64; 3] =
             std::array::from_fn(|d| g.origin[d] + ([i, j, k][d] as f64 + 1.0) * g.h[d]);
-        let at_corner = interp.sample(corner);
+        let at_corner = interp.sample(Vec3::from(corner));
         for c in 0..3 {
             let mut want = 0.0;
             for dk in 0..2 {
@@ -473,12 +474,12 @@ mod tests {
         let mut state = 11;
         let eps = 1e-9;
         for _ in 0..2000 {
-            let x: [f64; 3] = std::array::from_fn(|d| {
+            let x = Vec3::from_fn(|d, _| {
                 g.origin[d] + g.h[d] * (0.01 + (g.n[d] as f64 - 0.02) * lcg(&mut state))
             });
             let dx: [f64; 3] = std::array::from_fn(|_| (lcg(&mut state) - 0.5) * eps);
             let y = [x[0] + dx[0], x[1] + dx[1], x[2] + dx[2]];
-            let (u, v) = (interp.sample(x), interp.sample(y));
+            let (u, v) = (interp.sample(x), interp.sample(Vec3::from(y)));
             for c in 0..3 {
                 // the field is piecewise linear with slopes of order 1/h
                 assert!((u[c] - v[c]).abs() < 50.0 * eps / 0.2, "{x:?}: {u:?} {v:?}");

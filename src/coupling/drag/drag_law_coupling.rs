@@ -47,6 +47,7 @@ use super::drag_law_settings::DragLawSettings;
 use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{FluidSolver, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 use crate::particles::{Dem, ParticleState};
+use crate::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -54,11 +55,11 @@ use std::f64::consts::PI;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ExchangeReport {
     /// `Σ f_d` over the particles, N.
-    pub drag_on_particles: [f64; 3],
+    pub drag_on_particles: Vec3,
     /// `ρ V_cell Σ_faces s`, the explicit reaction the fluid received, N.
-    pub drag_on_fluid: [f64; 3],
+    pub drag_on_fluid: Vec3,
     /// `Σ f_h` (drag and pressure-gradient force), N.
-    pub hydrodynamic_force: [f64; 3],
+    pub hydrodynamic_force: Vec3,
     /// Smallest cell ε.
     pub min_fluid_fraction: f64,
 }
@@ -75,9 +76,9 @@ pub struct DragLawCoupling {
     solid: Vec<f64>,
     cells: Vec<f64>,
     /// Per particle: drag force and coefficient β of the last force evaluation.
-    drag: Vec<[f64; 3]>,
+    drag: Vec<Vec3>,
     beta: Vec<f64>,
-    hydro: Vec<[f64; 3]>,
+    hydro: Vec<Vec3>,
     /// Per particle: the stencils spreading the reaction (computed with the forces) and the
     /// volume (computed at the new positions).
     write_faces: Vec<[SampleStencil; 3]>,
@@ -119,7 +120,7 @@ impl DragLawCoupling {
                 i, p.id[i], p.diameter[i], h_min
             ));
         }
-        let va = VolumeAveragedFluid::new(fluid, settings.form, settings.gravity)?;
+        let va = VolumeAveragedFluid::new(fluid, settings.form, settings.gravity.into())?;
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
         let settings_cell_point = settings.cell_point;
         let len = va.layout().len;
@@ -150,7 +151,7 @@ impl DragLawCoupling {
     /// gravity taken as the physical one) and returns it: zero unless every face is periodic
     /// and gravity is non-zero. Case runs call it; a caller that drives a periodic box through
     /// the fluid's gravity (a porous-media flow, a study holding the weight itself) does not.
-    pub fn carry_mixture_weight(&mut self, dem: &Dem) -> [f64; 3] {
+    pub fn carry_mixture_weight(&mut self, dem: &Dem) -> Vec3 {
         let g = mean_pressure_gradient(
             self.fluid.grid(),
             self.fluid.boundary_conditions(),
@@ -158,7 +159,7 @@ impl DragLawCoupling {
             self.settings.rho,
             self.settings.gravity,
         );
-        self.fluid.set_mean_pressure_gradient(g);
+        self.fluid.set_mean_pressure_gradient(g.into());
         g
     }
 
@@ -260,9 +261,9 @@ impl DragLawCoupling {
     /// and its reaction into the fluid's sources, from the current fluid state.
     pub fn particle_forces(&mut self, fluid: &FluidSolver, dem: &mut Dem, dt: f64) {
         let n = dem.particles().len();
-        self.drag.resize(n, [0.0; 3]);
+        self.drag.resize(n, Vec3::zeros());
         self.beta.resize(n, 0.0);
-        self.hydro.resize(n, [0.0; 3]);
+        self.hydro.resize(n, Vec3::zeros());
         self.write_faces.resize(n, [SampleStencil::default(); 3]);
         let s = &self.settings;
         let want = match s.form {
@@ -355,16 +356,16 @@ impl DragLawCoupling {
                         }
                         let u = match cell_point {
                             Some(cp) => cp.sample(x),
-                            None => [
+                            None => Vec3::new(
                                 read[0].gather(&velocity[0]),
                                 read[1].gather(&velocity[1]),
                                 read[2].gather(&velocity[2]),
-                            ],
+                            ),
                         };
                         let mut cell = SampleStencil::default();
                         transfer.write_stencils(x, averaging, write, &mut cell);
                         let eps = cell.gather(eps_cells);
-                        let slip = [u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]];
+                        let slip = Vec3::new(u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]);
                         let speed =
                             (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
                         let d = diameter[i];
@@ -405,12 +406,12 @@ impl DragLawCoupling {
                             1.0 / (1.0 + x_imp)
                         };
                         let buoyant = 1.0 - rho_cloud / density[i];
-                        *drag = std::array::from_fn(|a| {
+                        *drag = Vec3::from_fn(|a, _| {
                             let other = mass * buoyant * g_cloud[a] + pressure[a] + contact[i][a];
                             relax * (b * slip[a] + other) - other
                         });
                         *beta = b;
-                        *hydro = std::array::from_fn(|a| drag[a] + pressure[a]);
+                        *hydro = Vec3::from_fn(|a, _| drag[a] + pressure[a]);
                         for st in write.iter() {
                             let (a, b) = st.index_range();
                             lo = lo.min(a);
@@ -440,7 +441,7 @@ impl DragLawCoupling {
         {
             let (force, _) = dem.external_loads_mut();
             force.copy_from_slice(&self.hydro);
-            let mut total = [0.0; 3];
+            let mut total = Vec3::zeros();
             for f in &self.hydro {
                 for a in 0..3 {
                     total[a] += f[a];
@@ -457,7 +458,7 @@ impl DragLawCoupling {
     fn spread_reaction(&mut self) {
         let scale = 1.0 / (self.settings.rho * self.transfer.cell_volume());
         let semi_implicit = self.settings.semi_implicit;
-        let mut on_particles = [0.0; 3];
+        let mut on_particles = Vec3::zeros();
         for f in &self.drag {
             for a in 0..3 {
                 on_particles[a] += f[a];
@@ -472,7 +473,7 @@ impl DragLawCoupling {
                 coefficient[c].iter_mut().for_each(|x| *x = 0.0);
             }
         }
-        let mut on_fluid = [0.0; 3];
+        let mut on_fluid = Vec3::zeros();
         for c in 0..3 {
             on_fluid[c] = source[c].iter().sum::<f64>() / scale;
         }
@@ -501,7 +502,7 @@ impl DragLawCoupling {
 
     /// The fluid velocity a particle at `x` reads (the interpolation stencil of the settings).
     /// With cell-point interpolation, the point values of the last force evaluation.
-    pub fn fluid_velocity_at(&self, fluid: &FluidSolver, x: [f64; 3]) -> [f64; 3] {
+    pub fn fluid_velocity_at(&self, fluid: &FluidSolver, x: Vec3) -> Vec3 {
         match &self.cell_point {
             Some(cp) => cp.sample(x),
             None => {
@@ -512,13 +513,13 @@ impl DragLawCoupling {
     }
 
     /// The fluid fraction a particle at `x` reads (the averaging stencil of the settings).
-    pub fn fluid_fraction_at(&self, x: [f64; 3]) -> f64 {
+    pub fn fluid_fraction_at(&self, x: Vec3) -> f64 {
         self.transfer
             .interpolate_cells(self.fluid.fluid_fraction(), x, self.settings.averaging)
     }
 
     /// Per particle (the cloud's current order), the drag `f_d` of the last force evaluation.
-    pub fn drag_forces(&self) -> &[[f64; 3]] {
+    pub fn drag_forces(&self) -> &[Vec3] {
         &self.drag
     }
 
@@ -589,12 +590,12 @@ impl DragLawCoupling {
 
     /// Total momentum of fluid and particles, kg·m/s: `ρ_f Σ_faces ε_f u_f V_cell + Σ m v`
     /// (each component over the faces where it is advanced).
-    pub fn mixture_momentum(&self, fluid: &FluidSolver, dem: &Dem) -> [f64; 3] {
+    pub fn mixture_momentum(&self, fluid: &FluidSolver, dem: &Dem) -> Vec3 {
         let l = self.fluid.layout();
         let eps = self.fluid.fluid_fraction();
         let u = fluid.velocity();
         let volume = self.transfer.cell_volume();
-        let mut total = [0.0; 3];
+        let mut total = Vec3::zeros();
         for (c, r) in self.fluid.momentum_ranges().iter().enumerate() {
             let sc = l.stride[c];
             let mut sum = 0.0;
@@ -628,13 +629,13 @@ pub fn mean_pressure_gradient(
     bc: &crate::fluid::BoundaryConditions,
     particles: &ParticleState,
     rho: f64,
-    gravity: [f64; 3],
-) -> [f64; 3] {
+    gravity: Vec3,
+) -> Vec3 {
     let periodic = (0..3).all(|d| {
         (0..2).all(|side| matches!(bc.face(d, side), crate::fluid::FaceCondition::Periodic))
     });
-    if !periodic || gravity == [0.0; 3] {
-        return [0.0; 3];
+    if !periodic || gravity == Vec3::zeros() {
+        return Vec3::zeros();
     }
     let box_volume: f64 = (0..3).map(|d| grid.n[d] as f64 * grid.h[d]).product();
     let (mut solid, mut mass) = (0.0, 0.0);

@@ -2,6 +2,7 @@
 
 use super::drag_closure::DragClosure;
 use crate::fluid::VolumeAveragedForm;
+use crate::Vec3;
 
 /// How a particle reads the grid and writes back to it (paper eq. 14–16, or DPMFoam's own).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,13 +52,13 @@ pub struct DragLawSettings {
     /// Kinematic viscosity, m²/s.
     pub nu: f64,
     /// Gravity acting on the fluid, m/s².
-    pub gravity: [f64; 3],
+    pub gravity: Vec3,
 }
 
 impl DragLawSettings {
     /// The paper's choices: its closure and paper eq. 7, trilinear transfer both ways, explicit
     /// source, `alphaMax` 0.99 (fluid and gravity given).
-    pub fn paper(rho: f64, nu: f64, gravity: [f64; 3]) -> Self {
+    pub fn paper(rho: f64, nu: f64, gravity: Vec3) -> Self {
         DragLawSettings {
             closure: Some(DragClosure::Paper),
             analytical: false,

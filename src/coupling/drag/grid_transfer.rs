@@ -18,6 +18,7 @@
 use super::drag_law_settings::Stencil;
 use crate::fluid::{BoundaryConditions, FaceCondition, PaddedLayout};
 use crate::grid::{fast_floor, Grid};
+use crate::Vec3;
 
 /// Reading or writing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,7 +59,7 @@ impl GridTransfer {
 
     /// `x` in cell units from the origin, `(x_d − o_d)/h_d`.
     #[inline(always)]
-    fn cell_units(&self, x: [f64; 3]) -> [f64; 3] {
+    fn cell_units(&self, x: Vec3) -> [f64; 3] {
         let (o, h) = (&self.grid.origin, &self.grid.h);
         [
             (x[0] - o[0]) / h[0],
@@ -117,7 +118,7 @@ impl GridTransfer {
     #[inline(always)]
     fn face_stencils(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         stencil: Stencil,
         purpose: Purpose,
         faces: &mut [SampleStencil; 3],
@@ -171,7 +172,7 @@ impl GridTransfer {
 
     /// The stencils reading each velocity component at `x` (faces and ghosts filled).
     #[inline]
-    pub fn read_face_stencils(&self, x: [f64; 3], stencil: Stencil, out: &mut [SampleStencil; 3]) {
+    pub fn read_face_stencils(&self, x: Vec3, stencil: Stencil, out: &mut [SampleStencil; 3]) {
         self.face_stencils(x, stencil, Purpose::Read, out, None);
     }
 
@@ -180,7 +181,7 @@ impl GridTransfer {
     #[inline]
     pub fn write_stencils(
         &self,
-        x: [f64; 3],
+        x: Vec3,
         stencil: Stencil,
         faces: &mut [SampleStencil; 3],
         cell: &mut SampleStencil,
@@ -190,7 +191,7 @@ impl GridTransfer {
 
     /// The stencil of a cell field at `x` (reading or writing: cell samples stay on the cells).
     #[inline]
-    pub fn cell_stencil(&self, x: [f64; 3], stencil: Stencil, out: &mut SampleStencil) {
+    pub fn cell_stencil(&self, x: Vec3, stencil: Stencil, out: &mut SampleStencil) {
         let xi = self.cell_units(x);
         for d in 0..3 {
             let n = self.grid.n[d] as isize;
@@ -201,15 +202,10 @@ impl GridTransfer {
     }
 
     /// The staggered vector field `faces` (padded, ghosts filled) at `x` (paper eq. 14).
-    pub fn interpolate_faces(
-        &self,
-        faces: &[Vec<f64>; 3],
-        x: [f64; 3],
-        stencil: Stencil,
-    ) -> [f64; 3] {
+    pub fn interpolate_faces(&self, faces: &[Vec<f64>; 3], x: Vec3, stencil: Stencil) -> Vec3 {
         let mut st = [SampleStencil::default(); 3];
         self.read_face_stencils(x, stencil, &mut st);
-        std::array::from_fn(|c| st[c].gather(&faces[c]))
+        Vec3::from_fn(|c, _| st[c].gather(&faces[c]))
     }
 
     /// Two staggered fields at `x` with one stencil evaluation (the velocity and the pressure
@@ -218,14 +214,14 @@ impl GridTransfer {
         &self,
         a: &[Vec<f64>; 3],
         b: &[Vec<f64>; 3],
-        x: [f64; 3],
+        x: Vec3,
         stencil: Stencil,
-    ) -> ([f64; 3], [f64; 3]) {
+    ) -> (Vec3, Vec3) {
         let mut st = [SampleStencil::default(); 3];
         self.read_face_stencils(x, stencil, &mut st);
         (
-            std::array::from_fn(|c| st[c].gather(&a[c])),
-            std::array::from_fn(|c| st[c].gather(&b[c])),
+            Vec3::from_fn(|c, _| st[c].gather(&a[c])),
+            Vec3::from_fn(|c, _| st[c].gather(&b[c])),
         )
     }
 
@@ -235,10 +231,10 @@ impl GridTransfer {
     pub fn spread_to_faces_pair(
         &self,
         target: &mut [Vec<f64>; 3],
-        value: [f64; 3],
+        value: Vec3,
         second: &mut [Vec<f64>; 3],
         other: f64,
-        x: [f64; 3],
+        x: Vec3,
         stencil: Stencil,
     ) {
         let mut st = [SampleStencil::default(); 3];
@@ -251,7 +247,7 @@ impl GridTransfer {
     }
 
     /// The cell field `cells` (padded, ghosts filled) at `x`.
-    pub fn interpolate_cells(&self, cells: &[f64], x: [f64; 3], stencil: Stencil) -> f64 {
+    pub fn interpolate_cells(&self, cells: &[f64], x: Vec3, stencil: Stencil) -> f64 {
         let mut st = SampleStencil::default();
         self.cell_stencil(x, stencil, &mut st);
         st.gather(cells)
@@ -262,8 +258,8 @@ impl GridTransfer {
     pub fn spread_to_faces(
         &self,
         target: &mut [Vec<f64>; 3],
-        x: [f64; 3],
-        value: [f64; 3],
+        x: Vec3,
+        value: Vec3,
         stencil: Stencil,
     ) {
         let mut st = [SampleStencil::default(); 3];
@@ -277,7 +273,7 @@ impl GridTransfer {
     }
 
     /// Adds `value · w` to the cells (padded array) around `x`.
-    pub fn spread_to_cells(&self, target: &mut [f64], x: [f64; 3], value: f64, stencil: Stencil) {
+    pub fn spread_to_cells(&self, target: &mut [f64], x: Vec3, value: f64, stencil: Stencil) {
         let mut st = SampleStencil::default();
         self.cell_stencil(x, stencil, &mut st);
         st.scatter(target, 0, value);
@@ -409,7 +405,7 @@ mod tests {
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         for _ in 0..200 {
-            let x: [f64; 3] = std::array::from_fn(|d| {
+            let x = Vec3::from_fn(|d, _| {
                 grid.origin[d] + (1.2 * next() - 0.1) * grid.n[d] as f64 * grid.h[d]
             });
             for stencil in [Stencil::Trilinear, Stencil::Cell] {
@@ -425,9 +421,9 @@ mod tests {
                 let mut one: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; l.len]);
                 let mut two = one.clone();
                 let (mut p, mut q) = (one.clone(), one.clone());
-                t.spread_to_faces(&mut one, x, [1.0, -2.0, 3.0], stencil);
-                t.spread_to_faces(&mut two, x, [0.5; 3], stencil);
-                t.spread_to_faces_pair(&mut p, [1.0, -2.0, 3.0], &mut q, 0.5, x, stencil);
+                t.spread_to_faces(&mut one, x, Vec3::new(1.0, -2.0, 3.0), stencil);
+                t.spread_to_faces(&mut two, x, Vec3::repeat(0.5), stencil);
+                t.spread_to_faces_pair(&mut p, Vec3::new(1.0, -2.0, 3.0), &mut q, 0.5, x, stencil);
                 assert_eq!((one, two), (p, q));
             }
         }
@@ -495,7 +491,7 @@ mod tests {
         face: Option<usize>,
         stencil: Stencil,
         write: bool,
-        x: [f64; 3],
+        x: Vec3,
     ) -> Vec<(usize, f64)> {
         let ax: Vec<_> = (0..3)
             .map(|d| reference_axis(t, face, stencil, write, d, x[d]))
@@ -583,7 +579,7 @@ mod tests {
         for bc in &cases {
             let t = transfer(bc, &grid);
             for _ in 0..300 {
-                let x: [f64; 3] = std::array::from_fn(|d| {
+                let x = Vec3::from_fn(|d, _| {
                     grid.origin[d] + (1.2 * next() - 0.1) * grid.n[d] as f64 * grid.h[d]
                 });
                 for stencil in [Stencil::Trilinear, Stencil::Cell] {
@@ -628,7 +624,7 @@ mod tests {
                 }
             }
         }
-        let x = [1.23, -0.37, 1.01];
+        let x = Vec3::new(1.23, -0.37, 1.01);
         let v = t.interpolate_faces(&faces, x, Stencil::Trilinear);
         for c in 0..3 {
             let exact = 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2] + c as f64;
@@ -637,7 +633,7 @@ mod tests {
         // Spreading a unit value spreads total weight 1, for both stencils and every sample set.
         for stencil in [Stencil::Trilinear, Stencil::Cell] {
             let mut target: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; l.len]);
-            t.spread_to_faces(&mut target, x, [1.0, 2.0, 3.0], stencil);
+            t.spread_to_faces(&mut target, x, Vec3::new(1.0, 2.0, 3.0), stencil);
             for c in 0..3 {
                 let s: f64 = target[c].iter().sum();
                 assert!((s - (c + 1) as f64).abs() < 1e-14);
@@ -654,8 +650,8 @@ mod tests {
         let mut target: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; l.len]);
         let mut cells = vec![0.0; l.len];
         // A particle in the corner cell, closer to the walls than half a cell.
-        let x = [0.2, 0.3, 3.9];
-        t.spread_to_faces(&mut target, x, [1.0, 1.0, 1.0], Stencil::Trilinear);
+        let x = Vec3::new(0.2, 0.3, 3.9);
+        t.spread_to_faces(&mut target, x, Vec3::new(1.0, 1.0, 1.0), Stencil::Trilinear);
         t.spread_to_cells(&mut cells, x, 1.0, Stencil::Trilinear);
         for c in 0..3 {
             let s: f64 = target[c].iter().sum();
@@ -701,12 +697,12 @@ mod tests {
                 }
             }
         }
-        let at_wall = t.interpolate_faces(&faces, [1.0, 0.0, 1.0], Stencil::Trilinear);
+        let at_wall = t.interpolate_faces(&faces, Vec3::new(1.0, 0.0, 1.0), Stencil::Trilinear);
         assert!(at_wall[0].abs() < 1e-14);
-        let inside = t.interpolate_faces(&faces, [1.0, 0.5, 1.0], Stencil::Trilinear);
+        let inside = t.interpolate_faces(&faces, Vec3::new(1.0, 0.5, 1.0), Stencil::Trilinear);
         assert!((inside[0] - 1.0).abs() < 1e-14);
         // The cell stencil reads the cell-centred mean of the two faces.
-        let cell = t.interpolate_faces(&faces, [0.3, 0.2, 0.9], Stencil::Cell);
+        let cell = t.interpolate_faces(&faces, Vec3::new(0.3, 0.2, 0.9), Stencil::Cell);
         assert!((cell[0] - 1.0).abs() < 1e-14);
     }
 }

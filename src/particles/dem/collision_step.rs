@@ -5,7 +5,6 @@
 use super::Dem;
 use crate::particles::contact_model::{linear_contact_time, ContactLaw, PairModel, WallModel};
 use crate::particles::domain_box::FaceCondition;
-use crate::particles::vec3::norm;
 
 impl Dem {
     /// The collision sub-step limit.
@@ -30,7 +29,7 @@ impl Dem {
             let d = p.diameter[i];
             d_min = d_min.min(d);
             rho_max = rho_max.max(p.density[i]);
-            u_max = u_max.max(norm(p.velocity[i]) + norm(p.angular_velocity[i]) * d / 2.0);
+            u_max = u_max.max(p.velocity[i].norm() + p.angular_velocity[i].norm() * d / 2.0);
             m_min = m_min.min(p.mass(i));
         }
         const VSMALL: f64 = 1.0e-300;

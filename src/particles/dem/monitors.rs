@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use super::Dem;
 use crate::particles::domain_box::{minimum_image, FaceCondition};
 use crate::particles::neighbour_list::{wall_distance, CHUNK};
-use crate::particles::vec3::{dot, scale, Vec3};
+use crate::Vec3;
 
 impl Dem {
     /// Kinetic energy `(Σ ½ m v², Σ ½ I ω²)`, translational and rotational, J.
@@ -18,8 +18,8 @@ impl Dem {
             .map(|i| {
                 let (m, inertia) = (p.mass(i), p.moment_of_inertia(i));
                 (
-                    0.5 * m * dot(p.velocity[i], p.velocity[i]),
-                    0.5 * inertia * dot(p.angular_velocity[i], p.angular_velocity[i]),
+                    0.5 * m * p.velocity[i].dot(&p.velocity[i]),
+                    0.5 * inertia * p.angular_velocity[i].dot(&p.angular_velocity[i]),
                 )
             })
             .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
@@ -33,14 +33,14 @@ impl Dem {
         let rho_f = self.config.fluid_density;
         (0..p.len())
             .filter(|&i| !p.fixed[i])
-            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * dot(g, p.position[i]))
+            .map(|i| -p.mass(i) * (1.0 - rho_f / p.density[i]) * g.dot(&p.position[i]))
             .sum()
     }
 
     /// Mean velocity of the free particles, m/s.
     pub fn mean_velocity(&self) -> Vec3 {
         let p = &self.particles;
-        let mut s = [0.0; 3];
+        let mut s = Vec3::zeros();
         let mut count = 0usize;
         for i in 0..p.len() {
             if !p.fixed[i] {
@@ -51,9 +51,9 @@ impl Dem {
             }
         }
         if count == 0 {
-            [0.0; 3]
+            Vec3::zeros()
         } else {
-            scale(s, 1.0 / count as f64)
+            s * (1.0 / count as f64)
         }
     }
 
@@ -64,7 +64,7 @@ impl Dem {
         let lists = &self.lists;
         let radius = &self.radius;
         let domain = &self.domain;
-        let periodic = inv_l != [0.0; 3];
+        let periodic = inv_l != Vec3::zeros();
         (0..self.particles.len())
             .into_par_iter()
             .with_min_len(CHUNK)
@@ -72,14 +72,14 @@ impl Dem {
                 let mut worst: f64 = 0.0;
                 for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
                     let j = lists.partner[k] as usize;
-                    let mut d = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    let mut d = Vec3::new(x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
                     if periodic {
                         d = minimum_image(d, length, inv_l);
                     }
                     // Most listed pairs are apart (overlap ≤ 0 cannot raise `worst` ≥ 0):
                     // the square root only for those in contact.
                     let reach = radius[i] + radius[j];
-                    let dist2 = dot(d, d);
+                    let dist2 = d.dot(&d);
                     if dist2 >= reach * reach {
                         continue;
                     }
