@@ -44,11 +44,19 @@ impl<'a> Motion<'a> {
     pub(super) fn half_kick(&self, i: usize, f: Vec3, t: Vec3, v: &mut Vec3, w: &mut Vec3) {
         let buoy = self.buoyancy(i);
         let (inv_m, inv_i) = (self.inv_m[i], self.inv_i[i]);
+        // plain arrays in the hot loop (docs/numerics.md, "Libraries")
+        let (v, w): (&mut [f64; 3], &mut [f64; 3]) = (v.as_mut(), w.as_mut());
+        let (f, t, fe, te): (&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) = (
+            f.as_ref(),
+            t.as_ref(),
+            self.fe[i].as_ref(),
+            self.te[i].as_ref(),
+        );
+        let (g, free): (&[f64; 3], &[f64; 3]) = (self.g.as_ref(), self.free.as_ref());
         for a in 0..3 {
             // times 1 (exact) along a free axis, 0 along a two-dimensional case's empty one
-            v[a] = (v[a] + self.half * ((f[a] + self.fe[i][a]) * inv_m + self.g[a] * buoy))
-                * self.free[a];
-            w[a] += self.half * (t[a] + self.te[i][a]) * inv_i;
+            v[a] = (v[a] + self.half * ((f[a] + fe[a]) * inv_m + g[a] * buoy)) * free[a];
+            w[a] += self.half * (t[a] + te[a]) * inv_i;
         }
     }
 
@@ -69,6 +77,7 @@ impl<'a> Motion<'a> {
             return false;
         }
         self.half_kick(i, f, t, v, w);
+        let x: &mut [f64; 3] = x.as_mut();
         for a in 0..3 {
             x[a] += self.h * v[a];
         }
@@ -124,8 +133,9 @@ impl<'a> Gather<'a> {
     pub(super) fn loads(&self, i: usize) -> (Vec3, Vec3) {
         let lists = self.lists;
         let (a, b) = (self.own[i], self.prev[i]);
-        let mut f = Vec3::new(a[0] + b[0], a[1] + b[1], a[2] + b[2]);
-        let mut t = Vec3::new(a[3] + b[3], a[4] + b[4], a[5] + b[5]);
+        // plain arrays in the hot loop (docs/numerics.md, "Libraries")
+        let mut f = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+        let mut t = [a[3] + b[3], a[4] + b[4], a[5] + b[5]];
         for &q in
             &lists.far_rev[lists.far_rev_start[i] as usize..lists.far_rev_start[i + 1] as usize]
         {
@@ -135,14 +145,17 @@ impl<'a> Gather<'a> {
                 t[a] += l[a + 3];
             }
         }
-        t *= self.radius[i];
+        let r = self.radius[i];
+        t = t.map(|x| x * r);
         for m in lists.wall_start[i] as usize..lists.wall_start[i + 1] as usize {
+            let (wf, wt): (&[f64; 3], &[f64; 3]) =
+                (lists.wall_force[m].as_ref(), lists.wall_torque[m].as_ref());
             for a in 0..3 {
-                f[a] += lists.wall_force[m][a];
-                t[a] += lists.wall_torque[m][a];
+                f[a] += wf[a];
+                t[a] += wt[a];
             }
         }
-        (f, t)
+        (f.into(), t.into())
     }
 }
 
