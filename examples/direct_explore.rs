@@ -17,8 +17,11 @@ mod box_case;
 #[path = "../tests/support/settler.rs"]
 mod settler;
 
-use fsim::coupling::direct::sangani_acrivos_k;
+#[path = "../tests/support/porous_reference.rs"]
+mod porous_reference;
+
 use fsim::fluid::TimeScheme;
+use porous_reference::sangani_acrivos_k;
 use settler::{stokes_velocity, Settler, SettlerOptions};
 
 const CELLS: usize = 36;

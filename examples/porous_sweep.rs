@@ -9,14 +9,20 @@
 //! `K_<offset>_<interpolation>` from the stress integral on the sphere (offset 0) and one,
 //! two, three cells out, trilinear and tricubic: the alternatives of docs/direct_model.md.
 
+#[path = "../tests/support/porous_reference.rs"]
+mod porous_reference;
+#[path = "../tests/support/steady_stokes.rs"]
+mod steady_stokes;
+
 use fsim::coupling::direct::{
-    reference_k, stress_integral_force, FieldView, Interpolation, PeriodicStokesArray, RigidSphere,
-    StressIntegral,
+    stress_integral_force, FieldView, Interpolation, RigidSphere, StressIntegral,
 };
 use fsim::fluid::PaddedLayout;
 use fsim::grid::Grid;
+use porous_reference::reference_k;
 use std::f64::consts::PI;
 use std::time::Instant;
+use steady_stokes::PeriodicStokesArray;
 
 fn parse(arg: Option<String>, default: &[f64]) -> Vec<f64> {
     arg.map(|s| s.split(',').map(|v| v.parse().expect("a number")).collect())

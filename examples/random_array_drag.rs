@@ -11,10 +11,14 @@
 //! for φ < 0.4 to Ladd's and Hill, Koch & Ladd's simulations):
 //! `F = (1 + 3√(φ/2) + (135/64) φ ln φ + 16.14 φ) / (1 + 0.681 φ − 8.48 φ² + 8.16 φ³)`.
 
-use fsim::coupling::direct::{PeriodicStokesArray, RigidSphere};
+#[path = "../tests/support/steady_stokes.rs"]
+mod steady_stokes;
+
+use fsim::coupling::direct::RigidSphere;
 use fsim::grid::Grid;
 use std::f64::consts::PI;
 use std::time::Instant;
+use steady_stokes::PeriodicStokesArray;
 
 fn parse(arg: Option<String>, default: &[f64]) -> Vec<f64> {
     arg.map(|s| s.split(',').map(|v| v.parse().expect("a number")).collect())

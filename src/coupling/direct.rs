@@ -8,15 +8,13 @@
 //!   force and torque from the stress tensor over a sphere split into quadrangles
 //!   (paper eq. 4–6);
 //! - [`DirectCoupling`] and [`DirectSettings`]: the model in a run (`model direct;`);
-//! - [`PeriodicStokesArray`]: steady Stokes flow through fixed spheres in a periodic box,
-//!   solved directly, for the porous-media validation (paper §3.1), and its references
-//!   [`sangani_acrivos_k`] (paper eq. 17) and [`ZICK_HOMSY_SIMPLE_CUBIC`];
 //! - [`ParticleMotion`]: freely moving spheres: [`Lubrication`] below the grid's reach, the
 //!   periodic-settling [`SettlingDrive`], the settling monitor, and the step bound of their
 //!   explicit coupling ([`coupling_step_bound`]);
 //! - [`check_resolution`]: what the grid resolves (r/h, gaps), before the run.
 //!
-//! Method choices and measured accuracy: `docs/direct_model.md`.
+//! Method choices and measured accuracy: `docs/direct_model.md`. (The steady solver of the
+//! porous-media validation lives with the tests: `tests/support/steady_stokes.rs`.)
 
 // Hot loops are plain indexed loops over contiguous arrays, by design (as in `fluid`).
 #![allow(clippy::needless_range_loop)]
@@ -30,12 +28,9 @@ mod field_brick;
 mod field_sampler;
 mod field_view;
 mod forced_face;
-mod gmres;
 mod immersed_boundary;
 mod lubrication;
 mod particle_motion;
-mod periodic_stokes_array;
-mod porous_reference;
 mod resolution_check;
 mod response_time;
 mod rigid_sphere;
@@ -51,14 +46,11 @@ pub use field_brick::FieldBrick;
 pub use field_sampler::{FieldSampler, Interpolation};
 pub use field_view::{periodic_directions, FieldView};
 pub use forced_face::{ClosedCell, ForcingFace, GapFace, InteriorFace, ThroatFace};
-pub use gmres::{gmres, GmresReport, GmresWorkspace};
 pub use immersed_boundary::ImmersedBoundary;
 pub use lubrication::{Lubrication, LubricationBox, LubricationReport};
 pub use particle_motion::{
     MotionSettings, ParticleMotion, SedimentationReport, DEFAULT_VIRTUAL_MASS, MIN_DENSITY_RATIO,
 };
-pub use periodic_stokes_array::{PeriodicStokesArray, SteadyStokesFlow};
-pub use porous_reference::{reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUBIC};
 pub use resolution_check::{
     check_resolution, ResolutionReport, MIN_CELLS_PER_RADIUS, RESOLVED_GAP_CELLS,
 };

@@ -4,10 +4,10 @@
 //! and the reference K, and a `fsimFoam` run whose step follows the Courant number. (The
 //! settling sphere across the same steps: `tests/direct/motion.rs`.)
 
+use crate::support::porous_reference::reference_k;
 use crate::support::*;
 use fsim::coupling::direct::{
-    reference_k, stress_integral_force, DirectCoupling, DirectSettings, FieldView, RigidSphere,
-    StressIntegral,
+    stress_integral_force, DirectCoupling, DirectSettings, FieldView, RigidSphere, StressIntegral,
 };
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
 use fsim::grid::Grid;

@@ -8,7 +8,7 @@ use crate::support::*;
 use std::fs;
 use std::path::Path;
 
-use fsim::coupling::direct::sangani_acrivos_k;
+use crate::support::porous_reference::sangani_acrivos_k;
 use fsim::fluid::TimeScheme;
 
 /// Settling velocity over the Stokes velocity of one sphere (d = 2 mm, ρ_p/ρ_f = 2,

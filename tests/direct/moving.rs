@@ -4,7 +4,8 @@
 //! the sphere (Galilean invariance), while it crosses the grid; both the stress integral
 //! and the momentum balance ρ G L³ give it.
 
-use fsim::coupling::direct::{DirectCoupling, DirectSettings, PeriodicStokesArray, RigidSphere};
+use crate::support::steady_stokes::PeriodicStokesArray;
+use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
 use fsim::grid::Grid;
 use fsim::Vec3;

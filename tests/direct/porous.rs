@@ -3,7 +3,9 @@
 //! Zick & Homsy (1982, Table 2) and Sangani & Acrivos (paper eq. 17), and its order of
 //! convergence in h. The full sweep: `cargo run --release --example porous_sweep`.
 
-use fsim::coupling::direct::{sangani_acrivos_k, PeriodicStokesArray, RigidSphere};
+use crate::support::porous_reference::sangani_acrivos_k;
+use crate::support::steady_stokes::PeriodicStokesArray;
+use fsim::coupling::direct::RigidSphere;
 use fsim::grid::Grid;
 use fsim::Vec3;
 use std::f64::consts::PI;
@@ -194,4 +196,47 @@ fn a_translating_sphere_feels_the_drag_of_the_fixed_array_and_a_rotating_one_its
     // forced faces is not exactly symmetric.
     let scale = 6.0 * PI * radius * omega * radius;
     assert!(g.iter().all(|x| x.abs() < 2e-3 * scale), "{g:?}");
+}
+
+/// The steady solver's restarted GMRES on a tridiagonal, non-symmetric, diagonally dominant
+/// system whose solution is `x = 1 … n`.
+#[test]
+fn gmres_solves_a_non_symmetric_system() {
+    use crate::support::steady_stokes::gmres;
+    let n = 50;
+    let matrix = |v: &[f64], out: &mut [f64]| {
+        for i in 0..v.len() {
+            let left = if i > 0 { v[i - 1] } else { 0.0 };
+            let right = if i + 1 < v.len() { v[i + 1] } else { 0.0 };
+            out[i] = 4.0 * v[i] - 1.5 * left - 0.5 * right;
+        }
+    };
+    let exact: Vec<f64> = (1..=n).map(|i| i as f64).collect();
+    let mut b = vec![0.0; n];
+    matrix(&exact, &mut b);
+    let mut x = vec![0.0; n];
+    let report = gmres(&mut |v, o| matrix(v, o), &b, &mut x, 10, 1e-12, 500);
+    assert!(report.relative_residual < 1e-12, "{report:?}");
+    for (xi, ei) in x.iter().zip(&exact) {
+        assert!((xi - ei).abs() < 1e-9);
+    }
+}
+
+/// Sangani & Acrivos (paper eq. 17) agrees with Zick & Homsy where dilute and falls behind
+/// as the gaps close; the reference K is Zick & Homsy's table, interpolated in ln K.
+#[test]
+fn sangani_acrivos_agrees_with_zick_and_homsy_where_dilute() {
+    use crate::support::porous_reference::{
+        reference_k, sangani_acrivos_k, ZICK_HOMSY_SIMPLE_CUBIC,
+    };
+    for &(phi, k) in &ZICK_HOMSY_SIMPLE_CUBIC[..3] {
+        let sa = sangani_acrivos_k(phi);
+        assert!((sa / k - 1.0).abs() < 1.5e-3, "φ {phi}: {sa} vs {k}");
+    }
+    let at =
+        |i: usize| sangani_acrivos_k(ZICK_HOMSY_SIMPLE_CUBIC[i].0) / ZICK_HOMSY_SIMPLE_CUBIC[i].1;
+    assert!((at(3) - 0.992).abs() < 1e-3 && (at(4) - 0.926).abs() < 1e-3);
+    assert_eq!(reference_k(0.343), 15.4);
+    assert_eq!(reference_k(0.216), 7.442);
+    assert!((reference_k(0.1) - sangani_acrivos_k(0.1)).abs() < 1e-15);
 }

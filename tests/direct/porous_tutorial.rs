@@ -2,8 +2,8 @@
 //! φ = 0.1, r/h = 8, driven by meanVelocityForce; the K it monitors (stress integral three
 //! cells out) matches Sangani & Acrivos (paper eq. 17) within 3 %.
 
+use crate::support::porous_reference::sangani_acrivos_k;
 use crate::support::*;
-use fsim::coupling::direct::sangani_acrivos_k;
 use std::fs;
 
 #[test]

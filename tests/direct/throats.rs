@@ -4,9 +4,9 @@
 //! carry it. Dense simple cubic arrays on coarse grids, time-stepped to steady state as
 //! `fsimFoam` runs them, against Zick & Homsy (1982, Table 2) and the exact reference.
 
-use fsim::coupling::direct::{
-    reference_k, DirectCoupling, DirectSettings, PeriodicStokesArray, RigidSphere,
-};
+use crate::support::porous_reference::reference_k;
+use crate::support::steady_stokes::PeriodicStokesArray;
+use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
 use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
 use fsim::grid::Grid;
 use std::f64::consts::PI;

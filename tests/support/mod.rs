@@ -2,8 +2,10 @@
 #![allow(dead_code)]
 
 pub mod box_case;
+pub mod porous_reference;
 pub mod settler;
 pub mod slit;
+pub mod steady_stokes;
 
 use std::fs;
 use std::path::{Path, PathBuf};
