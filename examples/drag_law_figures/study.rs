@@ -17,7 +17,7 @@ use fsim::grid::Grid;
 use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
-use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
+use fsim::simulation::DragLawModel;
 use fsim::Vec3;
 use std::f64::consts::PI;
 
@@ -151,24 +151,13 @@ fn h_of(length: f64, cells: usize) -> f64 {
 /// The drag-law model of `dem` in `fluid` with settings `s`, its pressure initialised for
 /// steps of `dt`.
 fn drag_law_model(s: DragLawSettings, fluid: &mut FluidSolver, dem: Dem, dt: f64) -> DragLawModel {
-    let mut coupling = DragLawCoupling::new(s, fluid, &dem).expect("a valid set-up");
-    coupling.initialise_pressure(fluid, dt);
-    DragLawModel {
-        particles: Particles::from_dem(dem),
-        coupling,
-    }
+    let coupling = DragLawCoupling::new(s, fluid, &dem).expect("a valid set-up");
+    DragLawModel::start(coupling, dem, fluid, dt)
 }
 
 /// One step of the drag-law model, as fsimFoam takes it.
 fn step(fluid: &mut FluidSolver, model: &mut DragLawModel, dt: f64) {
-    step_drag_law(
-        fluid,
-        model,
-        fluid.time() + dt,
-        dt,
-        &mut PhaseTimes::default(),
-    )
-    .expect("ε above the floor");
+    model.step(fluid, dt).expect("ε above the floor");
 }
 
 /// The isolated sphere's terminal velocity under `closure` (ε = 1), by bisection.

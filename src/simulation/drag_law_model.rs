@@ -3,9 +3,12 @@
 //! order).
 
 use super::particles::Particles;
+use super::simulation::PhaseTimes;
+use super::step::{step_drag_law, ModelStep};
 use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
 use crate::fluid::{FluidSolver, VolumeAveragedReport};
+use crate::particles::Dem;
 
 /// `model dragLaw` with a cloud: the particles and the drag-law coupling.
 pub struct DragLawModel {
@@ -14,6 +17,27 @@ pub struct DragLawModel {
 }
 
 impl DragLawModel {
+    /// The model of the particles of `dem` set up outside a case (tests, studies), in
+    /// `fluid`, its pressure started for steps of `dt` as a fresh run starts it.
+    pub fn start(
+        mut coupling: DragLawCoupling,
+        dem: Dem,
+        fluid: &mut FluidSolver,
+        dt: f64,
+    ) -> Self {
+        coupling.initialise_pressure(fluid, dt);
+        DragLawModel {
+            particles: Particles::from_dem(dem),
+            coupling,
+        }
+    }
+
+    /// One step of `dt` as `fsimFoam` takes it ([`step_drag_law`]).
+    pub fn step(&mut self, fluid: &mut FluidSolver, dt: f64) -> Result<ModelStep, FsimError> {
+        let end = fluid.time() + dt;
+        step_drag_law(fluid, self, end, dt, &mut PhaseTimes::default())
+    }
+
     /// Paper eq. 10–13: the drag (closure eq. 11–12) and pressure-gradient force on every
     /// particle from the fluid as it is (velocity, ε and ∇p read at the particle, eq.
     /// 14–15), into the DEM's external loads; their reaction gathered for the fluid (eq.

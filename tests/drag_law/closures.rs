@@ -1,5 +1,5 @@
 //! Acceptance tests of the drag-law model (paper §2.2), its step as fsimFoam takes it
-//! ([`step_drag_law`]) on set-ups built in code: terminal
+//! (`DragLawModel::step`) on set-ups built in code: terminal
 //! settling velocity for every closure, Ergun's pressure drop through a fixed bed at two
 //! fluid fractions, the pressure drop of a fluidized bed, and the action–reaction balance of
 //! the particle–fluid exchange at every step.
@@ -14,7 +14,7 @@ use fsim::grid::Grid;
 use fsim::particles::{
     Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
 };
-use fsim::simulation::{step_drag_law, DragLawModel, Particles, PhaseTimes};
+use fsim::simulation::DragLawModel;
 use fsim::Vec3;
 use std::f64::consts::PI;
 
@@ -108,24 +108,13 @@ fn model_with_inlets(
 ) -> DragLawModel {
     let mut coupling = DragLawCoupling::new(s, fluid, &cloud).unwrap();
     coupling.fluid.set_superficial_inlets(inlets);
-    coupling.initialise_pressure(fluid, dt);
-    DragLawModel {
-        particles: Particles::from_dem(cloud),
-        coupling,
-    }
+    DragLawModel::start(coupling, cloud, fluid, dt)
 }
 
-/// One step of the drag-law model as fsimFoam takes it ([`step_drag_law`]), checking
+/// One step of the drag-law model as fsimFoam takes it (`DragLawModel::step`), checking
 /// action = −reaction and the pressure solve.
 fn step(model: &mut DragLawModel, fluid: &mut FluidSolver, dt: f64) {
-    step_drag_law(
-        fluid,
-        model,
-        fluid.time() + dt,
-        dt,
-        &mut PhaseTimes::default(),
-    )
-    .unwrap();
+    model.step(fluid, dt).unwrap();
     let e = model.coupling.last;
     let scale = e
         .drag_on_particles
