@@ -4,45 +4,14 @@
 //! and the reference K, and a `fsimFoam` run whose step follows the Courant number. (The
 //! settling sphere across the same steps: `tests/direct/motion.rs`.)
 
+use crate::driven_array::driven_array;
 use crate::support::porous_reference::reference_k;
 use crate::support::*;
-use fsim::coupling::direct::{
-    stress_integral_force, DirectCoupling, DirectSettings, FieldView, RigidSphere, StressIntegral,
-};
-use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
-use fsim::grid::Grid;
+use fsim::coupling::direct::{stress_integral_force, FieldView, StressIntegral};
+use fsim::fluid::TimeScheme;
 use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
-
-/// A fixed sphere of solid fraction `phi` off the grid's symmetry points by (0.1, 0.2, 0.3) h
-/// in a periodic unit cell of `n³` cells (ν = ρ = 1), driven at bulk velocity 1: the fluid
-/// on `scheme`, its coupling, the sphere and `factor` times RK3's viscous bound.
-fn driven_array(
-    phi: f64,
-    n: usize,
-    scheme: TimeScheme,
-    factor: f64,
-) -> (FluidSolver, DirectCoupling, RigidSphere, f64) {
-    let radius = (3.0 * phi / (4.0 * PI)).cbrt();
-    let h = 1.0 / n as f64;
-    let sphere = RigidSphere::fixed([0.5 + 0.1 * h, 0.5 + 0.2 * h, 0.5 + 0.3 * h], radius);
-    let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
-    let mut fluid = FluidSolver::new(
-        grid,
-        BoundaryConditions::periodic(),
-        FluidSettings::new(1.0),
-    )
-    .unwrap();
-    let dt = factor * fluid.stability_bound();
-    fluid.set_scheme(scheme).unwrap();
-    fluid
-        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, 1.0, 1.0)))
-        .unwrap();
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    coupling.set_spheres(&[sphere], &[0]);
-    (fluid, coupling, sphere, dt)
-}
 
 /// K of a simple cubic array (unit cell, ν = ρ = U = 1, `n³` cells) time-stepped to
 /// t = 0.1 L²/ν (K within 0.03 % of its value at 0.2 L²/ν) with `scheme` at `factor` times RK3's viscous bound:

@@ -6,6 +6,7 @@
 mod support;
 
 mod chebyshev;
+mod driven_array;
 mod errors;
 mod motion;
 mod moving;

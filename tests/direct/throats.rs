@@ -4,10 +4,11 @@
 //! carry it. Dense simple cubic arrays on coarse grids, time-stepped to steady state as
 //! `fsimFoam` runs them, against Zick & Homsy (1982, Table 2) and the exact reference.
 
+use crate::driven_array::driven_array;
 use crate::support::porous_reference::reference_k;
 use crate::support::steady_stokes::PeriodicStokesArray;
-use fsim::coupling::direct::{DirectCoupling, DirectSettings, RigidSphere};
-use fsim::fluid::{BoundaryConditions, FluidSettings, FluidSolver, MeanVelocityForce, TimeScheme};
+use fsim::coupling::direct::RigidSphere;
+use fsim::fluid::TimeScheme;
 use fsim::grid::Grid;
 use std::f64::consts::PI;
 
@@ -15,20 +16,8 @@ use std::f64::consts::PI;
 /// U = 1), stepped with `scheme` at `factor` times RK3's bound to `end` (the K of the last
 /// step).
 fn time_stepped_k(phi: f64, n: usize, (scheme, factor, end): (TimeScheme, f64, f64)) -> f64 {
-    let radius = (3.0 * phi / (4.0 * PI)).cbrt();
-    let h = 1.0 / n as f64;
-    let sphere = RigidSphere::fixed([0.5 + 0.1 * h, 0.5 + 0.2 * h, 0.5 + 0.3 * h], radius);
-    let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
-    let mut settings = FluidSettings::new(1.0);
-    settings.scheme = TimeScheme::RK3;
-    let mut fluid = FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap();
-    let dt = factor * fluid.stability_bound();
-    fluid.set_scheme(scheme).unwrap();
-    fluid
-        .set_mean_velocity_force(Some(MeanVelocityForce::new(0, 1.0, 1.0)))
-        .unwrap();
-    let mut coupling = DirectCoupling::new(&mut fluid, DirectSettings::default());
-    coupling.set_spheres(&[sphere], &[0]);
+    let (mut fluid, mut coupling, sphere, dt) = driven_array(phi, n, scheme, factor);
+    let radius = sphere.radius;
     for _ in 0..(end / dt).ceil() as usize {
         fluid.step_with(dt, &mut |stage| coupling.impose(stage));
     }
