@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Debian packages the checks use when they are there: OpenFOAM's examples (the parser reads
-# every dictionary of its tutorials; DPMFoam/icoFoam for the cross-check and benchmarks) and
-# ParaView's pvpython (opens fsim's collection file as a ParaView user would).
+# every dictionary of its tutorials; DPMFoam runs live in the cross-check, DPMFoam and icoFoam
+# in the benchmarks) and ParaView's pvpython (opens fsim's collection file as a ParaView user would).
 # Installs only what is missing; without root or apt it says so and the checks that need the
 # packages report themselves skipped.
 set -euo pipefail
 need=()
-[ -d /usr/share/doc/openfoam-examples/examples ] || need+=(openfoam openfoam-examples)
+{ [ -d /usr/share/doc/openfoam-examples/examples ] && command -v DPMFoam >/dev/null 2>&1; } \
+    || need+=(openfoam openfoam-examples)
 command -v pvpython >/dev/null 2>&1 || need+=(python3-paraview)
 if [ ${#need[@]} -eq 0 ]; then
     exit 0
