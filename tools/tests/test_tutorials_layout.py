@@ -104,10 +104,12 @@ def snapshot(folder: Path) -> dict:
 
 
 def copy_tutorial(name: str, dest: Path) -> Path:
-    """The tutorial folder as the repository holds it, beside a copy of RunFunctions."""
+    """The tutorial folder as the repository holds it, beside copies of RunFunctions and of
+    plotting.py (what every plot.py imports)."""
     tutorials = dest / "tutorials"
     tutorials.mkdir()
-    shutil.copy2(TUTORIALS_DIR / "RunFunctions", tutorials / "RunFunctions")
+    for shared in ["RunFunctions", "plotting.py"]:
+        shutil.copy2(TUTORIALS_DIR / shared, tutorials / shared)
     keep = {"Allrun", "Allclean", "README.md", "plot.py", "system", "constant", "0"}
     shutil.copytree(TUTORIALS_DIR / name, tutorials / name,
                     ignore=lambda folder, names: [] if Path(folder) != TUTORIALS_DIR / name

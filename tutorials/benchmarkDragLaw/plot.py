@@ -8,7 +8,7 @@ velocity, v_p the particles'. References: an isolated particle's terminal veloci
 the uniform suspension of the paper's closure (eq. 11, Wen & Yu: v_s (1 + 0.15 Re^0.687) =
 U_Stokes eps^4.7). Prints them and draws benchmarkDragLaw.png.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -16,27 +16,14 @@ import numpy as np
 import pyvista as pv
 
 case = Path(__file__).resolve().parent
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (field_axes, monitor, properties, save, schiller_naumann,  # noqa: E402
+                      settling_references, time_directories)
 
+rho_f, nu, rho_p, g = properties(case)
+mu, g = rho_f * nu, abs(g[1])
 
-def root(f, lo, hi):
-    """Bisection: f(lo) < 0 < f(hi)."""
-    for _ in range(100):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if f(mid) < 0 else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-def entry(file, pattern):
-    return float(re.search(pattern, (case / file).read_text(), re.M | re.S).group(1))
-
-
-rho_f = entry("constant/transportProperties", r"^\s*rho\.\w+\s+([0-9.eE+-]+)\s*;")
-mu = rho_f * entry("constant/transportProperties", r"^\s*nu\s+([0-9.eE+-]+)\s*;")
-rho_p = entry("constant/kinematicCloudProperties", r"^\s*rho0\s+([0-9.eE+-]+)\s*;")
-g = abs(entry("constant/g", r"value\s*\(\s*[0-9.eE+-]+\s+(-?[0-9.eE+-]+)"))
-
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+times = time_directories(case)
 fields = []
 for time, folder in times:
     fluid, cloud = pv.read(folder / "fluid.vtk"), pv.read(folder / "particles.vtu")
@@ -47,19 +34,12 @@ for time, folder in times:
 d = cloud.point_data["d"].mean()
 phi = 1 - eps.mean()
 stokes = (rho_p - rho_f) * g * d ** 2 / (18 * mu)
-isolated = root(lambda u: u * (1 + 0.15 * (rho_f * u * d / mu) ** 0.687) - stokes, 0, stokes)
-uniform = root(lambda v: v * (1 + 0.15 * (rho_f * v * d / mu) ** 0.687)
-                 - stokes * (1 - phi) ** 4.7, 0, stokes)
+isolated = schiller_naumann(stokes, rho_f, d, mu, stokes)
+uniform = schiller_naumann(stokes * (1 - phi) ** 4.7, rho_f, d, mu, stokes)
 
 # the history from the monitors: box-mean gas velocity (unweighted) and mean particle velocity
-fluid_monitor = case / "postProcessing/fluid/0/fluid.dat"
-columns = fluid_monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(fluid_monitor, comments="#", ndmin=2)
-t, u_box = data[:, columns.index("Time")], data[:, columns.index("Uy")]
-cloud_monitor = case / "postProcessing/cloud/0/cloud.dat"
-columns = cloud_monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(cloud_monitor, comments="#", ndmin=2)
-v_box = np.interp(t, data[:, columns.index("Time")], data[:, columns.index("Uy")])
+f, c = monitor(case, "fluid"), monitor(case, "cloud")
+t, u_box, v_box = f["Time"], f["Uy"], np.interp(f["Time"], c["Time"], c["Uy"])
 history = (1 - phi) * (u_box - v_box)
 late = history[t >= t[-1] / 2].mean()
 
@@ -84,25 +64,15 @@ image = a.pcolormesh(np.linspace(1e3 * x0, 1e3 * x1, nx + 1),
                      np.linspace(1e3 * y0, 1e3 * y1, ny + 1), 1 - eps_xy, cmap="Greys",
                      vmin=0, vmax=0.15)
 a.scatter(1e3 * cloud.points[:, 0], 1e3 * cloud.points[:, 1], s=4, c="tab:orange")
-a.set_aspect("equal")
-a.set_xlabel("x (mm)")
-a.set_ylabel("y (mm), gravity along -y")
-a.set_title(f"t = {times[-1][0]:g} s: particles,\nsolid fraction averaged over z",
-            fontsize=10)
-fig.colorbar(image, ax=a, label="solid fraction 1 - $\\epsilon$", shrink=0.6)
+field_axes(fig, a, image, "x (mm)", "y (mm), gravity along -y",
+           f"t = {times[-1][0]:g} s: particles,\nsolid fraction averaged over z",
+           "solid fraction 1 - $\\epsilon$", shrink=0.6)
 b = fig.add_subplot(grid[1])
 b.plot(t, history, lw=1, label="fsim: (1 - $\\phi$)(box-mean gas velocity - $v_p$)")
 b.plot(*zip(*fields[1:]), "ks", label="fsim: (1 - $\\phi$)($u_f$ - $v_p$) from the fields")
-b.axhline(isolated, color="tab:red", ls="--",
-          label=f"isolated particle (Schiller-Naumann), {isolated:.3f} m/s")
-b.axhline(uniform, color="tab:green", ls="--",
-          label=f"uniform suspension, paper's closure, {uniform:.3f} m/s")
-b.set_ylim(0, 1.2 * isolated)
-b.set_xlabel("t (s)")
-b.set_ylabel("settling speed in the frame of zero volume flux (m/s)")
-b.set_title(f"drag-law model: settling speed {fields[-1][1]:.3f} m/s at t = {times[-1][0]:g} s",
-            fontsize=10)
-b.grid(alpha=0.3)
-b.legend(loc="lower right", fontsize=9)
-fig.savefig(case / "benchmarkDragLaw.png", dpi=100)
-print("wrote benchmarkDragLaw.png")
+settling_references(b, isolated, "particle", uniform,
+                    f"uniform suspension, paper's closure, {uniform:.3f} m/s", top=1.2,
+                    ylabel="settling speed in the frame of zero volume flux (m/s)",
+                    title=f"drag-law model: settling speed {fields[-1][1]:.3f} m/s at "
+                    f"t = {times[-1][0]:g} s")
+save(fig, case / "benchmarkDragLaw.png", dpi=100)

@@ -5,7 +5,7 @@ Reads the last time directory, prints the largest difference from Ghia et al.'s 
 the vertical centre line) and Table II (v on the horizontal one) over the lid speed (bound
 2 %, as tests/fluid/cavity.rs holds the same flow), and draws cavity.png.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -23,13 +23,13 @@ GHIA_V = [0.00000, -0.05906, -0.07391, -0.08864, -0.10313, -0.16914, -0.22445, -
           0.05454, 0.17527, 0.17507, 0.16077, 0.12317, 0.10890, 0.10091, 0.09233, 0.00000]
 
 case = Path(__file__).resolve().parent
-nu = float(re.search(r"^\s*nu\s+(?:\[[^\]]*\]\s*)?([0-9.eE+-]+)\s*;",
-                     (case / "constant/transportProperties").read_text(), re.M).group(1))
-lid = float(re.search(r"movingWall\s*\{[^}]*uniform\s*\(\s*([0-9.eE+-]+)",
-                      (case / "0/U").read_text()).group(1))
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
-time, last = times[-1]
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (field_axes, finish, keyword, monitor, save,  # noqa: E402
+                      time_directories, vector)
+
+nu = keyword(case, "constant/transportProperties", "nu")
+lid = vector(case, "0/U", r"movingWall\s*\{[^}]*uniform")[0]
+time, last = time_directories(case)[-1]
 mesh = pv.read(last / "fluid.vtk")
 nx, ny, _ = (d - 1 for d in mesh.dimensions)
 side = mesh.bounds[1] - mesh.bounds[0]
@@ -53,11 +53,9 @@ v_line = np.concatenate([[0], mid(u[:, :, 1], axis=0) / lid, [0]])
 err_u = np.max(np.abs(np.interp(GHIA_Y, y_line, u_line) - GHIA_U))
 err_v = np.max(np.abs(np.interp(GHIA_X, x_line, v_line) - GHIA_V))
 
-monitor = case / "postProcessing/fluid/0/fluid.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-energy = data[:, columns.index("kineticEnergy")]
-steps_per_unit = int(round(1 / data[-1, columns.index("deltaT")]))
+fluid = monitor(case, "fluid")
+energy = fluid["kineticEnergy"]
+steps_per_unit = int(round(1 / fluid["deltaT"][-1]))
 change = abs(energy[-1] / energy[max(0, len(energy) - 1 - steps_per_unit)] - 1)
 
 print(f"Lid-driven cavity, Re = {lid * side / nu:g}, {nx} x {ny} cells, t = {time:g} s "
@@ -71,28 +69,18 @@ fig, (a, b, c) = plt.subplots(1, 3, figsize=(15, 4.8), constrained_layout=True,
 speed = np.linalg.norm(u[:, :, :2], axis=2)
 image = a.pcolormesh(centres, centres, speed, cmap="viridis", shading="auto")
 a.streamplot(centres, centres, u[:, :, 0], u[:, :, 1], color="w", density=1.2, linewidth=0.7)
-a.set_aspect("equal")
 a.set_xlim(0, side)
 a.set_ylim(0, side)
-a.set_xlabel("x (m)")
-a.set_ylabel("y (m)")
-a.set_title(f"speed and streamlines, t = {time:g} s (lid moves right)", fontsize=10)
-fig.colorbar(image, ax=a, label="|U| (m/s)")
+field_axes(fig, a, image, "x (m)", "y (m)",
+           f"speed and streamlines, t = {time:g} s (lid moves right)", "|U| (m/s)")
 
 b.plot(u_line, y_line, "C0", lw=2, label="fsim")
 b.plot(GHIA_U, GHIA_Y, "ko", mfc="none", label="Ghia et al. (1982)")
-b.set_xlabel("u / U on the vertical centre line x = 0.5")
-b.set_ylabel("y / L")
-b.set_title(f"max |u - Ghia| = {100 * err_u:.2f} % of U", fontsize=10)
-b.grid(alpha=0.3)
-b.legend(loc="lower right")
+finish(b, "u / U on the vertical centre line x = 0.5", "y / L",
+       f"max |u - Ghia| = {100 * err_u:.2f} % of U", legend=dict(loc="lower right"))
 
 c.plot(x_line, v_line, "C3", lw=2, label="fsim")
 c.plot(GHIA_X, GHIA_V, "ks", mfc="none", label="Ghia et al. (1982)")
-c.set_xlabel("x / L")
-c.set_ylabel("v / U on the horizontal centre line y = 0.5")
-c.set_title(f"max |v - Ghia| = {100 * err_v:.2f} % of U", fontsize=10)
-c.grid(alpha=0.3)
-c.legend(loc="lower left")
-fig.savefig(case / "cavity.png", dpi=110)
-print("wrote cavity.png")
+finish(c, "x / L", "v / U on the horizontal centre line y = 0.5",
+       f"max |v - Ghia| = {100 * err_v:.2f} % of U", legend=dict(loc="lower left"))
+save(fig, case / "cavity.png", dpi=110)

@@ -6,7 +6,7 @@ is u(y) = 6 U (y/H)(1 - y/H), driven by the kinematic pressure gradient 12 nu U 
 the profile's largest error over the centre-line velocity 1.5 U (bound 0.5 %,
 tools/tests/test_tutorials.py) and the gradient against the exact one; draws channel.png.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -14,12 +14,12 @@ import numpy as np
 import pyvista as pv
 
 case = Path(__file__).resolve().parent
-nu = float(re.search(r"^\s*nu\s+([0-9.eE+-]+)\s*;",
-                     (case / "constant/transportProperties").read_text(), re.M).group(1))
-ubar = float(re.search(r"Ubar\s*\(\s*([0-9.eE+-]+)",
-                       (case / "system/fvOptions").read_text()).group(1))
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import finish, keyword, monitor, save, time_directories, vector  # noqa: E402
+
+nu = keyword(case, "constant/transportProperties", "nu")
+ubar = vector(case, "system/fvOptions", "Ubar")[0]
+times = time_directories(case)
 
 mesh = pv.read(times[-1][1] / "fluid.vtk")
 nx, ny, nz = (d - 1 for d in mesh.dimensions)
@@ -40,11 +40,8 @@ def exact(yy):
 u_last = profile(times[-1][1])
 error = np.max(np.abs(u_last - exact(y))) / (1.5 * ubar)
 
-monitor = case / "postProcessing/fluid/0/fluid.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = data[:, columns.index("Time")]
-gradient = data[:, columns.index("drivingGradient")]
+fluid = monitor(case, "fluid")
+t, gradient = fluid["Time"], fluid["drivingGradient"]
 gradient_exact = 12 * nu * ubar / height ** 2
 
 print(f"Plane Poiseuille flow, H = {height:g} m, U = {ubar:g} m/s, Re = U H / nu = "
@@ -59,20 +56,14 @@ fine = np.linspace(0, height, 200)
 a.plot(1e3 * exact(fine), 1e3 * fine, "k--", label="exact 6U (y/H)(1 - y/H)")
 for time, folder in times[1:]:
     a.plot(1e3 * profile(folder), 1e3 * y, "o-", ms=3, lw=1, label=f"fsim, t = {time:g} s")
-a.set_xlabel("u_x (mm/s)")
-a.set_ylabel("y (mm)")
-a.set_title(f"velocity profile: max error {100 * error:.2f} % of the centre line", fontsize=10)
-a.grid(alpha=0.3)
-a.legend(fontsize=9)
+finish(a, "u_x (mm/s)", "y (mm)",
+       f"velocity profile: max error {100 * error:.2f} % of the centre line",
+       legend=dict(fontsize=9))
 
 b.plot(t, 1e3 * gradient, lw=2, label="fsim (meanVelocityForce)")
 b.axhline(1e3 * gradient_exact, color="k", ls="--", label="exact 12 $\\nu$ U / H$^2$")
-b.set_xlabel("t (s)")
-b.set_ylabel("kinematic pressure gradient (mm/s$^2$)")
 b.set_ylim(0.9e3 * gradient_exact, 1.25e3 * gradient_exact)
-b.set_title(f"driving gradient at the end: {100 * (gradient[-1] / gradient_exact - 1):+.2f} % "
-            "from exact", fontsize=10)
-b.grid(alpha=0.3)
-b.legend()
-fig.savefig(case / "channel.png", dpi=110)
-print("wrote channel.png")
+finish(b, "t (s)", "kinematic pressure gradient (mm/s$^2$)",
+       f"driving gradient at the end: {100 * (gradient[-1] / gradient_exact - 1):+.2f} % "
+       "from exact", legend=True)
+save(fig, case / "channel.png", dpi=110)

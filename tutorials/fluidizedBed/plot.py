@@ -7,7 +7,7 @@ take while the bed slugs. Prints the mean pressure drop and drag after the start
 first 0.1 s) against W / A and W, and draws fluidizedBed.png: the beads at each write time
 and the pressure-drop history.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -15,21 +15,14 @@ import numpy as np
 import pyvista as pv
 
 case = Path(__file__).resolve().parent
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (finish, inlet_velocity, monitor, properties, save,  # noqa: E402
+                      time_directories)
 
+rho_f, _, rho_p, g = properties(case)
+g, inlet = abs(g[2]), inlet_velocity(case)[2]
 
-def entry(file, pattern):
-    return float(re.search(pattern, (case / file).read_text(), re.M | re.S).group(1))
-
-
-rho_f = entry("constant/transportProperties", r"^\s*rho\.\w+\s+([0-9.eE+-]+)\s*;")
-rho_p = entry("constant/kinematicCloudProperties", r"^\s*rho0\s+([0-9.eE+-]+)\s*;")
-g = abs(entry("constant/g", r"value\s*\(\s*[0-9.eE+-]+\s+[0-9.eE+-]+\s+(-?[0-9.eE+-]+)"))
-inlet = entry(next(case.glob("0/U.*")).relative_to(case),
-              r"bottom\s*\{[^}]*inletVelocity\s+uniform\s*\(\s*[0-9.eE+-]+\s+[0-9.eE+-]+"
-              r"\s+([0-9.eE+-]+)")
-
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+times = time_directories(case)
 fluid = pv.read(times[-1][1] / "fluid.vtk")
 x0, x1, y0, y1, z0, z1 = fluid.bounds
 clouds = [(time, pv.read(folder / "particles.vtu")) for time, folder in times]
@@ -37,12 +30,8 @@ d = clouds[0][1].point_data["d"]
 weight = np.sum((rho_p - rho_f) * g * np.pi / 6 * d ** 3)
 area = (x1 - x0) * (y1 - y0)
 
-monitor = case / "postProcessing/dragLaw/0/dragLaw.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = data[:, columns.index("Time")]
-drop = data[:, columns.index("pressureDrop")]
-drag = data[:, columns.index("FdParticlesZ")]
+drag_law = monitor(case, "dragLaw")
+t, drop, drag = drag_law["Time"], drag_law["pressureDrop"], drag_law["FdParticlesZ"]
 settled = t > min(0.1, t[-1] / 2)
 mean_drop, mean_drag = drop[settled].mean(), drag[settled].mean()
 print(f"Fluidized bed: {len(d)} beads of d = {1e3 * d.mean():g} mm, rho_p = {rho_p:g} kg/m^3, "
@@ -79,10 +68,7 @@ b.plot(t[settled], np.full(settled.sum(), mean_drop), color="tab:red", lw=2.5,
 b.axhline(weight / area, color="k", ls="--",
           label=f"buoyant weight / area, {weight / area:.0f} Pa")
 b.set_ylim(0, 2.5 * weight / area)
-b.set_xlabel("t (s)")
-b.set_ylabel("pressure drop across the column (Pa)")
-b.set_title(f"mean pressure drop: {mean_drop / (weight / area):.2f} W / A", fontsize=10)
-b.grid(alpha=0.3)
-b.legend(loc="upper right", fontsize=9)
-fig.savefig(case / "fluidizedBed.png", dpi=100)
-print("wrote fluidizedBed.png")
+finish(b, "t (s)", "pressure drop across the column (Pa)",
+       f"mean pressure drop: {mean_drop / (weight / area):.2f} W / A",
+       legend=dict(loc="upper right", fontsize=9))
+save(fig, case / "fluidizedBed.png", dpi=100)

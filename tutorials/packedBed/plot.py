@@ -6,7 +6,7 @@ velocity, phi = 1 - eps the bed's solid fraction. fsim's monitor (postProcessing
 gives the pressure drop less the fluid's weight; tests/drag_law/case.rs holds its mean over
 the run's second half within 3 % of Ergun. Prints it and draws packedBed.png.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -14,23 +14,15 @@ import numpy as np
 import pyvista as pv
 
 case = Path(__file__).resolve().parent
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (finish, inlet_velocity, monitor, properties, save,  # noqa: E402
+                      time_directories)
 
+rho, nu, _, g = properties(case)
+g, mu = abs(g[2]), rho * nu
+superficial = inlet_velocity(case)[2]
 
-def entry(file, pattern):
-    return float(re.search(pattern, (case / file).read_text(), re.M | re.S).group(1))
-
-
-rho = entry("constant/transportProperties", r"^\s*rho\.\w+\s+([0-9.eE+-]+)\s*;")
-nu = entry("constant/transportProperties", r"^\s*nu\s+([0-9.eE+-]+)\s*;")
-g = abs(entry("constant/g", r"value\s*\(\s*[0-9.eE+-]+\s+[0-9.eE+-]+\s+(-?[0-9.eE+-]+)"))
-velocity_file = next(case.glob("0/U.*"))
-superficial = entry(velocity_file.relative_to(case),
-                    r"bottom\s*\{[^}]*inletVelocity\s+uniform\s*\(\s*[0-9.eE+-]+\s+[0-9.eE+-]+"
-                    r"\s+([0-9.eE+-]+)")
-mu = rho * nu
-
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+times = time_directories(case)
 beads = pv.read(times[0][1] / "particles.vtu")  # the bed as built
 d = beads.point_data["d"].mean()
 fluid = pv.read(times[-1][1] / "fluid.vtk")
@@ -42,11 +34,8 @@ gradient = (150 * mu * superficial * phi ** 2 / (eps ** 3 * d ** 2)
             + 1.75 * rho * phi * superficial ** 2 / (eps ** 3 * d))
 ergun = gradient * bed
 
-monitor = case / "postProcessing/dragLaw/0/dragLaw.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = data[:, columns.index("Time")]
-drop = data[:, columns.index("pressureDrop")]
+drag_law = monitor(case, "dragLaw")
+t, drop = drag_law["Time"], drag_law["pressureDrop"]
 mean = drop[len(drop) // 2:].mean()
 print(f"Packed bed: {len(beads.points)} beads of d = {1e3 * d:g} mm, bed {1e3 * bed:g} mm, "
       f"phi = {phi:.4f}, U = {1e3 * superficial:g} mm/s, Re = U d / nu = "
@@ -71,24 +60,19 @@ a.plot(1e3 * t[len(t) // 2:], np.full(len(t) - len(t) // 2, mean), color="tab:re
 a.axhline(ergun, color="k", ls="--", label=f"Ergun, {ergun:.3f} Pa")
 a.axhspan(0.97 * ergun, 1.03 * ergun, color="0.85", label="$\\pm$3 %")
 a.set_ylim(0, 2.2 * ergun)
-a.set_xlabel("t (ms)")
-a.set_ylabel("pressure drop across the column (Pa)")
-a.set_title(f"pressure drop: {mean:.3f} Pa, {100 * (mean / ergun - 1):+.2f} % from Ergun\n"
-            "(it swings as the bed settles onto its contact springs)", fontsize=10)
-a.grid(alpha=0.3)
-a.legend(loc="upper right", fontsize=9)
+finish(a, "t (ms)", "pressure drop across the column (Pa)",
+       f"pressure drop: {mean:.3f} Pa, {100 * (mean / ergun - 1):+.2f} % from Ergun\n"
+       "(it swings as the bed settles onto its contact springs)",
+       legend=dict(loc="upper right", fontsize=9))
 
 b.plot(dynamic, 1e3 * z, "o-", ms=4, label=f"fsim, t = {times[-1][0]:g} s")
 zz = np.linspace(z0, z1, 200)
 b.plot(gradient * np.clip(bed_top - zz, 0, None), 1e3 * zz, "k--", label="Ergun")
-b.set_xlabel("pressure less the fluid's weight, from the top layer (Pa)")
-b.set_ylabel("z (mm)")
-b.grid(alpha=0.3)
+finish(b, "pressure less the fluid's weight, from the top layer (Pa)", "z (mm)")
 c = b.twiny()
 c.plot(alpha, 1e3 * z, color="tab:green", lw=1.5)
 c.set_xlabel("fluid fraction $\\epsilon$ (green)", color="tab:green")
 c.tick_params(axis="x", colors="tab:green")
 c.set_xlim(0, 1.05)
 b.legend(loc="upper center")
-fig.savefig(case / "packedBed.png", dpi=110)
-print("wrote packedBed.png")
+save(fig, case / "packedBed.png", dpi=110)

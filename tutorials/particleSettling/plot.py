@@ -7,19 +7,19 @@ springs must stay under (both as tools/tests/test_tutorials.py checks them) and 
 solid fraction; draws particleSettling.png: the cloud at the start and at the end (pyvista)
 and its kinetic energy over time.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pyvista as pv
-from vtkmodules.vtkCommonCore import vtkLogger
 
-pv.OFF_SCREEN = True
-vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)  # no notes about a missing X server
 case = Path(__file__).resolve().parent
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (left_colorbar, monitor, offscreen_plotter, save,  # noqa: E402
+                      screenshot, show, time_directories)
+
+times = time_directories(case)
 (t0, first), (t1, last) = times[0], times[-1]
 start, end = pv.read(first / "particles.vtu"), pv.read(last / "particles.vtu")
 box = pv.read(last / "fluid.vtk").bounds
@@ -36,13 +36,9 @@ inside = (x[:, 2] > lo) & (x[:, 2] < hi)
 area = (box[1] - box[0]) * (box[3] - box[2])
 solid = np.sum(np.pi / 6 * d[inside] ** 3) / (area * (hi - lo))
 
-monitor = case / "postProcessing/cloud/0/cloud.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = data[:, columns.index("Time")]
-energy = data[:, columns.index("kineticEnergy")]
-rotation = data[:, columns.index("rotationalEnergy")]
-overlap = data[-1, columns.index("maxOverlapOverD")]
+cloud_monitor = monitor(case, "cloud")
+t, energy = cloud_monitor["Time"], cloud_monitor["kineticEnergy"]
+rotation, overlap = cloud_monitor["rotationalEnergy"], cloud_monitor["maxOverlapOverD"][-1]
 
 rest = speed.max() < 0.01 * free_fall and np.sqrt(np.mean(speed ** 2)) < 1e-4
 print(f"Particle settling: {len(d)} beads, d = {1e3 * d.min():.2f}-{1e3 * d.max():.2f} mm, "
@@ -58,8 +54,7 @@ print(f"solid fraction of the bed's core {solid:.3f} (the loose start: 0.3; rand
 
 
 def render(cloud):
-    plotter = pv.Plotter(off_screen=True, window_size=(560, 760))
-    plotter.set_background("white")
+    plotter = offscreen_plotter((560, 760))
     spheres = cloud.glyph(geom=pv.Sphere(radius=0.5, theta_resolution=12, phi_resolution=12),
                           scale="d", orient=False)
     spheres.point_data["z"] = 1e3 * spheres.points[:, 2]
@@ -69,22 +64,16 @@ def render(cloud):
     plotter.view_vector((1.0, -0.9, 0.55))
     plotter.reset_camera(bounds=box)
     plotter.camera.zoom(1.15)
-    image = plotter.screenshot(return_img=True)
-    plotter.close()
-    return image
+    return screenshot(plotter)
 
 
 fig = plt.figure(figsize=(14, 6.2), constrained_layout=True)
 grid = fig.add_gridspec(1, 4, width_ratios=[1, 1, 0.06, 1.4])
 for k, (cloud, time) in enumerate([(start, t0), (end, t1)]):
-    a = fig.add_subplot(grid[k])
-    a.imshow(render(cloud))
-    a.set_axis_off()
-    a.set_title(["loose random packing", "settled bed"][k] + f", t = {time:g} s")
-bar = fig.colorbar(plt.cm.ScalarMappable(plt.Normalize(0, 1e3 * box[5]), "viridis"),
-                   cax=fig.add_subplot(grid[2]), label="height of the bead's centre (mm)")
-bar.ax.yaxis.set_ticks_position("left")
-bar.ax.yaxis.set_label_position("left")
+    show(fig.add_subplot(grid[k]), render(cloud),
+         ["loose random packing", "settled bed"][k] + f", t = {time:g} s")
+left_colorbar(fig, fig.add_subplot(grid[2]), 0, 1e3 * box[5], "viridis",
+              "height of the bead's centre (mm)")
 b = fig.add_subplot(grid[3])
 b.semilogy(t, energy, label="translational")
 b.semilogy(t, np.maximum(rotation, 1e-30), label="rotational")
@@ -95,5 +84,4 @@ b.set_title(f"largest overlap {100 * overlap:.2f} % of d (bound 1 %), "
             f"bed solid fraction {solid:.2f}", fontsize=10)
 b.grid(alpha=0.3, which="both")
 b.legend()
-fig.savefig(case / "particleSettling.png", dpi=100)
-print("wrote particleSettling.png")
+save(fig, case / "particleSettling.png", dpi=100)

@@ -11,27 +11,19 @@ large, and leaves out the near field and inertia (Re here about 0.3). At r/h = 3
 sedimentation.png.
 """
 import math
-import re
+import sys
 from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pyvista as pv
-from vtkmodules.vtkCommonCore import vtkLogger
 
-pv.OFF_SCREEN = True
-vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)  # no notes about a missing X server
 case = Path(__file__).resolve().parent
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import (finish, monitor, picture_beside_plot, properties, save,  # noqa: E402
+                      spheres_over_slice, time_directories)
 
-
-def entry(file, pattern):
-    return float(re.search(pattern, (case / file).read_text(), re.M).group(1))
-
-
-rho_f = entry("constant/transportProperties", r"^\s*rho\.\w+\s+([0-9.eE+-]+)\s*;")
-nu = entry("constant/transportProperties", r"^\s*nu\s+([0-9.eE+-]+)\s*;")
-rho_p = entry("constant/kinematicCloudProperties", r"^\s*rho0\s+([0-9.eE+-]+)\s*;")
-g = abs(entry("constant/g", r"value\s*\(\s*[0-9.eE+-]+\s+(-?[0-9.eE+-]+)"))
+rho_f, nu, rho_p, g = properties(case)
+g = abs(g[1])
 
 
 def rpy_settling(centres, a, box, axis=1, ka_max=20.0, chunk=200_000):
@@ -60,15 +52,10 @@ def rpy_settling(centres, a, box, axis=1, ka_max=20.0, chunk=200_000):
     return (1 - phi) * mean
 
 
-monitor = case / "postProcessing/sedimentation/0/sedimentation.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = data[:, columns.index("Time")]
-v = data[:, columns.index("settlingVelocity")]
-phi = data[0, columns.index("phi")]
+m = monitor(case, "sedimentation")
+t, v, phi = m["Time"], m["settlingVelocity"], m["phi"][0]
 
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+times = time_directories(case)
 fluid = pv.read(times[-1][1] / "fluid.vtk")
 box = np.array(fluid.bounds[1::2]) - np.array(fluid.bounds[0::2])
 rpy = []
@@ -99,52 +86,19 @@ print(f"for scale, an unbounded random suspension at this phi: {hard_spheres:.3f
       f"{1.76 * (phi / len(cloud.points)) ** (1 / 3):.2f})")
 
 # the picture: spheres and the vertical fluid velocity on the mid-plane, and v_m(t)
-point_fluid = fluid.cell_data_to_point_data()
-plane = point_fluid.slice(normal="z", origin=fluid.center)
-plane.point_data["U_y"] = 100 * plane.point_data["U"][:, 1]
-limit = float(np.abs(plane.point_data["U_y"]).max())
 cloud = pv.read(times[-1][1] / "particles.vtu")
-spheres = pv.PolyData(np.asarray(cloud.points)).glyph(
-    geom=pv.Sphere(radius=d / 2, theta_resolution=24, phi_resolution=24), orient=False,
-    scale=False)
-plotter = pv.Plotter(off_screen=True, window_size=(620, 900))
-plotter.set_background("white")
-plotter.add_mesh(plane, scalars="U_y", cmap="coolwarm", clim=(-limit, limit),
-                 show_scalar_bar=False)
-plotter.add_mesh(spheres, color="#d9a441", smooth_shading=True, specular=0.3)
-plotter.add_mesh(pv.Box(fluid.bounds).outline(), color="black", line_width=2)
-plotter.view_vector((0.55, 0.35, 1.0), viewup=(0.0, 1.0, 0.0))
-plotter.reset_camera(bounds=fluid.bounds)
-plotter.camera.zoom(1.2)
-image = plotter.screenshot(return_img=True)
-plotter.close()
-rows = np.where((image < 250).any(axis=(1, 2)))[0]
-cols = np.where((image < 250).any(axis=(0, 2)))[0]
-image = image[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1]  # without the white margins
-
-fig = plt.figure(figsize=(12.5, 6.5), constrained_layout=True)
-grid = fig.add_gridspec(1, 4, width_ratios=[1, 0.04, 0.06, 1.4])
-a = fig.add_subplot(grid[0])
-a.imshow(image)
-a.set_axis_off()
-a.set_title(f"t = {times[-1][0]:g} s: spheres, and $u_y$ on the mid-plane\n(gravity along -y)",
-            fontsize=10)
-bar = fig.colorbar(plt.cm.ScalarMappable(plt.Normalize(-limit, limit), "coolwarm"),
-                   cax=fig.add_subplot(grid[1]))
-bar.set_label("fluid velocity $u_y$ (cm/s)")
-bar.ax.yaxis.set_ticks_position("left")
-bar.ax.yaxis.set_label_position("left")
-b = fig.add_subplot(grid[3])
+image, limit = spheres_over_slice(fluid, cloud.points, d, (620, 900), 24, scale=100,
+                                  specular=0.3)
+fig, b = picture_beside_plot(image, limit, f"t = {times[-1][0]:g} s: spheres, and $u_y$ on the "
+                             "mid-plane\n(gravity along -y)", "fluid velocity $u_y$ (cm/s)",
+                             figsize=(12.5, 6.5), widths=(1, 1.4))
 b.plot(t, v / stokes, lw=2, label="fsim: $v_m$, frame of zero volume flux")
 b.plot(rpy_t, rpy_v, "ks", label="RPY mobility of the same spheres (far field, Stokes)")
 b.axhline(hard_spheres, color="0.5", ls=":",
           label="unbounded random suspension (Abade et al. 2012)")
-b.set_xlabel("t (s)")
-b.set_ylabel("settling velocity / U_Stokes")
 b.set_ylim(0, 1.1 * max(hard_spheres, rpy_v.max()))
-b.set_title(f"mean over {t[-1] / 2:g}-{t[-1]:g} s: {v_mean:.3f} U_Stokes = "
-            f"{100 * v_mean * stokes:.2f} cm/s; {v_mean / rpy_mean:.2f} of RPY", fontsize=10)
-b.grid(alpha=0.3)
-b.legend(loc="lower right", fontsize=9)
-fig.savefig(case / "sedimentation.png", dpi=100)
-print("wrote sedimentation.png")
+finish(b, "t (s)", "settling velocity / U_Stokes",
+       f"mean over {t[-1] / 2:g}-{t[-1]:g} s: {v_mean:.3f} U_Stokes = "
+       f"{100 * v_mean * stokes:.2f} cm/s; {v_mean / rpy_mean:.2f} of RPY",
+       legend=dict(loc="lower right", fontsize=9))
+save(fig, case / "sedimentation.png", dpi=100)

@@ -5,7 +5,7 @@ u = sin x cos y e^(-2 nu t), v = -cos x sin y e^(-2 nu t): the kinetic energy de
 e^(-4 nu t). Prints the fitted decay rate and the relative L2 velocity error at each written
 time (bound 1 %, tools/tests/test_tutorials.py); draws taylorGreen.png.
 """
-import re
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -13,18 +13,17 @@ import numpy as np
 import pyvista as pv
 
 case = Path(__file__).resolve().parent
-nu = float(re.search(r"^\s*nu\s+(?:\[[^\]]*\]\s*)?([0-9.eE+-]+)\s*;",
-                     (case / "constant/transportProperties").read_text(), re.M).group(1))
+sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
+from plotting import finish, keyword, monitor, save, time_directories  # noqa: E402
+
+nu = keyword(case, "constant/transportProperties", "nu")
 
 # kinetic-energy history from the per-step monitor
-monitor = case / "postProcessing/fluid/0/fluid.dat"
-columns = monitor.read_text().splitlines()[0].lstrip("#").split()
-data = np.loadtxt(monitor, comments="#", ndmin=2)
-t = np.concatenate([[0.0], data[:, columns.index("Time")]])
-energy = data[:, columns.index("kineticEnergy")]
+fluid = monitor(case, "fluid")
+t = np.concatenate([[0.0], fluid["Time"]])
+energy = fluid["kineticEnergy"]
 
-times = sorted((float(p.name), p) for p in case.iterdir()
-               if p.is_dir() and re.fullmatch(r"[0-9.eE+-]+", p.name))
+times = time_directories(case)
 print(f"Taylor-Green vortex, nu = {nu:g} m^2/s; exact energy decay rate 4 nu = {4 * nu:.4f} 1/s")
 errors = []
 for time, folder in times:
@@ -65,11 +64,8 @@ fig.colorbar(image, ax=a, label="vorticity $\\omega_z$ (1/s)")
 
 b.plot(t, energy / energy0, lw=2, label="fsim (monitor)")
 b.plot(t, np.exp(-4 * nu * t), "k--", label="exact $e^{-4\\nu t}$")
-b.set_xlabel("t (s)")
-b.set_ylabel("kinetic energy / initial")
-b.set_title(f"decay rate {rate:.4f} 1/s vs exact {4 * nu:.4f} 1/s; "
-            f"L2 error {100 * worst:.2f} %", fontsize=10)
-b.grid(alpha=0.3)
+finish(b, "t (s)", "kinetic energy / initial",
+       f"decay rate {rate:.4f} 1/s vs exact {4 * nu:.4f} 1/s; L2 error {100 * worst:.2f} %")
 c = b.twinx()
 c.plot(t, 100 * (energy / energy0 / np.exp(-4 * nu * t) - 1), color="tab:red", lw=1)
 c.plot([e[0] for e in errors], [100 * e[1] for e in errors], "o", color="tab:red")
@@ -78,5 +74,4 @@ c.tick_params(axis="y", colors="tab:red")
 lines = b.get_legend_handles_labels()
 b.legend(lines[0] + c.get_lines()[:1] + c.get_lines()[1:],
          lines[1] + ["energy / exact - 1", "L2 velocity error"], loc="upper center")
-fig.savefig(case / "taylorGreen.png", dpi=110)
-print("wrote taylorGreen.png")
+save(fig, case / "taylorGreen.png", dpi=110)
