@@ -27,7 +27,8 @@ CHEAP = "taylorGreen"
 def test_the_tutorials_are_the_documented_ones():
     assert TUTORIALS == sorted([
         "benchmark", "benchmarkDragLaw", "cavity", "channel", "fluidizedBed", "packedBed",
-        "particleSettling", "porousMedia", "sedimentation", "settlingSphere", "taylorGreen"])
+        "particleSettling", "porousMedia", "sedimentation", "settlingColumn", "settlingInLiquid",
+        "settlingSphere", "taylorGreen"])
 
 
 @pytest.mark.parametrize("name", TUTORIALS)
