@@ -4,9 +4,11 @@ OpenFOAM v1912's DPMFoam and for fsimFoam) for the drag-law model.
 
     tools/make_drag_tutorials.py [REPO_ROOT]
 
-fluidizedBed: a small Goldschmidt-like bubbling bed, 1,080 glass beads (d = 2.5 mm,
-rho_p = 2526 kg/m3) in air fluidized at 1.875 m/s (about 1.5 U_mf) in a 10 x 50 x 150 mm
-column, cells of 5 mm (h = 2d), Hertzian contacts.
+fluidizedBed: a small Goldschmidt-like bed, 1,080 glass beads (d = 2.5 mm, rho_p = 2526 kg/m3)
+in air fluidized at 1.875 m/s (about 1.5 U_mf) in a 10 x 50 x 150 mm column, cells of 5 mm
+(h = 2d), soft Hertzian contacts (E = 1e6 Pa: DPMFoam's collision sub-steps grow as E^0.4,
+and with Goldschmidt's 1e8 DPMFoam needs about 5 min of CPU for the 0.2 s here). The beads
+start on a loose lattice off every cell face (DPMFoam decides a bead on a face by round-off).
 
 packedBed: 160 glass beads (d = 1 mm) stacked on a simple cubic lattice (one per 1 mm cell,
 solid fraction pi/6) in water flowing up at 1 mm/s, far below minimum fluidization: the bed
@@ -426,25 +428,27 @@ def fluidized_bed(root):
     root = os.path.join(root, "tutorials", "fluidizedBed")
     common_constant(root, "air", 1.2, 1e-5)
     write(root, "system/controlDict", "dictionary", control(
-        0.5, 2e-4, 0.1,
-        "A small Goldschmidt-like bubbling bed: 1,080 glass beads (d = 2.5 mm) fluidized by air "
-        "at 1.875 m/s\n// (about 1.5 U_mf), 10 x 50 x 150 mm, cells of 5 mm. Runs under DPMFoam "
-        "and fsimFoam alike;\n// fsim's monitor postProcessing/dragLaw/0/dragLaw.dat logs the "
-        "bed's pressure drop (the\n// buoyant weight per area, 438 Pa, once fluidized)."))
+        0.2, 2e-4, 0.005,
+        "A small Goldschmidt-like bed: 1,080 glass beads (d = 2.5 mm) fluidized by air at 1.875 "
+        "m/s\n// (about 1.5 U_mf), 10 x 50 x 150 mm, cells of 5 mm. Runs under DPMFoam and "
+        "fsimFoam alike\n// (tools/crosscheck compares them, every 5 ms); fsim's monitor "
+        "postProcessing/dragLaw/0/dragLaw.dat\n// logs the bed's pressure drop (the buoyant "
+        "weight per area, 438 Pa, once fluidized)."))
     write(root, "system/blockMeshDict", "dictionary", block_mesh(
         (10, 50, 150), (2, 10, 30),
         [("top", "wall", ["z+"], ""), ("bottom", "wall", ["z-"], ""),
          ("walls", "wall", ["y-", "y+"], ""), ("frontAndBack", "symmetry", ["x-", "x+"], "")]))
     fields(root, "air", "bottom", 1.875, "top", [("walls", "wall"), ("frontAndBack", "symmetry")])
     write(root, "constant/kinematicCloudProperties", "dictionary", cloud_properties(
-        "air", 2526, "1e8", 0.0025, "cellPoint", "",
+        "air", 2526, "1e6", 0.0025, "cellPoint", "",
         ["top", "bottom", "walls", "frontAndBack"]))
     pts = []
     for k in range(20):
         for j in range(18):
             for i in range(3):
-                pts.append((0.0017 + 0.0033 * i + 0.0001 * (k % 2),
-                            0.0015 + 0.0027 * j, 0.0015 + 0.0027 * k))
+                # 0.1 mm or more off every 5 mm cell face
+                pts.append((0.0019 + 0.0033 * i + 0.0001 * (k % 2),
+                            0.0017 + 0.0027 * j, 0.0017 + 0.0027 * k))
     write(root, "constant/kinematicCloudPositions", "vectorField", positions(pts))
 
 
@@ -452,7 +456,7 @@ def packed_bed(root):
     root = os.path.join(root, "tutorials", "packedBed")
     common_constant(root, "water", 1000, 1e-6)
     write(root, "system/controlDict", "dictionary", control(
-        0.05, 5e-5, 0.025,
+        0.05, 5e-5, 0.001,
         "A packed bed: 160 glass beads (d = 1 mm) on a simple cubic lattice (solid fraction "
         "pi/6),\n// water flowing up at 1 mm/s (minimum fluidization is about 8 mm/s). The bed "
         "stays put; its\n// pressure drop is Ergun's, 150 mu phi^2 U/(eps^3 d^2) + 1.75 rho phi "

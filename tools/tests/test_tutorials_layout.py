@@ -26,9 +26,9 @@ CHEAP = "taylorGreen"
 
 def test_the_tutorials_are_the_documented_ones():
     assert TUTORIALS == sorted([
-        "benchmark", "benchmarkDragLaw", "cavity", "channel", "fluidizedBed", "packedBed",
-        "particleSettling", "porousMedia", "sedimentation", "settlingColumn", "settlingInLiquid",
-        "settlingSphere", "taylorGreen"])
+        "benchmark", "benchmarkDragLaw", "cavity", "channel", "fluidizedBed", "impacts",
+        "impactsDamped", "packedBed", "particleSettling", "porousMedia", "sedimentation",
+        "settlingColumn", "settlingInLiquid", "settlingSphere", "taylorGreen"])
 
 
 @pytest.mark.parametrize("name", TUTORIALS)

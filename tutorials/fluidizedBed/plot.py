@@ -4,8 +4,8 @@
 A fluidized bed hangs on the gas: its pressure drop carries the beads' buoyant weight per
 cross-section, W / A = N (rho_p - rho_f) g V_p / A, apart from what the walls and the floor
 take while the bed slugs. Prints the mean pressure drop and drag after the start-up (the
-first 0.1 s) against W / A and W, and draws fluidizedBed.png: the beads at each write time
-and the pressure-drop history.
+first 0.1 s) against W / A and W, and draws fluidizedBed.png: the beads at about nine write
+times and the pressure-drop history.
 """
 import sys
 from pathlib import Path
@@ -25,7 +25,8 @@ g, inlet = abs(g[2]), inlet_velocity(case)[2]
 times = time_directories(case)
 fluid = pv.read(times[-1][1] / "fluid.vtk")
 x0, x1, y0, y1, z0, z1 = fluid.bounds
-clouds = [(time, pv.read(folder / "particles.vtu")) for time, folder in times]
+shown = times[::max(1, round((len(times) - 1) / 8))]  # about nine snapshots
+clouds = [(time, pv.read(folder / "particles.vtu")) for time, folder in shown]
 d = clouds[0][1].point_data["d"]
 weight = np.sum((rho_p - rho_f) * g * np.pi / 6 * d ** 3)
 area = (x1 - x0) * (y1 - y0)
