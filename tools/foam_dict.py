@@ -56,33 +56,32 @@ def _find(text, keys, start=0, end=None):
     raise KeyError(keys[0])
 
 
+def _scan(tokens, j, stop):
+    """The index of the first token from `j` on where `stop(kind, depth)` holds, `depth`
+    counting the brackets opened since `j` (len(tokens) when none does)."""
+    depth = 0
+    while j < len(tokens):
+        kind = tokens[j][0]
+        depth += (kind == "open") - (kind == "close")
+        if stop(kind, depth):
+            return j
+        j += 1
+    return j
+
+
 def _entry_span(text, tokens, i, offset, keys):
     """The entry whose keyword is tokens[i]."""
     if i + 1 < len(tokens) and tokens[i + 1][0] == "open" and tokens[i + 1][1] == "{":
-        depth, j = 0, i + 1
-        while j < len(tokens):
-            if tokens[j][0] == "open":
-                depth += 1
-            elif tokens[j][0] == "close":
-                depth -= 1
-                if depth == 0:
-                    break
-            j += 1
+        j = _scan(tokens, i + 1, lambda kind, depth: kind == "close" and depth == 0)
+        if j == len(tokens):
+            raise KeyError(keys[0])
         inner = (offset + tokens[i + 1][3], offset + tokens[j][2])
         if len(keys) == 1:
             return ("dict", inner)
         return _find(text, keys[1:], *inner)
     if len(keys) > 1:
         raise KeyError("/".join(keys[1:]))
-    depth, j = 0, i + 1
-    while j < len(tokens):
-        if tokens[j][0] == "open":
-            depth += 1
-        elif tokens[j][0] == "close":
-            depth -= 1
-        elif tokens[j][0] == "semi" and depth == 0:
-            break
-        j += 1
+    j = _scan(tokens, i + 1, lambda kind, depth: kind == "semi" and depth == 0)
     if j == len(tokens) or j == i + 1:
         raise KeyError(keys[0])
     return ("value", (offset + tokens[i + 1][2], offset + tokens[j - 1][3]))
