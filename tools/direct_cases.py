@@ -15,6 +15,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import foam_case  # noqa: E402
+from dpmfoam_case import manual_injection, size_distribution  # noqa: E402
 
 
 def _write(case, rel, cls, body):
@@ -202,22 +203,7 @@ boundaryField
         t_c = math.pi * 0.005 * d / stokes_velocity(d, rho_p, rho_f, nu)
         kn = (math.pi / t_c) ** 2 * m / 2
     if centres is not None:
-        injection = f"""
-        spheres
-        {{
-            type            manualInjection;
-            massTotal       0;
-            parcelBasisType fixed;
-            nParticle       1;
-            SOI             0;
-            positionsFile   "kinematicCloudPositions";
-            U0              (0 0 0);
-            sizeDistribution
-            {{
-                type        fixedValue;
-                fixedValueDistribution {{ value {d!r}; }}
-            }}
-        }}"""
+        injection = manual_injection("spheres", repr(d), compact=True).rstrip("\n")
         lines = "\n".join(f"({x[0]!r} {x[1]!r} {x[2]!r})" for x in centres)
         _write(case, "constant/kinematicCloudPositions", "vectorField", f"(\n{lines}\n)\n")
     else:
@@ -230,12 +216,7 @@ boundaryField
             volumeFraction  {random_fraction!r};
             seed            {seed};
             U0              (0 0 0);
-            sizeDistribution
-            {{
-                type        fixedValue;
-                fixedValueDistribution {{ value {d!r}; }}
-            }}
-        }}"""
+{size_distribution(repr(d), compact=True)}        }}"""
     _write(case, "constant/kinematicCloudProperties", "dictionary", f"""
 // {title}
 

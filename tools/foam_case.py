@@ -1,5 +1,6 @@
 """Writing OpenFOAM-format case files: the FoamFile header every tutorial generator shares
-(tools/direct_cases.py, tools/make_drag_tutorials.py, tools/make_benchmark_drag_law.py)."""
+(tools/direct_cases.py and, through tools/dpmfoam_case.py's dictionaries, the DPMFoam cases'
+generators tools/make_*.py)."""
 import os
 
 HEADER = """/*--------------------------------*- C++ -*----------------------------------*\\

@@ -22,7 +22,10 @@ import random
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_drag_tutorials import COMMON_SYSTEM, block_mesh, control, positions, write  # noqa: E402
+from dpmfoam_case import (CYCLIC, block_mesh, cloud_properties, constant, control,  # noqa: E402
+                          fields, manual_injection, positions, standard_wall_interaction,
+                          system)
+from foam_case import write  # noqa: E402
 
 R = 50e-6
 D = 2 * R
@@ -54,97 +57,12 @@ def random_positions(count, seed):
     return points
 
 
-def cloud_properties():
-    return f"""
+NOTE = """
 // The paper's section 3.3 gas-solid benchmark, drag-law model. 'paper' is fsim's name for
 // the paper's closure (eq. 11-12); DPMFoam would need ErgunWenYuDrag here instead.
+"""
 
-solution
-{{
-    active          true;
-    coupled         true;
-    transient       yes;
-    cellValueSourceCorrection off;
-
-    interpolationSchemes
-    {{
-        rho.air     cell;
-        U.air       cellPoint;
-        mu.air      cell;
-    }}
-
-    integrationSchemes
-    {{
-        U               Euler;
-    }}
-
-    sourceTerms
-    {{
-        schemes
-        {{
-            U semiImplicit 1;
-        }}
-    }}
-}}
-
-constantProperties
-{{
-    parcelTypeId    1;
-    rhoMin          1e-15;
-    minParcelMass   1e-15;
-    rho0            1500;
-    youngsModulus   1e8;
-    poissonsRatio   0.35;
-    constantVolume  false;
-    alphaMax        0.99;
-}}
-
-subModels
-{{
-    particleForces
-    {{
-        paper;
-        gravity;
-        pressureGradient;
-    }}
-
-    injectionModels
-    {{
-        model1
-        {{
-            type            manualInjection;
-            massTotal       0;
-            parcelBasisType fixed;
-            nParticle       1;
-            SOI             0;
-            positionsFile   "kinematicCloudPositions";
-            U0              (0 0 0);
-            sizeDistribution
-            {{
-                type        fixedValue;
-                fixedValueDistribution
-                {{
-                    value   {D:g};
-                }}
-            }}
-        }}
-    }}
-
-    dispersionModel none;
-
-    patchInteractionModel standardWallInteraction;
-
-    standardWallInteractionCoeffs
-    {{
-        type rebound;
-        e    0.9;
-        mu   0.1;
-    }}
-
-    heatTransferModel none;
-
-    surfaceFilmModel none;
-
+LINEAR_SPRING_DASHPOT = f"""
     collisionModel pairCollision;
 
     pairCollisionCoeffs
@@ -171,36 +89,20 @@ subModels
             collisionResolutionSteps 10;
         }}
     }}
-
-    stochasticCollisionModel none;
-
-    radiation off;
-}}
-
-cloudFunctions
-{{}}
 """
+
+
+def cloud():
+    """The paper's closure, gravity and the pressure-gradient force; soft linear contacts."""
+    return cloud_properties(
+        "air", 1500, "1e8", "cellPoint", "paper;\ngravity;\npressureGradient;",
+        manual_injection("model1", f"{D:g}"), standard_wall_interaction("0.9", "0.1"),
+        LINEAR_SPRING_DASHPOT, note=NOTE)
 
 
 def benchmark(repo):
     root = os.path.join(repo, "tutorials", "benchmarkDragLaw")
-    write(root, "constant/transportProperties", "dictionary", """
-continuousPhase air;
-
-rho.air         1.2;
-
-transportModel  Newtonian;
-
-nu              1.5e-05;
-""")
-    write(root, "constant/turbulenceProperties.air", "dictionary", """
-simulationType  laminar;
-""")
-    write(root, "constant/g", "uniformDimensionedVectorField", """
-dimensions      [0 1 -2 0 0 0 0];
-
-value           (0 -9.81 0);
-""")
+    constant(root, "air", 1.2, "1.5e-05", g="0 -9.81 0", align_rho=True)
     write(root, "constant/couplingProperties", "dictionary", """
 // fsim's own: the paper's drag-law model (section 2.2) as its section 3.3 benchmark ran it.
 
@@ -213,13 +115,10 @@ dragLawCoeffs
     voidFraction          trilinear;
 }
 """)
-    for rel, body in COMMON_SYSTEM.items():
-        if rel == "system/fvSolution":
-            # fsim's own block (DPMFoam ignores it): the viscous term implicit, so that the
-            # step follows the Courant number and maxDeltaT instead of the explicit bound
-            # 1/(sum|u|/h + 2 nu sum 1/h^2) (about 5e-5 s here).
-            body += "\nfsim\n{\n    timeScheme      EulerImplicit;\n}\n"
-        write(root, rel, "dictionary", body)
+    # fsim's own block (DPMFoam ignores it): the viscous term implicit, so that the step
+    # follows the Courant number and maxDeltaT instead of the explicit bound
+    # 1/(sum|u|/h + 2 nu sum 1/h^2) (about 5e-5 s here).
+    system(root, fv_solution_extra="\nfsim\n{\n    timeScheme      EulerImplicit;\n}\n")
     write(root, "system/controlDict", "dictionary", control(
         0.1, 5e-5, 0.05,
         "The paper's section 3.3 benchmark, drag-law variant: 500 particles (d = 100 um, "
@@ -236,14 +135,8 @@ dragLawCoeffs
         patches.append((hi, "cyclic", [f"{names[a]}+"], f"        neighbourPatch {lo};\n"))
     mm = tuple(round(L * 1e3, 6) for L in BOX)
     write(root, "system/blockMeshDict", "dictionary", block_mesh(mm, CELLS, patches))
-    u = "\ndimensions      [0 1 -1 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\nboundaryField\n{\n"
-    p = "\ndimensions      [0 2 -2 0 0 0 0];\n\ninternalField   uniform 0;\n\nboundaryField\n{\n"
-    for name, _, _, _ in patches:
-        u += f"    {name}\n    {{\n        type            cyclic;\n    }}\n"
-        p += f"    {name}\n    {{\n        type            cyclic;\n    }}\n"
-    write(root, "0/U.air", "volVectorField", u + "}\n")
-    write(root, "0/p", "volScalarField", p + "}\n")
-    write(root, "constant/kinematicCloudProperties", "dictionary", cloud_properties())
+    fields(root, "air", [(name, CYCLIC) for name, _, _, _ in patches], gap="")
+    write(root, "constant/kinematicCloudProperties", "dictionary", cloud())
     write(root, "constant/kinematicCloudPositions", "vectorField",
           positions(random_positions(COUNT, SEED)))
 
