@@ -1,0 +1,228 @@
+"""References that `tools/study` compares a study's results with, keyed by tutorial name.
+
+A reference is repository code: study never runs code from a case directory. Each entry of
+REFERENCES gives, for one tutorial,
+
+- `values(case) -> {name: value}`: the reference values of one point, computed from that
+  point's own dictionaries (so a sweep over `nu` or `phi` gets each point's own reference);
+- `measure(case) -> {name: value}` (optional): quantities measured from the point's output
+  that are not a monitor's final or mean value (a fitted decay rate, a velocity along
+  gravity); they become the table's `measured.<name>` columns;
+- `compare`: the default pairs `table column -> reference name`; each pair gives the table's
+  `reference.<name>` and `error.<column>` = |column - reference| / |reference|.
+
+A study picks the entry with `--reference NAME` (default: the tutorial folder's name) and may
+add or replace pairs with `--compare COLUMN=NAME` or the `[compare]` table of its TOML file
+(docs/user-guide/studies.md). A function returns NaN where its reference does not apply.
+"""
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Optional
+
+import foam_dict
+
+NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+@dataclass
+class Reference:
+    values: Callable[[Path], dict]
+    compare: dict = field(default_factory=dict)
+    measure: Optional[Callable[[Path], dict]] = None
+    about: str = ""
+
+
+# ----- reading a case's dictionaries -------------------------------------------------------
+
+def text(case, file):
+    return (Path(case) / file).read_text()
+
+
+def scalar(case, file, path):
+    """The number of entry `path` (`a/b/c`) of `file`, a dimensioned `[..] v` value too."""
+    value = foam_dict.get_entry(text(case, file), path)
+    numbers = re.findall(NUMBER, re.sub(r"\[[^\]]*\]", " ", value))
+    if not numbers:
+        raise ValueError(f"{file}: entry {path!r} = {value!r} is not a number")
+    return float(numbers[-1])
+
+
+def vector(case, file, path):
+    value = foam_dict.get_entry(text(case, file), path)
+    numbers = re.findall(NUMBER, re.sub(r"\[[^\]]*\]", " ", value))
+    if len(numbers) < 3:
+        raise ValueError(f"{file}: entry {path!r} = {value!r} is not a vector")
+    return tuple(float(v) for v in numbers[-3:])
+
+
+def fluid_density(case):
+    """rho.<continuousPhase> (or rho) of constant/transportProperties; 1 when absent (the
+    kinematic form)."""
+    body = text(case, "constant/transportProperties")
+    try:
+        phase = foam_dict.get_entry(body, "continuousPhase")
+        return scalar(case, "constant/transportProperties", f"rho.{phase}")
+    except KeyError:
+        try:
+            return scalar(case, "constant/transportProperties", "rho")
+        except KeyError:
+            return 1.0
+
+
+def fixed_diameter(case):
+    """The diameter of constant/kinematicCloudProperties' fixedValue size distribution."""
+    found = re.search(rf"fixedValueDistribution\s*\{{\s*value\s+({NUMBER})",
+                      text(case, "constant/kinematicCloudProperties"))
+    if not found:
+        raise ValueError("constant/kinematicCloudProperties: no fixedValueDistribution value")
+    return float(found.group(1))
+
+
+def block_extent(case):
+    """The (x, y, z) extent of system/blockMeshDict's vertices, scaled (convertToMeters or
+    scale), in metres."""
+    body = foam_dict.body(text(case, "system/blockMeshDict"))
+    body = re.sub(r"//[^\n]*|/\*.*?\*/", " ", body, flags=re.S)
+    scale = 1.0
+    for key in ("convertToMeters", "scale"):
+        found = re.search(rf"^\s*{key}\s+({NUMBER})\s*;", body, re.M)
+        if found:
+            scale = float(found.group(1))
+    vertices = re.search(r"vertices\s*\((.*?)\)\s*;", body, re.S)
+    points = [[float(v) for v in re.findall(NUMBER, p)]
+              for p in re.findall(r"\(([^()]*)\)", vertices.group(1))]
+    return tuple(scale * (max(p[k] for p in points) - min(p[k] for p in points))
+                 for k in range(3))
+
+
+def monitor(case, name):
+    """{column: [values]} of postProcessing/<name>/<start>/<name>.dat (start times joined)."""
+    base = Path(case) / "postProcessing" / name
+    columns, rows = None, []
+    for start in sorted((p for p in base.iterdir() if p.is_dir()),
+                        key=lambda p: float(p.name)):
+        for line in (start / f"{name}.dat").read_text().splitlines():
+            if line.startswith("#"):
+                columns = columns or line.lstrip("#").split()
+            elif line.strip():
+                rows.append([float(v) for v in line.split()])
+    return {c: [r[k] for r in rows] for k, c in enumerate(columns)}
+
+
+# ----- references --------------------------------------------------------------------------
+
+def sangani_acrivos(phi):
+    """K of the simple cubic array of spheres at solid fraction phi (paper eq. 17, Sangani &
+    Acrivos 1982; within 0.15 % of Zick & Homsy's exact values up to phi = 0.125)."""
+    if not 0 < phi < math.pi / 6:
+        return math.nan
+    c = phi ** (1 / 3)
+    return 1 / (1 - 1.7601 * c + phi - 1.5593 * phi ** 2 + 3.9799 * phi ** (8 / 3)
+                - 3.0734 * phi ** (10 / 3))
+
+
+def schiller_naumann_terminal(drive, rho, d, mu):
+    """The velocity u at which u (1 + 0.15 Re^0.687), Re = rho u d / mu, equals `drive` (the
+    Stokes velocity): the terminal velocity under Schiller-Naumann drag (bisection)."""
+    lo, hi = 0.0, drive
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid * (1 + 0.15 * (rho * mid * d / mu) ** 0.687) < drive:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def taylor_green(case):
+    """E(T) = E0 exp(-4 nu T) at T = endTime, E0 = 1/4 (unit amplitude); the decay rate 4 nu."""
+    nu = scalar(case, "constant/transportProperties", "nu")
+    end = scalar(case, "system/controlDict", "endTime")
+    return {"kineticEnergy": 0.25 * math.exp(-4 * nu * end), "decayRate": 4 * nu}
+
+
+def taylor_green_measure(case):
+    """The energy's decay rate: least-squares slope of -ln E against t over every step."""
+    m = monitor(case, "fluid")
+    t, e = m["Time"], [math.log(v) for v in m["kineticEnergy"]]
+    n = len(t)
+    if n < 2:
+        return {"decayRate": math.nan}
+    tm, em = sum(t) / n, sum(e) / n
+    slope = (sum((a - tm) * (b - em) for a, b in zip(t, e))
+             / sum((a - tm) ** 2 for a in t))
+    return {"decayRate": -slope}
+
+
+def channel(case):
+    """Plane Poiseuille flow at bulk velocity U between walls H apart (along y): the driving
+    kinematic pressure gradient 12 nu U / H^2."""
+    nu = scalar(case, "constant/transportProperties", "nu")
+    ubar = math.hypot(*vector(case, "system/fvOptions", "momentumSource/Ubar"))
+    height = block_extent(case)[1]
+    return {"drivingGradient": 12 * nu * ubar / height ** 2}
+
+
+def porous_media(case):
+    """K of the simple cubic array at the case's phi (Sangani & Acrivos, paper eq. 17)."""
+    return {"K": sangani_acrivos(scalar(case, "constant/porousParameters", "phi"))}
+
+
+def settling_sphere(case):
+    """One sphere in a periodic box settles as the simple cubic array of the same phi resists:
+    v = U_Stokes / K(phi), U_Stokes = (rho_p - rho_f) g d^2 / (18 mu)."""
+    rho_f = fluid_density(case)
+    nu = scalar(case, "constant/transportProperties", "nu")
+    rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
+    g = math.hypot(*vector(case, "constant/g", "value"))
+    d = fixed_diameter(case)
+    lx, ly, lz = block_extent(case)
+    phi = math.pi * d ** 3 / 6 / (lx * ly * lz)
+    stokes = (rho_p - rho_f) * g * d ** 2 / (18 * rho_f * nu)
+    return {"settlingVelocity": stokes / sangani_acrivos(phi), "stokesVelocity": stokes,
+            "phi": phi}
+
+
+def single_bead(case):
+    """One bead under Schiller-Naumann drag and buoyant gravity: its terminal velocity."""
+    rho_f = fluid_density(case)
+    nu = scalar(case, "constant/transportProperties", "nu")
+    rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
+    g = math.hypot(*vector(case, "constant/g", "value"))
+    d = fixed_diameter(case)
+    mu = rho_f * nu
+    stokes = (rho_p - rho_f) * g * d ** 2 / (18 * mu)
+    return {"settlingVelocity": schiller_naumann_terminal(stokes, rho_f, d, mu)}
+
+
+def velocity_along_gravity(case):
+    """The mean particle velocity along gravity at the end (cloud monitor), positive falling."""
+    g = vector(case, "constant/g", "value")
+    norm = math.hypot(*g)
+    m = monitor(case, "cloud")
+    u = [m[c][-1] if m.get(c) else math.nan for c in ("Ux", "Uy", "Uz")]
+    return {"settlingVelocity": sum(a * b for a, b in zip(u, g)) / norm}
+
+
+REFERENCES = {
+    "taylorGreen": Reference(
+        taylor_green, measure=taylor_green_measure,
+        compare={"fluid.kineticEnergy.final": "kineticEnergy",
+                 "measured.decayRate": "decayRate"},
+        about="the exact decaying vortex: E(endTime) and the decay rate 4 nu"),
+    "channel": Reference(
+        channel, compare={"fluid.drivingGradient.final": "drivingGradient"},
+        about="plane Poiseuille flow: the driving gradient 12 nu U / H^2"),
+    "porousMedia": Reference(
+        porous_media, compare={"direct.K.final": "K"},
+        about="simple cubic array: K of Sangani & Acrivos (paper eq. 17)"),
+    "settlingSphere": Reference(
+        settling_sphere, compare={"sedimentation.settlingVelocity.final": "settlingVelocity"},
+        about="a sphere in a periodic box: U_Stokes / K(phi) (Sangani & Acrivos)"),
+    "settlingInLiquid": Reference(
+        single_bead, measure=velocity_along_gravity,
+        compare={"measured.settlingVelocity": "settlingVelocity"},
+        about="one bead: the Schiller-Naumann terminal velocity"),
+}
