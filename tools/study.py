@@ -244,13 +244,13 @@ def build_spec(args):
             raise StudyError(f"--spec [set] {key!r}: expected \"FILE:ENTRY\" = values")
         file, entry = key.split(":", 1)
         axes.append(Axis(file.strip(), entry.strip(), toml_values(value, f"[set] {key!r}")))
+    for text in args.set or []:
+        axes.append(parse_set(text))
     models = args.model or spec_file.get("model")
     if models is not None:
         values = (parse_values(models, "--model") if isinstance(models, str)
                   else toml_values(models, "model"))
         axes.append(Axis("constant/couplingProperties", "model", values))
-    for text in args.set or []:
-        axes.append(parse_set(text))
     seen = {}
     for a in axes:
         if a.label in seen:
@@ -776,6 +776,9 @@ TABLE_RUN_COLUMNS = ["status", "exit_code", "message", "wall_time", "cpu_time",
                      "planned_steps", "host", "started", "fsim_version"]
 
 
+TEXT_COLUMNS = {"point", "status", "message", "host", "started", "fsim_version"}
+
+
 def number_or_text(value):
     if isinstance(value, str):
         with contextlib.suppress(ValueError):
@@ -792,7 +795,7 @@ def table_rows(points, reference_name, compare, warn=print):
     rows, warned = [], set()
     for p in points:
         row = {"point": p.name}
-        row.update({k: number_or_text(v) for k, v in p.parameters.items()})
+        row.update(p.parameters)  # as written into the dictionaries
         rec = p.done or {}
         for column in TABLE_RUN_COLUMNS:
             row[column] = rec.get(column)
@@ -876,11 +879,11 @@ def write_table(folder, rows, columns, parquet=True):
         return None
     frame = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
     for c in columns:
-        values = [v for v in frame[c] if v is not None and v == v]
-        if values and all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                          for v in values):
-            frame[c] = pd.to_numeric(frame[c])
-        else:
+        try:  # numbers (parameters too, written as text) as float64, the rest as strings
+            if c in TEXT_COLUMNS:
+                raise ValueError
+            frame[c] = pd.to_numeric(frame[c].replace("", None)).astype("float64")
+        except (ValueError, TypeError):
             frame[c] = frame[c].astype("string")
     frame.to_parquet(folder / "results.parquet", index=False)
     return folder / "results.parquet"

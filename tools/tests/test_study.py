@@ -100,6 +100,28 @@ def test_monitor_summary_is_final_and_time_average(tmp_path):
     assert "probe.Time.final" not in summary
 
 
+def test_table_files(tmp_path):
+    """results.csv round trip; results.parquet (numbers as float64) where pandas and pyarrow
+    import (they are not dependencies: skipped without them)."""
+    rows = [{"point": "point-0000", "nu": "0.1", "status": "done", "message": "",
+             "wall_time": 1.5, "fluid.kineticEnergy.final": 0.03},
+            {"point": "point-0001", "nu": "0.2", "status": "failed", "exit_code": 1,
+             "message": "fsimFoam: error: a, b", "wall_time": 0.25}]
+    columns = study.table_columns(rows, ["nu"])
+    assert columns[:4] == ["point", "nu", "status", "exit_code"]
+    study.write_table(tmp_path, rows, columns, parquet=False)
+    back = study.read_table(tmp_path / "results.csv")
+    assert back[1]["message"] == "fsimFoam: error: a, b" and back[1]["exit_code"] == 1
+    assert back[0]["nu"] == 0.1 and back[0]["fluid.kineticEnergy.final"] == 0.03
+    assert back[1]["fluid.kineticEnergy.final"] is None
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    assert study.write_table(tmp_path, rows, columns) == tmp_path / "results.parquet"
+    frame = pd.read_parquet(tmp_path / "results.parquet")
+    assert frame["nu"].tolist() == [0.1, 0.2] and frame["nu"].dtype == "float64"
+    assert frame["message"].tolist() == ["", "fsimFoam: error: a, b"]
+
+
 def test_references_of_the_tutorials_match_their_readmes():
     tutorials = ROOT / "tutorials"
     refs = study_references.REFERENCES
