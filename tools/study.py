@@ -63,6 +63,9 @@ POINT = re.compile(r"point-(\d{4,})")
 STDERR = "log.fsimFoam.stderr"
 EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED = 2, 1, 130
 TAIL_LINES = 20
+# A run ended by one of these was stopped from outside (the study, a batch system's scancel),
+# not failed: it writes no done.json and runs again on resume.
+STOP_SIGNALS = (signal.SIGTERM, signal.SIGINT, signal.SIGHUP)
 
 
 class StudyError(Exception):
@@ -543,8 +546,9 @@ def _run_measured(cmd, case, stdout, stderr, env, stop_file=None):
     ru_maxrss when it exceeds this process's own (on Linux a child's ru_maxrss starts at its
     parent's high-water mark), else the highest VmHWM read from /proc while it ran."""
     start = time.perf_counter()
+    # Its own session: a terminal's Ctrl-C reaches the study, which stops the runs itself.
     proc = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, stdin=subprocess.DEVNULL,
-                            env=env, preexec_fn=_die_with_parent)
+                            env=env, preexec_fn=_die_with_parent, start_new_session=True)
     peak = [0]
     interrupted = [False]
     finished = threading.Event()
@@ -694,9 +698,10 @@ def run_point(case, fsim, threads, version="", stop_file=None):
         monitors = summarize_monitors(case)
         record["steps"] = int(monitors.get("fluid.step.final", steps) or steps)
         record["monitors"] = monitors
-        if interrupted:
+        if interrupted or -code in STOP_SIGNALS:
             marker.unlink(missing_ok=True)
-            record.update(status="interrupted", message="stopped by the study")
+            record.update(status="interrupted", message="stopped by the study" if interrupted
+                          else f"stopped by signal {-code} (SIGTERM, SIGINT or SIGHUP)")
             return record
         if code == 0:
             record["status"] = "done"
@@ -941,7 +946,10 @@ class Cluster:
         from distributed import Client, LocalCluster
         cloudpickle.register_pickle_by_value(sys.modules[__name__])
         if self.spec.scheduler:
-            self.client = Client(self.spec.scheduler, timeout="60s")
+            try:
+                self.client = Client(self.spec.scheduler, timeout="30s")
+            except (OSError, TimeoutError, ValueError) as e:
+                raise StudyError(f"--scheduler {self.spec.scheduler}: {e}")
             if not self.client.scheduler_info()["workers"]:
                 self.console.print(f"waiting for a worker of {self.spec.scheduler} …")
             self.client.wait_for_workers(1)
@@ -959,9 +967,15 @@ class Cluster:
             cores = available_cores()
             n, self.threads = plan_local(cores, self.points, self.spec.workers,
                                          self.spec.threads)
-            self.local = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                      dashboard_address=":0", memory_limit=0,
-                                      silence_logs=logging.ERROR)
+            # The workers ignore SIGINT (a terminal's Ctrl-C reaches the whole process group):
+            # the study stops them itself, without their tracebacks.
+            previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+            try:
+                self.local = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                          dashboard_address=":0", memory_limit=0,
+                                          silence_logs=logging.ERROR)
+            finally:
+                signal.signal(signal.SIGINT, previous)
             self.client = Client(self.local)
             self.slots, self.resources = n, None
             self.describe = (f"local cluster: {n} worker(s) x {self.threads} thread(s) "
