@@ -501,13 +501,22 @@ _PR_SET_PDEATHSIG = 1
 
 
 def _die_with_parent():
-    """In the child before exec: SIGKILL when the thread that started it dies, so that a
-    killed worker (or study) leaves no fsimFoam running (Linux; elsewhere nothing)."""
+    """The function a child runs before exec so that it gets SIGKILL when the thread that
+    started it dies: a killed worker (or study) leaves no fsimFoam running. prctl is looked up
+    here, in the parent, so that the child only calls it (no import or dlopen after fork in a
+    threaded process). None where there is no prctl (not Linux)."""
     try:
         import ctypes
-        ctypes.CDLL(None).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
-    except Exception:
-        pass
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+        prctl.argtypes = [ctypes.c_int] + [ctypes.c_ulong] * 4
+        prctl.restype = ctypes.c_int
+    except (OSError, AttributeError):
+        return None
+    kill = int(signal.SIGKILL)
+
+    def setup():
+        prctl(_PR_SET_PDEATHSIG, kill, 0, 0, 0)
+    return setup
 
 
 def _vm_hwm(pid):
@@ -548,7 +557,7 @@ def _run_measured(cmd, case, stdout, stderr, env, stop_file=None):
     start = time.perf_counter()
     # Its own session: a terminal's Ctrl-C reaches the study, which stops the runs itself.
     proc = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, stdin=subprocess.DEVNULL,
-                            env=env, preexec_fn=_die_with_parent, start_new_session=True)
+                            env=env, preexec_fn=_die_with_parent(), start_new_session=True)
     peak = [0]
     interrupted = [False]
     finished = threading.Event()
@@ -646,7 +655,7 @@ def dry_run_point(case, fsim, threads):
     try:
         done = subprocess.run([fsim, "-case", case, "-dry-run", "-threads", str(threads)],
                               capture_output=True, text=True, stdin=subprocess.DEVNULL,
-                              preexec_fn=_die_with_parent)
+                              preexec_fn=_die_with_parent(), start_new_session=True)
     except OSError as e:
         return {"exit_code": None, "message": f"cannot run {fsim}: {e}"}
     plan = {"exit_code": done.returncode}

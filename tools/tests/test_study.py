@@ -5,7 +5,6 @@ import csv
 import datetime
 import json
 import math
-import os
 import signal
 import subprocess
 import sys
