@@ -24,7 +24,6 @@ import csv
 import datetime
 import math
 import os
-import resource
 import re
 import shutil
 import subprocess
@@ -38,6 +37,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import foam_dict  # noqa: E402
+from measured_run import wait_measured  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 FOAM_ENV = {"WM_PROJECT_DIR": "/usr/share/openfoam", "FOAM_ETC": "/usr/share/openfoam/etc"}
@@ -119,40 +119,18 @@ def apply_set(case, entry):
     path.write_text(text)
 
 
-def vm_hwm(pid):
-    """The peak resident memory of a running process, MB (0 when unreadable)."""
-    try:
-        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return 0.0
-
-
 def run(cmd, cwd, log, env=None):
-    """Runs `cmd` in `cwd` with its output in `log`; (wall s, peak resident MB) or CaseError.
-    The peak is the child's ru_maxrss where it exceeds this process's own (on Linux a child's
-    starts at its parent's high-water mark), else the last VmHWM read while it ran."""
+    """Runs `cmd` in `cwd` with its output in `log`; (wall s, peak resident MB) or CaseError."""
     start = time.perf_counter()
-    polled = 0.0
     with open(log, "w") as out:
         proc = subprocess.Popen(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
                                 env={**os.environ, "PWD": str(cwd), **(env or {})})
-        while True:
-            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
-            if pid:
-                break
-            polled = max(polled, vm_hwm(proc.pid))
-            time.sleep(0.01)
+        code, _, peak = wait_measured(proc)
     wall = time.perf_counter() - start
-    code = os.waitstatus_to_exitcode(status)
     if code != 0:
         tail = "".join(Path(log).read_text(errors="replace").splitlines(True)[-15:])
         raise CaseError(f"{' '.join(map(str, cmd))} failed with exit {code} in {cwd}:\n{tail}")
-    own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    child = usage.ru_maxrss / 1024
-    return wall, child if child > own else max(polled, 0.0)
+    return wall, peak / 2**20
 
 
 def fsim_binary(given):

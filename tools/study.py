@@ -55,7 +55,9 @@ if str(TOOLS) not in sys.path:
     sys.path.insert(0, str(TOOLS))
 
 import foam_dict  # noqa: E402
+import measured_run  # noqa: E402
 import study_references  # noqa: E402
+from measured_run import vm_hwm  # noqa: E402
 
 CASE_DIRS = ("system", "constant", "0")
 OUTPUT_PATTERNS = ("*.vtk", "*.vti", "*.vtu", "*.bin")
@@ -519,18 +521,6 @@ def _die_with_parent():
     return setup
 
 
-def _vm_hwm(pid):
-    """VmHWM of /proc/<pid>/status in bytes (None when unreadable)."""
-    try:
-        with open(f"/proc/{pid}/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        return None
-    return None
-
-
 def _tail(path, lines=TAIL_LINES):
     try:
         with open(path, "rb") as f:
@@ -565,7 +555,7 @@ def _run_measured(cmd, case, stdout, stderr, env, stop_file=None):
     def watch():
         delay = 0.02
         while not finished.wait(delay):
-            value = _vm_hwm(proc.pid)
+            value = vm_hwm(proc.pid)
             if value:
                 peak[0] = max(peak[0], value)
             if stop_file is not None and os.path.exists(stop_file) and not interrupted[0]:
@@ -954,6 +944,7 @@ class Cluster:
         import cloudpickle
         from distributed import Client, LocalCluster
         cloudpickle.register_pickle_by_value(sys.modules[__name__])
+        cloudpickle.register_pickle_by_value(measured_run)
         if self.spec.scheduler:
             try:
                 self.client = Client(self.spec.scheduler, timeout="30s")

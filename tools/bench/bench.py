@@ -42,38 +42,21 @@ import cases  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(HERE))
 import direct_cases  # noqa: E402
+from measured_run import wait_measured  # noqa: E402
 
 NU = 0.05
 DT = 0.005
 FOAM_ENV = dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam", FOAM_ETC="/usr/share/openfoam/etc")
 
 
-def high_water_mark(pid):
-    """VmHWM of a running process, bytes (None once it has exited)."""
-    try:
-        with open(f"/proc/{pid}/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return None
-
-
 def run_measured(cmd, cwd, env=None, log=None):
-    """Run a command; return (wall seconds, peak RSS bytes).
-
-    The peak is the child's own VmHWM, polled while it runs: wait4's ru_maxrss is not usable
-    here, because Linux carries the forking Python process's high-water mark into the child
-    across exec. fsimFoam also prints its own peak at the end of its log (read by run_fsim).
-    """
+    """Run a command; return (wall seconds, peak RSS bytes: the child's VmHWM, polled,
+    tools/measured_run.py). fsimFoam also prints its own peak at the end of its log (read by
+    run_fsim)."""
     out = open(log, "w") if log else subprocess.DEVNULL
     t0 = time.perf_counter()
     p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
-    peak = 0
-    while p.poll() is None:
-        peak = max(peak, high_water_mark(p.pid) or 0)
-        time.sleep(0.01)
+    _, _, peak = wait_measured(p)
     wall = time.perf_counter() - t0
     if log:
         out.close()

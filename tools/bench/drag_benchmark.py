@@ -22,6 +22,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.dirname(HERE))
+from measured_run import wait_measured  # noqa: E402
 TUTORIAL = os.path.join(ROOT, "tutorials", "benchmarkDragLaw")
 PARTICLES = 500
 CELLS = 12 * 36 * 12
@@ -32,32 +34,14 @@ def default_fsim():
     return os.path.join(target, "release", "fsimFoam")
 
 
-def vm_hwm_kb(pid):
-    try:
-        with open(f"/proc/{pid}/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1])
-    except OSError:
-        pass
-    return 0
-
-
 def run_measured(cmd, cwd, log):
-    """Runs `cmd`; returns (wall s, cpu s, VmHWM kB, ru_maxrss kB, exit status)."""
+    """Runs `cmd`; returns (wall s, cpu s, VmHWM kB, exit status)."""
     with open(log, "w") as out:
         start = time.perf_counter()
         child = subprocess.Popen(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT)
-        hwm = 0
-        while True:
-            pid, status, usage = os.wait4(child.pid, os.WNOHANG)
-            if pid:
-                break
-            hwm = max(hwm, vm_hwm_kb(child.pid))
-            time.sleep(0.005)
+        code, cpu, peak = wait_measured(child)
         wall = time.perf_counter() - start
-    child.returncode = os.waitstatus_to_exitcode(status)
-    return wall, usage.ru_utime + usage.ru_stime, hwm, usage.ru_maxrss, child.returncode
+    return wall, cpu, peak // 1024, code
 
 
 def set_entry(path, key, value):
@@ -87,20 +71,18 @@ def main():
         cmd = (["nice", "-n", str(args.nice)] if args.nice else []) + [
             args.fsim, "-case", case, "-threads", str(args.threads)]
         log = os.path.join(case, "log.fsimFoam")
-        wall, cpu, hwm, maxrss, code = run_measured(cmd, case, log)
+        wall, cpu, hwm, code = run_measured(cmd, case, log)
         text = open(log).read()
         if code != 0:
             sys.exit(f"fsimFoam failed ({code}):\n{text[-2000:]}")
         steps = len(re.findall(r"^Time = ", text, flags=re.M))
-        # ru_maxrss also counts the forked Python image before exec: VmHWM is the solver's.
-        peak_mb = (hwm or maxrss) / 1024.0
+        peak_mb = hwm / 1024.0  # the solver's VmHWM (tools/measured_run.py)
         print(f"benchmarkDragLaw (paper section 3.3, drag law, h = 2r): {PARTICLES} particles, "
               f"{CELLS} cells, endTime {args.end:g} s, {args.threads} threads")
         print(f"  fluid steps      {steps}")
         print(f"  wall             {wall:.2f} s   (target < 5 s)")
         print(f"  CPU              {cpu:.2f} s")
-        print(f"  peak memory      {peak_mb:.1f} MB (VmHWM {hwm / 1024:.1f} MB, "
-              f"ru_maxrss incl. the fork {maxrss / 1024:.1f} MB; target < 20 MB)")
+        print(f"  peak memory      {peak_mb:.1f} MB (VmHWM; target < 20 MB)")
         print(f"  particle-steps/s {PARTICLES * steps / wall:.3e}")
         print(f"  cell-steps/s     {CELLS * steps / wall:.3e}")
     finally:
