@@ -900,6 +900,11 @@ def read_table(path):
                 for r in csv.DictReader(f)]
 
 
+def finished_points(folder):
+    """The rows of a study folder's results.csv whose point finished (status done)."""
+    return [row for row in read_table(Path(folder) / "results.csv") if row["status"] == "done"]
+
+
 # ----- the run ----------------------------------------------------------------------------------
 
 def fsim_binary(given):

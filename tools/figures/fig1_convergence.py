@@ -19,7 +19,6 @@ r/h from about 2.2 to 16; points finished before are reused), then reads its res
   paper's O(h^1.5), and |error| against wall time with each phi's Pareto front.
 """
 import argparse
-import csv
 import math
 import subprocess
 import sys
@@ -31,6 +30,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import study as study_tool  # noqa: E402
 SPEC = ROOT / "tools" / "figures" / "fig1_convergence.toml"
 STUDY = ROOT / "studies" / "porousMedia-fig1-convergence"
 OUT = ROOT / "docs" / "figures" / "fig1_convergence.png"
@@ -39,23 +40,13 @@ BOUNDS = (0.01, 0.03, 0.10)
 
 
 def read(study):
-    """The finished points of results.csv as dicts of floats (text columns kept)."""
-    rows = []
-    with open(study / "results.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            if row["status"] != "done":
-                continue
-            out = {}
-            for key, value in row.items():
-                try:
-                    out[key] = float(value)
-                except (TypeError, ValueError):
-                    out[key] = value
-            phi, n = out["phi"], out["n"]
-            out["r_over_h"] = n * (3 * phi / (4 * math.pi)) ** (1 / 3)
-            out["signed"] = out["measured.K"] / out["reference.K"] - 1
-            out["error"] = abs(out["signed"])
-            rows.append(out)
+    """The finished points, with r/h and the signed and absolute relative errors of K."""
+    rows = study_tool.finished_points(study)
+    for out in rows:
+        phi, n = out["phi"], out["n"]
+        out["r_over_h"] = n * (3 * phi / (4 * math.pi)) ** (1 / 3)
+        out["signed"] = out["measured.K"] / out["reference.K"] - 1
+        out["error"] = abs(out["signed"])
     return rows
 
 

@@ -29,6 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
+import study as study_tool  # noqa: E402
 import study_references as refs  # noqa: E402
 
 SPEC = ROOT / "tools" / "figures" / "fig2_k_vs_phi.toml"
@@ -54,22 +55,13 @@ def drag_law(out, run):
 
 
 def read(study):
-    rows = []
-    with open(study / "results.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            if row["status"] != "done":
-                continue
-            out = {}
-            for key, value in row.items():
-                try:
-                    out[key] = float(value)
-                except (TypeError, ValueError):
-                    out[key] = value
-            out["r_over_h"] = out["n"] * (3 * out["phi"] / (4 * math.pi)) ** (1 / 3)
-            out["series"] = min(NOMINAL, key=lambda s: abs(s - out["r_over_h"]))
-            out["gap_cells"] = out["n"] - 2 * out["r_over_h"]
-            out["signed"] = out["measured.K"] / out["reference.K"] - 1
-            rows.append(out)
+    """The finished points, with r/h, their series, the gap in cells and K's signed error."""
+    rows = study_tool.finished_points(study)
+    for out in rows:
+        out["r_over_h"] = out["n"] * (3 * out["phi"] / (4 * math.pi)) ** (1 / 3)
+        out["series"] = min(NOMINAL, key=lambda s: abs(s - out["r_over_h"]))
+        out["gap_cells"] = out["n"] - 2 * out["r_over_h"]
+        out["signed"] = out["measured.K"] / out["reference.K"] - 1
     return rows
 
 
