@@ -18,20 +18,14 @@ r/h from about 2.2 to 16; points finished before are reused), then reads its res
 - draws docs/figures/fig1_convergence.png: |error| against h/r with the fitted lines and the
   paper's O(h^1.5), and |error| against wall time with each phi's Pareto front.
 """
-import argparse
 import math
-import subprocess
-import sys
-from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from figure import ROOT, arguments, porous_points, run_study  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import study as study_tool  # noqa: E402
 SPEC = ROOT / "tools" / "figures" / "fig1_convergence.toml"
 STUDY = ROOT / "studies" / "porousMedia-fig1-convergence"
 OUT = ROOT / "docs" / "figures" / "fig1_convergence.png"
@@ -41,12 +35,9 @@ BOUNDS = (0.01, 0.03, 0.10)
 
 def read(study):
     """The finished points, with r/h and the signed and absolute relative errors of K."""
-    rows = study_tool.finished_points(study)
-    for out in rows:
-        phi, n = out["phi"], out["n"]
-        out["r_over_h"] = n * (3 * phi / (4 * math.pi)) ** (1 / 3)
-        out["signed"] = out["measured.K"] / out["reference.K"] - 1
-        out["error"] = abs(out["signed"])
+    rows = porous_points(study)
+    for row in rows:
+        row["error"] = abs(row["signed"])
     return rows
 
 
@@ -80,17 +71,9 @@ def pareto(rows):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--no-run", action="store_true",
-                        help="draw from the study's results.csv as it is")
-    parser.add_argument("--study", type=Path, default=STUDY)
-    parser.add_argument("--out", type=Path, default=OUT)
-    args = parser.parse_args(argv)
+    args = arguments(__doc__, STUDY, OUT).parse_args(argv)
     if not args.no_run:
-        done = subprocess.run([str(ROOT / "tools" / "study"), "run", "--spec", str(SPEC),
-                               "--out", str(args.study)])
-        if done.returncode not in (0, 1):      # 1: some point failed; draw the others
-            sys.exit(done.returncode)
+        run_study(SPEC, args.study)
 
     rows = read(args.study)
     phis = sorted({r["phi"] for r in rows})

@@ -15,21 +15,17 @@ fsimFoam case yet: it comes from `cargo run --release --example drag_law_figures
 (examples/drag_law_figures, fsim's library API), run once into studies/dragLawFigures/ when
 its CSV is not there; --no-drag-law leaves it out, and a failed build only leaves it out.
 """
-import argparse
 import csv
 import math
 import subprocess
 import sys
-from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from figure import ROOT, arguments, porous_points, run_study  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import study as study_tool  # noqa: E402
 import study_references as refs  # noqa: E402
 
 SPEC = ROOT / "tools" / "figures" / "fig2_k_vs_phi.toml"
@@ -56,29 +52,20 @@ def drag_law(out, run):
 
 def read(study):
     """The finished points, with r/h, their series, the gap in cells and K's signed error."""
-    rows = study_tool.finished_points(study)
-    for out in rows:
-        out["r_over_h"] = out["n"] * (3 * out["phi"] / (4 * math.pi)) ** (1 / 3)
-        out["series"] = min(NOMINAL, key=lambda s: abs(s - out["r_over_h"]))
-        out["gap_cells"] = out["n"] - 2 * out["r_over_h"]
-        out["signed"] = out["measured.K"] / out["reference.K"] - 1
+    rows = porous_points(study)
+    for row in rows:
+        row["series"] = min(NOMINAL, key=lambda s: abs(s - row["r_over_h"]))
+        row["gap_cells"] = row["n"] - 2 * row["r_over_h"]
     return rows
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--no-run", action="store_true",
-                        help="draw from the study's results.csv as it is")
-    parser.add_argument("--study", type=Path, default=STUDY)
-    parser.add_argument("--out", type=Path, default=OUT)
+    parser = arguments(__doc__, STUDY, OUT)
     parser.add_argument("--no-drag-law", action="store_true",
                         help="leave the drag-law model's points out")
     args = parser.parse_args(argv)
     if not args.no_run:
-        done = subprocess.run([str(ROOT / "tools" / "study"), "run", "--spec", str(SPEC),
-                               "--out", str(args.study)])
-        if done.returncode not in (0, 1):      # 1: some point failed; draw the others
-            sys.exit(done.returncode)
+        run_study(SPEC, args.study)
 
     rows = read(args.study)
     print("phi     n   r/h   gap   K(fsim)   K(exact)  error %   eq.17     eq.18   "

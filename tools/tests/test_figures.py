@@ -2,6 +2,7 @@
 the study compares with, the steady K it measures, the fitted order and the Pareto front."""
 import importlib.util
 import math
+import sys
 from pathlib import Path
 
 import pytest
@@ -9,6 +10,7 @@ import pytest
 import study_references as refs
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools" / "figures"))  # the scripts' shared module, figure.py
 
 
 def load(name):
