@@ -265,6 +265,44 @@ def velocity_along_gravity(case):
     return {"settlingVelocity": sum(a * b for a, b in zip(u, g)) / norm}
 
 
+def positions(case):
+    """The bead centres of constant/kinematicCloudPositions, [(x, y, z)]."""
+    body = foam_dict.body(text(case, "constant/kinematicCloudPositions"))
+    body = re.sub(r"//[^\n]*|/\*.*?\*/", " ", body, flags=re.S)
+    return [tuple(float(v) for v in re.findall(NUMBER, p))
+            for p in re.findall(r"\(([^()]*)\)", body)]
+
+
+def packed_bed(case):
+    """Ergun's pressure drop across the bed (Ergun, Chem. Eng. Prog. 48, 89-94, 1952):
+    dp = L [150 mu U phi^2 / (eps^3 d^2) + 1.75 rho phi U^2 / (eps^3 d)], eps = 1 - phi, with
+    U the superficial velocity of the bottom inlet (0/U.water), L the bed's height (the
+    beads' lowest to highest centre plus d), phi the beads' volume over the column's cross
+    section times L (as tutorials/packedBed/plot.py)."""
+    rho = fluid_density(case)
+    mu = rho * scalar(case, "constant/transportProperties", "nu")
+    d = fixed_diameter(case)
+    beads = positions(case)
+    phase = foam_dict.get_entry(text(case, "constant/transportProperties"), "continuousPhase")
+    u = abs(vector(case, f"0/U.{phase}", "boundaryField/bottom/inletVelocity")[2])
+    lx, ly, _ = block_extent(case)
+    height = max(b[2] for b in beads) - min(b[2] for b in beads) + d
+    phi = len(beads) * math.pi / 6 * d ** 3 / (lx * ly * height)
+    eps = 1 - phi
+    gradient = (150 * mu * u * phi ** 2 / (eps ** 3 * d ** 2)
+                + 1.75 * rho * phi * u ** 2 / (eps ** 3 * d))
+    return {"pressureDrop": gradient * height, "phi": phi}
+
+
+def packed_bed_measure(case):
+    """The pressure drop less the water's weight (dragLaw monitor), mean over the run's second
+    half of steps (as tutorials/packedBed/plot.py): the bed oscillates on its contact springs
+    at first."""
+    drop = monitor(case, "dragLaw")["pressureDrop"]
+    late = drop[len(drop) // 2:]
+    return {"pressureDrop": sum(late) / len(late) if late else math.nan}
+
+
 REFERENCES = {
     "taylorGreen": Reference(
         taylor_green, measure=taylor_green_measure,
@@ -286,4 +324,9 @@ REFERENCES = {
         single_bead, measure=velocity_along_gravity,
         compare={"measured.settlingVelocity": "settlingVelocity"},
         about="one bead: the Schiller-Naumann terminal velocity"),
+    "packedBed": Reference(
+        packed_bed, measure=packed_bed_measure,
+        compare={"measured.pressureDrop": "pressureDrop"},
+        about="a fixed bed: Ergun's pressure drop (Ergun 1952), the monitor's mean over the "
+              "second half of the run"),
 }

@@ -1,8 +1,10 @@
 """What the figure scripts of this folder share: the command line, running the figure's study
-(tools/study; finished points are reused) and reading the porousMedia studies' points with r/h
-and the relative error of K."""
+(tools/study; finished points are reused), reading the porousMedia studies' points with r/h
+and the relative error of K, and for the accuracy-against-cost charts the Pareto front, the
+cheapest point within an error bound and a block's cell counts."""
 import argparse
 import math
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -38,3 +40,25 @@ def porous_points(study):
         row["r_over_h"] = row["n"] * (3 * row["phi"] / (4 * math.pi)) ** (1 / 3)
         row["signed"] = row["measured.K"] / row["reference.K"] - 1
     return rows
+
+
+def pareto(rows, cost="wall_time", error="error"):
+    """The points no other point beats in both `cost` and `error`, by cost."""
+    front, best = [], math.inf
+    for r in sorted(rows, key=lambda r: (r[cost], r[error])):
+        if r[error] < best:
+            front.append(r)
+            best = r[error]
+    return front
+
+
+def cheapest(rows, bound, cost="wall_time", error="error"):
+    """The row of least `cost` whose `error` is within `bound`; None when there is none."""
+    ok = [r for r in rows if r[error] <= bound]
+    return min(ok, key=lambda r: r[cost]) if ok else None
+
+
+def block_cells(blocks):
+    """The cell counts (nx, ny, nz) of a blockMeshDict `blocks` value of one hex."""
+    found = re.search(r"hex\s*\([^()]*\)\s*\(\s*(\d+)\s+(\d+)\s+(\d+)\s*\)", str(blocks))
+    return tuple(int(v) for v in found.groups())

@@ -68,3 +68,38 @@ def test_the_fitted_order_and_the_pareto_front():
     rows.append({"r_over_h": 5, "error": 0.3 * 4 ** -2.5, "wall_time": 1e5})
     front = fig1.pareto(rows)
     assert [r["r_over_h"] for r in front] == [2, 4, 8, 16]
+
+
+def test_the_packed_bed_reference_is_ergun_and_its_measure_the_second_half(tmp_path):
+    # the tutorial's own dictionaries: 160 beads, d = 1 mm, a 4 x 4 x 10 mm bed, U = 1 mm/s;
+    # Ergun by hand, 3.888 Pa as tutorials/packedBed/README.md prints it
+    values = refs.REFERENCES["packedBed"].values(ROOT / "tutorials" / "packedBed")
+    phi = math.pi / 6
+    eps = 1 - phi
+    by_hand = 0.01 * (150 * 1e-3 * 1e-3 * phi ** 2 / (eps ** 3 * 1e-6)
+                      + 1.75 * 1000 * phi * 1e-6 / (eps ** 3 * 1e-3))
+    assert values["phi"] == pytest.approx(phi, rel=1e-12)
+    assert values["pressureDrop"] == pytest.approx(by_hand, rel=1e-12)
+    assert values["pressureDrop"] == pytest.approx(3.888, abs=5e-4)
+    # the monitor's mean over the second half of the rows, the swings of the start left out
+    out = tmp_path / "postProcessing" / "dragLaw" / "0"
+    out.mkdir(parents=True)
+    drops = [100.0, 50.0, 10.0, 3.0, 4.0, 3.5, 3.5, 4.0]
+    out.joinpath("dragLaw.dat").write_text(
+        "# Time alphaMin pressureDrop\n"
+        + "".join(f"{0.001 * (i + 1)} 0.47 {p}\n" for i, p in enumerate(drops)))
+    assert refs.REFERENCES["packedBed"].measure(tmp_path)["pressureDrop"] == 3.75
+    assert refs.REFERENCES["packedBed"].compare == {"measured.pressureDrop": "pressureDrop"}
+
+
+def test_the_cost_charts_cheapest_run_and_block_cells():
+    import figure
+    rows = [{"wall_time": 1.0, "error": 0.005}, {"wall_time": 0.5, "error": 0.02},
+            {"wall_time": 0.7, "error": 0.04}, {"wall_time": 0.2, "error": 0.09}]
+    assert figure.cheapest(rows, 0.01) is rows[0]
+    assert figure.cheapest(rows, 0.03) is rows[1]
+    assert figure.cheapest(rows, 0.10) is rows[3]
+    assert figure.cheapest(rows, 0.001) is None
+    assert figure.pareto(rows) == [rows[3], rows[1], rows[0]]
+    assert figure.block_cells("( hex (0 1 2 3 4 5 6 7) (4 4 20) simpleGrading (1 1 1) )") \
+        == (4, 4, 20)
