@@ -19,8 +19,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from figure import (ROOT, arguments, block_cells, cheapest, pareto,  # noqa: E402
-                    run_study, study_tool)
+from figure import (ROOT, arguments, block_cells, cost_axes,  # noqa: E402
+                    print_front_and_cheapest, run_study, save, study_tool)
 
 SPEC = ROOT / "tools" / "figures" / "cost_packed_bed.toml"
 STUDY = ROOT / "studies" / "packedBed-cost"
@@ -65,14 +65,7 @@ def main(argv=None):
               f"{r['reference.pressureDrop']:9.4f} {100 * r['signed']:+8.3f} {r['steps']:6.0f} "
               f"{r['wall_time']:7.2f} {r['peak_memory_mb']:8.1f}")
 
-    front = pareto(rows)
-    print("\nPareto front (no run is both cheaper and closer to Ergun):")
-    for r in front:
-        print(f"  {describe(r)}")
-    print("\ncheapest run (wall time) within each error bound")
-    for bound in BOUNDS:
-        best = cheapest(rows, bound)
-        print(f"  {100 * bound:2g} %: {describe(best) if best else 'none'}")
+    front = print_front_and_cheapest(rows, BOUNDS, describe, "Ergun")
 
     fig, ax = plt.subplots(figsize=(8.5, 5.6), constrained_layout=True)
     colours = {2.0: "tab:orange", 1.0: "tab:blue"}
@@ -92,19 +85,12 @@ def main(argv=None):
                     ax.annotate(f"{1e6 * r['deltaT']:g}", (r["wall_time"], 100 * r["error"]),
                                 xytext=(4, 2), textcoords="offset points", fontsize=6,
                                 color="0.35")
-    ax.loglog([r["wall_time"] for r in front], [100 * r["error"] for r in front], "k-",
-              lw=1.5, label="Pareto front")
-    for bound in BOUNDS:
-        ax.axhline(100 * bound, color="0.6", lw=0.8)
-    ax.set_xlabel("wall time of the run (s, 1 thread)")
+    cost_axes(ax, BOUNDS, front)
     ax.set_ylabel("|Δp − Δp$_{Ergun}$| / Δp$_{Ergun}$ (%)")
     ax.set_title("packedBed (drag-law model): pressure drop against Ergun, accuracy against "
                  "cost\n(labels: deltaT in µs; grey: 1 %, 3 %, 10 %)", fontsize=10)
-    ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper right")
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out, dpi=110)
-    print(f"\nwrote {args.out.relative_to(ROOT) if args.out.is_relative_to(ROOT) else args.out}")
+    save(fig, args.out)
 
 
 if __name__ == "__main__":

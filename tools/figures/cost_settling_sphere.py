@@ -20,8 +20,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from figure import (ROOT, arguments, block_cells, cheapest, pareto,  # noqa: E402
-                    run_study, study_tool)
+from figure import (ROOT, arguments, block_cells, cheapest, cost_axes,  # noqa: E402
+                    print_front_and_cheapest, run_study, save, study_tool)
 
 SPEC = ROOT / "tools" / "figures" / "cost_settling_sphere.toml"
 STUDY = ROOT / "studies" / "settlingSphere-cost"
@@ -66,14 +66,7 @@ def main(argv=None):
               f"{1e3 * r['reference.settlingVelocity']:12.5f} {100 * r['signed']:+8.3f} "
               f"{r['steps']:6.0f} {r['wall_time']:7.1f} {r['peak_memory_mb']:8.1f}")
 
-    front = pareto(rows)
-    print("\nPareto front (no run is both cheaper and closer to the reference):")
-    for r in front:
-        print(f"  {describe(r)}")
-    print("\ncheapest run (wall time) within each error bound")
-    for bound in BOUNDS:
-        best = cheapest(rows, bound)
-        print(f"  {100 * bound:2g} %: {describe(best) if best else 'none'}")
+    front = print_front_and_cheapest(rows, BOUNDS, describe, "the reference")
     print("\nthe same with each time scheme")
     for scheme in ("Euler", "RK3", "EulerRKC"):
         mine = [r for r in rows if r[SCHEME] == scheme]
@@ -99,20 +92,13 @@ def main(argv=None):
                 ax.annotate(f"{r['step_over_bound']:.3g}", (r["wall_time"], 100 * r["error"]),
                             xytext=(4, 2), textcoords="offset points", fontsize=6,
                             color="0.35")
-    ax.loglog([r["wall_time"] for r in front], [100 * r["error"] for r in front], "k-",
-              lw=1.5, label="Pareto front")
-    for bound in BOUNDS:
-        ax.axhline(100 * bound, color="0.6", lw=0.8)
-    ax.set_xlabel("wall time of the run (s, 1 thread)")
+    cost_axes(ax, BOUNDS, front)
     ax.set_ylabel("|v − U$_{Stokes}$/K(φ)| / (U$_{Stokes}$/K(φ)) (%)")
     ax.set_title("settlingSphere (direct model): terminal velocity, accuracy against cost\n"
                  "(labels: the step over Euler's viscous bound h²/6ν; grey: 1 %, 3 %, 10 %)",
                  fontsize=10)
-    ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper right", ncol=2)
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out, dpi=110)
-    print(f"\nwrote {args.out.relative_to(ROOT) if args.out.is_relative_to(ROOT) else args.out}")
+    save(fig, args.out)
 
 
 if __name__ == "__main__":

@@ -24,7 +24,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from figure import ROOT, arguments, porous_points, run_study  # noqa: E402
+from figure import (ROOT, arguments, cheapest, cost_axes, pareto,  # noqa: E402
+                    porous_points, run_study)
 
 SPEC = ROOT / "tools" / "figures" / "fig1_convergence.toml"
 STUDY = ROOT / "studies" / "porousMedia-fig1-convergence"
@@ -58,16 +59,6 @@ def fit_order(rows):
     slope = (sum((x - mx) * (y - my) for x, y in pts)
              / sum((x - mx) ** 2 for x, _ in pts))
     return slope, math.exp(my - slope * mx)
-
-
-def pareto(rows):
-    """The points no other point beats in both wall time and error, by wall time."""
-    front, best = [], math.inf
-    for r in sorted(rows, key=lambda r: (r["wall_time"], r["error"])):
-        if r["error"] < best:
-            front.append(r)
-            best = r["error"]
-    return front
 
 
 def main(argv=None):
@@ -127,12 +118,9 @@ def main(argv=None):
                 fontsize=10)
     a.grid(True, which="both", alpha=0.3)
     a.legend(fontsize=8)
-    for bound in BOUNDS:
-        b.axhline(100 * bound, color="0.6", lw=0.8)
-    b.set_xlabel("wall time of the run (s, 1 thread)")
+    cost_axes(b, BOUNDS)
     b.set_ylabel("|K − K$_{exact}$| / K$_{exact}$ (%)")
     b.set_title("accuracy against cost (grey: 1 %, 3 %, 10 %)", fontsize=10)
-    b.grid(True, which="both", alpha=0.3)
     b.legend(fontsize=8)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.out, dpi=110)
@@ -147,11 +135,11 @@ def main(argv=None):
     for phi in phis:
         mine = sorted((r for r in rows if r["phi"] == phi), key=lambda r: r["r_over_h"])
         for bound in BOUNDS:
-            ok = [r for r in mine if r["error"] <= bound]
-            if not ok:
+            best = cheapest(mine, bound)
+            if best is None:
                 print(f"  phi = {phi:g}, {100 * bound:2g} %: none")
                 continue
-            print(f"  phi = {phi:g}, {100 * bound:2g} %: {describe(min(ok, key=lambda r: r['wall_time']))}")
+            print(f"  phi = {phi:g}, {100 * bound:2g} %: {describe(best)}")
             steady = [r for k, r in enumerate(mine)
                       if all(q["error"] <= bound for q in mine[k:])]
             if steady:

@@ -62,3 +62,35 @@ def block_cells(blocks):
     """The cell counts (nx, ny, nz) of a blockMeshDict `blocks` value of one hex."""
     found = re.search(r"hex\s*\([^()]*\)\s*\(\s*(\d+)\s+(\d+)\s+(\d+)\s*\)", str(blocks))
     return tuple(int(v) for v in found.groups())
+
+
+def print_front_and_cheapest(rows, bounds, describe, closer_to):
+    """Prints the Pareto front of `rows` and the cheapest run within each bound; the front."""
+    front = pareto(rows)
+    print(f"\nPareto front (no run is both cheaper and closer to {closer_to}):")
+    for r in front:
+        print(f"  {describe(r)}")
+    print("\ncheapest run (wall time) within each error bound")
+    for bound in bounds:
+        best = cheapest(rows, bound)
+        print(f"  {100 * bound:2g} %: {describe(best) if best else 'none'}")
+    return front
+
+
+def cost_axes(ax, bounds, front=None):
+    """An error-against-wall-time panel's common parts: the Pareto front (when given), a
+    grey line per error bound, the time axis and the grid."""
+    if front is not None:
+        ax.loglog([r["wall_time"] for r in front], [100 * r["error"] for r in front], "k-",
+                  lw=1.5, label="Pareto front")
+    for bound in bounds:
+        ax.axhline(100 * bound, color="0.6", lw=0.8)
+    ax.set_xlabel("wall time of the run (s, 1 thread)")
+    ax.grid(True, which="both", alpha=0.3)
+
+
+def save(fig, out):
+    """Writes the figure to `out` (its folder made) and says so."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=110)
+    print(f"\nwrote {out.relative_to(ROOT) if out.is_relative_to(ROOT) else out}")
