@@ -212,7 +212,7 @@ def fluid_density(case):
 
 class Snapshot:
     """One written time of one program: the particles (id, position, U, omega, d) sorted by
-    id, and the kinematic pressure per cell (or None)."""
+    id, and the kinematic pressure per cell (None when not read: no quantity needs it)."""
 
     def __init__(self, ids, position, velocity, omega, p):
         order = np.argsort(ids)
@@ -221,7 +221,7 @@ class Snapshot:
         self.p = p
 
 
-def dpmfoam_snapshot(path, cells):
+def dpmfoam_snapshot(path, cells, fluid):
     cloud = path / "lagrangian" / "kinematicCloud"
     if (cloud / "positions").is_file():
         read = lambda name, w: foam_dict.read_list((cloud / name).read_text(), w)  # noqa: E731
@@ -238,12 +238,12 @@ def dpmfoam_snapshot(path, cells):
         position = velocity = omega = np.zeros((0, 3))
         ids = np.zeros(0, dtype=int)
     p = None
-    if (path / "p").is_file():
+    if fluid and (path / "p").is_file():
         p = foam_dict.read_internal_field((path / "p").read_text(), cells)
     return Snapshot(ids, position, velocity, omega, p)
 
 
-def fsim_snapshot(path):
+def fsim_snapshot(path, fluid):
     import meshio
     if (path / "particles.vtu").is_file():
         m = meshio.read(path / "particles.vtu")
@@ -253,7 +253,7 @@ def fsim_snapshot(path):
     else:
         snap = (np.zeros(0, dtype=int), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3)))
     p = None
-    if (path / "fluid.vtk").is_file():
+    if fluid and (path / "fluid.vtk").is_file():
         p = np.asarray(meshio.read(path / "fluid.vtk").cell_data["p"][0]).ravel()
     return Snapshot(*snap, p)
 
@@ -496,6 +496,7 @@ def crosscheck(args):
         scratch_copy(case, dpm_dir, args.set)
         scratch_copy(case, fsim_dir, args.set)
         rho = fluid_density(dpm_dir)
+        fluid = any(q["series"].startswith("fluid.") for q in spec["quantity"])  # read p?
         control = (dpm_dir / "system" / "controlDict").read_text()
         delta_t = float(foam_dict.get_entry(control, "deltaT"))
         shift = spec.get("dpmfoam_shift_steps", 0) * delta_t
@@ -515,7 +516,7 @@ def crosscheck(args):
             mesh = Mesh(dpm_dir)
             dpm_wall, dpm_mem = run(["DPMFoam"], dpm_dir, dpm_dir / "log.DPMFoam", FOAM_ENV)
             version = openfoam_version((dpm_dir / "log.DPMFoam").read_text())
-            snaps = [(t, dpmfoam_snapshot(p, mesh.cells)) for t, p in time_dirs(dpm_dir)
+            snaps = [(t, dpmfoam_snapshot(p, mesh.cells, fluid)) for t, p in time_dirs(dpm_dir)
                      if t > 0 or (p / "lagrangian").is_dir()]
             dpm_hist = histories(snaps, spec, mesh, rho, shift)
             source = f"DPMFoam {version}, run here"
@@ -531,7 +532,7 @@ def crosscheck(args):
         cmd = [str(fsim), "-case", str(fsim_dir)] + (
             ["-threads", str(args.threads)] if args.threads else [])
         fsim_wall, fsim_mem = run(cmd, fsim_dir, fsim_dir / "log.fsimFoam")
-        snaps = [(t, fsim_snapshot(p)) for t, p in time_dirs(fsim_dir)]
+        snaps = [(t, fsim_snapshot(p, fluid)) for t, p in time_dirs(fsim_dir)]
         fsim_hist = histories(snaps, spec, mesh, rho)
     finally:
         if not args.keep:
