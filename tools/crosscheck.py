@@ -308,10 +308,9 @@ def histories(snapshots, spec, mesh, rho, shift=0.0):
 
 def windowed(history, window):
     """The samples in the window, and the history's value at each end of the window that falls
-    between two of its samples (linear), so that both programs' statistics cover the same
-    interval: DPMFoam's times moved by `dpmfoam_shift_steps` miss the written times the window
-    ends on, and its last interval would otherwise be dropped from a mean (fluidizedBed's
-    collapse, 5-100 ms: DPMFoam's mean was 301.7 Pa instead of 320.6 Pa)."""
+    between two of its samples (linear): both programs' statistics then cover the same
+    interval even where `dpmfoam_shift_steps` moves DPMFoam's samples off the window's ends
+    (docs/crosscheck.md)."""
     t, v = history
     keep = ~np.isnan(v)
     t, v = t[keep], v[keep]
