@@ -95,18 +95,22 @@ def get_entry(text, path):
 
 def set_entry(text, path, value):
     """`text` with the value of the entry at `path` replaced by `value` (a value entry), or
-    the entry added at the end of its parent dictionary when it is absent. Comments and
-    layout elsewhere are kept."""
+    the entry added at the end of its parent dictionary when it is absent. An added entry
+    whose value is a dictionary, `{ … }`, is written without the `;` (as foamDictionary
+    writes one). Comments and layout elsewhere are kept."""
     keys = path.split("/")
+    end = "" if value.lstrip().startswith("{") else ";"
     try:
         kind, (a, b) = _find(text, keys)
     except KeyError:
         if len(keys) == 1:
-            return text.rstrip("\n") + f"\n{keys[0]} {value};\n"
+            return text.rstrip("\n") + f"\n{keys[0]} {value}{end}\n"
         kind, (a, b) = _find(text, keys[:-1])
         if kind != "dict":
             raise
-        return text[:b].rstrip(" ") + f"    {keys[-1]} {value};\n" + text[b:]
+        head = text[:b].rstrip(" ")
+        indent = text[len(head):b]  # the closing brace's indentation, kept
+        return head + f"{indent}    {keys[-1]} {value}{end}\n{indent}" + text[b:]
     if kind == "dict":
         raise ValueError(f"'{path}' is a dictionary, not a value")
     return text[:a] + value + text[b:]

@@ -63,6 +63,32 @@ def mobility_matrix(centres, a, length, ka_max=20.0, chunk=100_000):
     return m * 6 * math.pi * a
 
 
+def box_settling(centres, a, box, axis=1, ka_max=20.0, chunk=200_000):
+    """Mean velocity along `axis` of equal spheres under equal forces in a periodic box, over
+    their Stokes velocity, with the (1 - phi) of a sedimenting suspension's drive: the
+    reciprocal-lattice sum of mobility_matrix, for a box of any sides, reduced to the
+    structure factor |sum_i exp(i k.x_i)|^2 (only the mean is wanted)."""
+    x, box = np.asarray(centres, float), np.asarray(box, float)
+    k_max = ka_max / a
+    axes = [np.arange(-math.ceil(k_max * s / (2 * math.pi)),
+                      math.ceil(k_max * s / (2 * math.pi)) + 1) * 2 * math.pi / s for s in box]
+    k = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
+    k2 = (k ** 2).sum(1)
+    keep = (k2 > 0) & (k2 <= k_max ** 2)
+    k, k2 = k[keep], k2[keep]
+    total = 0.0
+    for s in range(0, len(k2), chunk):
+        kc, k2c = k[s:s + chunk], k2[s:s + chunk]
+        ka = np.sqrt(k2c) * a
+        phase = x @ kc.T
+        structure = np.cos(phase).sum(0) ** 2 + np.sin(phase).sum(0) ** 2
+        total += np.sum((np.sin(ka) / ka) ** 2 / k2c * (1 - kc[:, axis] ** 2 / k2c) * structure)
+    # the self term's tail beyond k_max as its continuum integral
+    mean = 6 * math.pi * a / box.prod() * total / len(x) + 1 / (math.pi * a * k_max)
+    phi = len(x) * 4 / 3 * math.pi * a ** 3 / box.prod()
+    return (1 - phi) * mean
+
+
 def settling(centres, a, length, phi, ka_max=20.0, axes=(0, 1, 2)):
     """Mean settling velocity of a free suspension and 1/F of the fixed array, both over the
     Stokes velocity and averaged over the directions of gravity `axes` (all three: a random

@@ -76,3 +76,12 @@ def test_internal_fields_uniform_and_not():
     assert np.array_equal(foam_dict.read_internal_field(field, 3), [1.5, -2, 0.3])
     uniform = "FoamFile { }\ninternalField uniform (0 0 1.875);\nboundaryField { }\n"
     assert foam_dict.read_internal_field(uniform, 2).tolist() == [[0, 0, 1.875]] * 2
+
+
+def test_an_added_dictionary_entry_has_no_semicolon_and_keeps_the_indentation():
+    text = "a\n{\n    b\n    {\n        c;\n    }\n}\n"
+    out = foam_dict.set_entry(text, "a/b/paper", "{}")
+    assert out == "a\n{\n    b\n    {\n        c;\n        paper {}\n    }\n}\n"
+    out = foam_dict.set_entry(text, "top", "{ form paper; }")
+    assert out.endswith("\ntop { form paper; }\n")
+    assert foam_dict.set_entry(text, "a/b/x", "1").count("        x 1;\n    }") == 1

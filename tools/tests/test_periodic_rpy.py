@@ -42,3 +42,30 @@ def test_settling_along_one_axis_averages_to_the_isotropic_mean():
     assert abs(mean - both["mobility"]) < 1e-12 * both["mobility"]
     spread = max(s["mobility"] for s in single) - min(s["mobility"] for s in single)
     assert spread > 1e-6 * both["mobility"]
+
+
+def test_box_settling_equals_the_mobility_matrix_mean_in_a_cube_and_scales_with_the_box():
+    # box_settling's structure-factor sum is the mean of the full mobility matrix's
+    # mobility along one axis (settling(..., axes=(1,))) for the same spheres
+    rng = np.random.default_rng(4)
+    length, a = 1.0, 0.08
+    centres = free_packing(rng, 12, length, 2.2 * a)
+    phi = len(centres) * 4 / 3 * np.pi * a ** 3 / length ** 3
+    full = periodic_rpy.settling(centres, a, length, phi, axes=(1,))["mobility"]
+    box = periodic_rpy.box_settling(centres, a, [length] * 3, axis=1)
+    assert abs(box - full) < 2e-3 * full
+    # the same spheres scaled with their box settle at the same ratio (units drop out)
+    scaled = periodic_rpy.box_settling(3 * np.asarray(centres), 3 * a, [3 * length] * 3)
+    assert abs(scaled - box) < 1e-9
+
+
+def free_packing(rng, count, length, min_distance):
+    """`count` centres in a periodic cube, no two closer than `min_distance`."""
+    centres = []
+    while len(centres) < count:
+        x = rng.random(3) * length
+        d = np.array(centres) - x if centres else np.zeros((0, 3))
+        d -= length * np.round(d / length)
+        if not len(d) or np.sqrt((d ** 2).sum(1)).min() >= min_distance:
+            centres.append(x)
+    return np.array(centres)

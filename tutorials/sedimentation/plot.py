@@ -21,35 +21,11 @@ case = Path(__file__).resolve().parent
 sys.path.insert(0, str(case.parent))  # tutorials/, for plotting.py
 from plotting import (finish, monitor, picture_beside_plot, properties, save,  # noqa: E402
                       spheres_over_slice, time_directories)
+sys.path.insert(0, str(case.parents[1] / "tools"))  # tools/, for periodic_rpy.py
+from periodic_rpy import box_settling  # noqa: E402
 
 rho_f, nu, rho_p, g = properties(case)
 g = abs(g[1])
-
-
-def rpy_settling(centres, a, box, axis=1, ka_max=20.0, chunk=200_000):
-    """Mean velocity along `axis` of equal spheres under equal forces in a periodic box, over
-    their Stokes velocity, with the (1 - phi) of a sedimenting suspension's drive: the
-    reciprocal-lattice sum of tools/periodic_rpy.py, for a box of any sides, reduced to the
-    structure factor |sum_i exp(i k.x_i)|^2 (only the mean is wanted)."""
-    x, box = np.asarray(centres, float), np.asarray(box, float)
-    k_max = ka_max / a
-    axes = [np.arange(-math.ceil(k_max * s / (2 * math.pi)),
-                      math.ceil(k_max * s / (2 * math.pi)) + 1) * 2 * math.pi / s for s in box]
-    k = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
-    k2 = (k ** 2).sum(1)
-    keep = (k2 > 0) & (k2 <= k_max ** 2)
-    k, k2 = k[keep], k2[keep]
-    total = 0.0
-    for s in range(0, len(k2), chunk):
-        kc, k2c = k[s:s + chunk], k2[s:s + chunk]
-        ka = np.sqrt(k2c) * a
-        phase = x @ kc.T
-        structure = np.cos(phase).sum(0) ** 2 + np.sin(phase).sum(0) ** 2
-        total += np.sum((np.sin(ka) / ka) ** 2 / k2c * (1 - kc[:, axis] ** 2 / k2c) * structure)
-    # the self term's tail beyond k_max as its continuum integral
-    mean = 6 * math.pi * a / box.prod() * total / len(x) + 1 / (math.pi * a * k_max)
-    phi = len(x) * 4 / 3 * math.pi * a ** 3 / box.prod()
-    return (1 - phi) * mean
 
 
 m = monitor(case, "sedimentation")
@@ -62,7 +38,7 @@ rpy = []
 for time, folder in times:
     cloud = pv.read(folder / "particles.vtu")
     d = cloud.point_data["d"]
-    rpy.append((time, rpy_settling(cloud.points, d.mean() / 2, box)))
+    rpy.append((time, box_settling(cloud.points, d.mean() / 2, box)))
 d = d.mean()
 stokes = (rho_p - rho_f) * g * d ** 2 / (18 * rho_f * nu)
 rpy_t, rpy_v = np.array(rpy).T
