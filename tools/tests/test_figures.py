@@ -103,3 +103,33 @@ def test_the_cost_charts_cheapest_run_and_block_cells():
     assert figure.pareto(rows) == [rows[3], rows[1], rows[0]]
     assert figure.block_cells("( hex (0 1 2 3 4 5 6 7) (4 4 20) simpleGrading (1 1 1) )") \
         == (4, 4, 20)
+
+
+def test_the_fluidized_bed_reference_is_the_buoyant_weight_per_area(tmp_path):
+    # the tutorial's own dictionaries: 1,080 beads, d = 2.5 mm, rho_p = 2526 kg/m^3, air of
+    # 1.2 kg/m^3, g = 9.81 m/s^2, a 10 x 50 mm cross-section; by hand 437.7 Pa as
+    # tutorials/fluidizedBed/README.md prints it
+    values = refs.REFERENCES["fluidizedBed"].values(ROOT / "tutorials" / "fluidizedBed")
+    weight = 1080 * (2526 - 1.2) * 9.81 * math.pi / 6 * 2.5e-3 ** 3
+    assert values["beads"] == 1080
+    assert values["buoyantWeight"] == pytest.approx(weight, rel=1e-12)
+    assert values["pressureDrop"] == pytest.approx(weight / (10e-3 * 50e-3), rel=1e-12)
+    assert values["pressureDrop"] == pytest.approx(437.7, abs=0.05)
+    # the monitor's mean over the second half of the run in time (t > endTime / 2), the
+    # drag on the beads against gravity per cross-section beside it
+    out = tmp_path / "postProcessing" / "dragLaw" / "0"
+    out.mkdir(parents=True)
+    for name in ("constant", "system"):
+        (tmp_path / name).mkdir()
+    for file in ("constant/g", "system/blockMeshDict"):
+        (tmp_path / file).write_text(
+            (ROOT / "tutorials" / "fluidizedBed" / file).read_text())
+    drops = [900.0, 100.0, 600.0, 300.0, 400.0, 500.0, 350.0, 450.0]
+    out.joinpath("dragLaw.dat").write_text(
+        "# Time alphaMin pressureDrop FdParticlesX FdParticlesY FdParticlesZ\n"
+        + "".join(f"{0.025 * (i + 1)} 0.47 {p} 0 0 {p * 5e-4 * 1.01}\n"
+                  for i, p in enumerate(drops)))
+    measured = refs.REFERENCES["fluidizedBed"].measure(tmp_path)
+    assert measured["pressureDrop"] == 425.0
+    assert measured["dragPerArea"] == pytest.approx(1.01 * 425.0, rel=1e-12)
+    assert refs.REFERENCES["fluidizedBed"].compare == {"measured.pressureDrop": "pressureDrop"}
