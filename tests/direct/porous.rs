@@ -1,7 +1,7 @@
 //! Stokes flow through a simple cubic array of fixed spheres (paper §3.1), solved to steady
 //! state by the direct model's forcing ([`PeriodicStokesArray`]): K = F/(6πμrU) against
 //! Zick & Homsy (1982, Table 2) and Sangani & Acrivos (paper eq. 17), and its order of
-//! convergence in h. The full sweep: `cargo run --release --example porous_sweep`.
+//! convergence in h. The full sweep through fsimFoam: `tools/figures/draw fig1_convergence`.
 
 use crate::support::porous_reference::sangani_acrivos_k;
 use crate::support::steady_stokes::PeriodicStokesArray;

@@ -1,6 +1,6 @@
 //! Steady Stokes flow through fixed spheres in a fully periodic box, solved directly (no
 //! time stepping) with the direct model's forcing rows and restarted GMRES: the porous-media
-//! validation of paper §3.1, for the tests and `examples/porous_sweep.rs`. Not product code:
+//! validation of paper §3.1, for the tests. Not product code:
 //! `fsimFoam` reaches steady states by time stepping.
 #![allow(dead_code)]
 // Component loops index several per-component arrays at once.
