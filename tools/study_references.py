@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Callable, Optional
 
 import foam_dict
+import hindered_settling
 
 NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
@@ -346,6 +347,72 @@ def fluidized_bed_measure(case):
             "dragPerArea": up * sum(drag[k] for k in late) / len(late) / area}
 
 
+def stokes_velocity(case):
+    """U_Stokes = (rho_p - rho_f) |g| d^2 / (18 rho_f nu) of the case's fixed-size spheres."""
+    rho_f = fluid_density(case)
+    nu = scalar(case, "constant/transportProperties", "nu")
+    rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
+    g = math.hypot(*vector(case, "constant/g", "value"))
+    return (rho_p - rho_f) * g * fixed_diameter(case) ** 2 / (18 * rho_f * nu)
+
+
+def suspension_fraction(case):
+    """The solid fraction of the case's spheres in its block: N pi d^3 / 6 / V, N the
+    positions file's count, or for fsim's randomPacking (filling the whole block) the
+    nearest whole count to its volumeFraction, as the packing rounds it."""
+    lx, ly, lz = block_extent(case)
+    particle = math.pi / 6 * fixed_diameter(case) ** 3
+    spheres = foam_dict.get_entry(text(case, "constant/kinematicCloudProperties"),
+                                  "subModels/injectionModels/spheres/type")
+    if spheres.strip() == "randomPacking":
+        target = scalar(case, "constant/kinematicCloudProperties",
+                        "subModels/injectionModels/spheres/volumeFraction")
+        return round(target * lx * ly * lz / particle) * particle / (lx * ly * lz)
+    return len(positions(case)) * particle / (lx * ly * lz)
+
+
+def sedimentation(case):
+    """A random suspension in a periodic box: the unbounded hard-sphere suspension's
+    v/U_Stokes (Abade et al. 2012, tools/hindered_settling.py) and Richardson & Zaki's
+    (1 - phi)^4.65 (paper eq. 21, Re < 0.2) at the case's phi (suspension_fraction). A box
+    of N spheres settles slower than the unbounded suspension (the images' hindrance, about
+    1.76 (phi/N)^(1/3) of U_Stokes, Hasimoto 1959)."""
+    phi = suspension_fraction(case)
+    return {"hardSpheres": hindered_settling.hard_spheres(phi),
+            "richardsonZaki": hindered_settling.richardson_zaki(phi), "phi": phi}
+
+
+def sedimentation_measure(case):
+    """phi, and v_m / U_Stokes: the suspension's mean settling velocity in the frame of zero
+    volume flux, v_m = (1 - phi) v_p - <eps u> along gravity, averaged over the second half of
+    the run. The direct model reports it (the sedimentation monitor's settlingVelocity, every
+    step); for the drag-law model it is computed at the write times of the second half from
+    fluid.vti (eps, u) and particles.vtu (v_p), which needs pyvista."""
+    stokes = stokes_velocity(case)
+    if (Path(case) / "postProcessing" / "sedimentation").is_dir():
+        m = monitor(case, "sedimentation")
+        t, v = m["Time"], m["settlingVelocity"]
+        late = [b for a, b in zip(t, v) if a >= 0.5 * t[-1]]
+        return {"phi": m["phi"][0], "settlingRatio": sum(late) / len(late) / stokes}
+    import numpy as np
+    import pyvista as pv
+    g = np.array(vector(case, "constant/g", "value"))
+    down = g / np.linalg.norm(g)
+    times = sorted((float(p.name), p) for p in Path(case).iterdir()
+                   if p.is_dir() and re.fullmatch(NUMBER, p.name)
+                   and (p / "particles.vtu").is_file())
+    phi, late = math.nan, []
+    for t, folder in times:
+        fluid = pv.read(folder / "fluid.vti")
+        eps = np.asarray(fluid.cell_data["alpha"])
+        u = np.asarray(fluid.cell_data["U"]) @ down
+        v = np.asarray(pv.read(folder / "particles.vtu").point_data["U"]) @ down
+        phi = 1 - eps.mean() if math.isnan(phi) else phi
+        if t >= 0.5 * times[-1][0] and t > 0:
+            late.append((1 - phi) * v.mean() - (eps * u).mean())
+    return {"phi": phi, "settlingRatio": sum(late) / len(late) / stokes}
+
+
 REFERENCES = {
     "taylorGreen": Reference(
         taylor_green, measure=taylor_green_measure,
@@ -372,6 +439,11 @@ REFERENCES = {
         compare={"measured.pressureDrop": "pressureDrop"},
         about="a fixed bed: Ergun's pressure drop (Ergun 1952), the monitor's mean over the "
               "second half of the run"),
+    "sedimentation": Reference(
+        sedimentation, measure=sedimentation_measure,
+        compare={"measured.settlingRatio": "hardSpheres"},
+        about="a random suspension: v_m / U_Stokes against the unbounded random hard-sphere "
+              "suspension (Abade et al. 2012); a periodic box of N spheres hinders more"),
     "fluidizedBed": Reference(
         fluidized_bed, measure=fluidized_bed_measure,
         compare={"measured.pressureDrop": "pressureDrop"},
