@@ -2,74 +2,67 @@
 """Sedimentation sweep: mean settling velocity against solid fraction, fitted to
 Richardson & Zaki (paper eq. 21), v_m / V_0 = (1 - phi)^n.
 
-    tools/sedimentation_sweep.py [--phi 0.02 0.05 0.1 0.15 0.2 0.25 0.3] [--particles 27]
-                                 [--cells-per-radius 3] [--reynolds 0.15] [--run-length 0.15]
-                                 [--csv out.csv]
+    tools/sedimentation_sweep.py [--phi 0.02 0.05 0.1 0.15 0.2 0.25] [--particles 27]
+                                 [--seed 1] [--cells-per-radius 3] [--gap-cells G]
+                                 [--reynolds 0.15] [--run-length 0.15] [--study DIR]
+                                 [--exact-phi] [--settling-radii R] [--scheme EulerRKC]
+                                 [--step-fraction F] [--windows K] [--workers W]
+                                 [--threads T] [--fsim PATH] [--csv out.csv]
+    tools/sedimentation_sweep.py --combine a.csv b.csv
 
-`--gap-cells G` raises r/h per phi so that the mean gap between neighbours holds G cells
-(dense suspensions need finer grids: the paper's section 3.2).
+The runs are one study of tools/study (docs/user-guide/studies.md) over the sedimentation
+tutorial, its zipped axes written to DIR/sweep.toml (default studies/sedimentation-sweep): one
+point per phi, particle count N and seed, so that finished points are reused, points run in
+parallel through Dask and a failed one is recorded. Each point is the tutorial's fully
+periodic box made a cube of n cells holding N of its spheres (d = 1.5 mm, rho_p = 2500) at phi,
+placed by fsim's randomPacking with the point's seed. r/h is `--cells-per-radius`, raised by
+`--gap-cells G` so that the mean gap between neighbours holds G cells (dense suspensions need
+finer grids: the paper's section 3.2); the viscosity gives the particle Reynolds number
+Re = V_0 d / nu of `--reynolds` (below 0.2); the run is `--run-length` L^2/nu (0.15: about six
+e-foldings of the slowest box mode) or `--settling-radii R` a/V_Stokes; the step sits just
+under Euler's viscous bound h^2/(6 nu) (`--scheme EulerRKC`: `--step-fraction` of the
+spheres' response time); the contact stiffness gives an overlap of 0.5 % of d at V_Stokes.
 
-Each run is a fully periodic box (cubic) holding `--particles` spheres at the solid fraction
-phi, packed at random without overlap (seeded), released from rest with the direct model.
 The mixture's weight is carried by the imposed mean pressure gradient, so the settling
-velocity is measured in the frame of zero volume flux (a container's):
-v_m = <v_p> - <u>_box along gravity (fsim's `postProcessing/sedimentation` monitor), averaged
-over the second half of the run. The viscosity is set for the particle Reynolds number
-Re = V_0 d / nu of `--reynolds` (below 0.2), the run length is `--run-length` L^2/nu (0.15:
-about six e-foldings of the slowest box mode, so that the flow has settled), i.e. about
-(L/h)^2 steps of the Euler scheme at its viscous bound.
+velocity is measured in the frame of zero volume flux: v_m = <v_p> - <u>_box along gravity
+(the point's `postProcessing/sedimentation` monitor), averaged over the second half of the
+run. The fit is the least-squares line log(v_m/V_Stokes) = log(V_0/V_Stokes) + n log(1 - phi),
+weighted by the standard error of each time average (block means); n is reported with its
+standard error, and also with V_0 held at Stokes. Runs on different grids are never averaged
+together; at a phi run on several, the fit takes the N -> infinity row first, then the finest
+grid. Results go to CSV (one row per point) and to stdout. Each run is compared with the
+exact sedimentation coefficient of random hard-sphere suspensions at its phi
+(tools/hindered_settling.py: Abade et al. 2012) and with the Rotne-Prager-Yamakawa mobility of
+the same spheres in the same periodic box (tools/periodic_rpy.py): `rpy_ratio` of the starting
+packing, `rpy_fixed_ratio` its fixed array's 1/F; with `--windows K`, `rpy_y_k` along gravity
+where window k ends, and the "developed" mean over the second half's ends.
 
-The fit is the least-squares line log(v_m/V_Stokes) = log(V_0/V_Stokes) + n log(1 - phi),
-weighted by the run-to-run scatter of each mean (the standard error of the time average,
-from block means); n is reported with its standard error, and also with V_0 held at the
-Stokes velocity. On the ratio, because the sphere's size in metres, and with it V_Stokes,
-changes with r/h. Runs on different grids are never averaged together; at a phi run on
-several, the fit takes the N -> infinity row first, then the finest grid.
-Results go to CSV (one row per phi and particle count) and to stdout.
+A periodic box of N spheres settles slower than an unbounded suspension (Hasimoto's lattice
+hindrance, about 1.76 (phi/N)^{1/3}). With several counts (`--particles 27 64`) v_m is
+extrapolated to N -> infinity linearly in N^{-1/3} (Ladd, Phys. Fluids 9, 491 (1997)); with
+several seeds the packings are averaged first, their standard error the error. The box is
+whole cells, so phi moves with N by up to 3 %; `--exact-phi` sets h so that it holds phi
+exactly (r/h then moves by up to 3 %, and runs within 3 % of one r/h count as one grid).
 
-Each run is compared with the exact sedimentation coefficient of random hard-sphere
-suspensions at its phi (`hard_sphere_ratio`, tools/hindered_settling.py: Abade et al. 2012,
-fit of Riest et al. 2015), the reference for what a random packing must give; over the
-default phi its own Richardson-Zaki fit is n = 5.56 (V_0 = 0.954 of Stokes), 5.75 with V_0 at
-Stokes, not the experiments' 4.65-5.1 (settled suspensions have another microstructure).
-
-Each run is also compared with the Rotne-Prager-Yamakawa mobility of the same spheres in the
-same periodic box (tools/periodic_rpy.py, far-field hydrodynamics without lubrication):
-`rpy_ratio` is the starting packing's mean settling velocity over the Stokes velocity,
-`rpy_fixed_ratio` its fixed array's 1/F; with `--windows`, `rpy_y_k` is the mobility along
-gravity of the configuration at the end of window k, and the report's "developed" value the
-mean over the second half's ends. The Richardson-Zaki fit is repeated on the RPY values.
-
-A periodic box of N spheres settles slower than an unbounded suspension: the periodic images
-add Hasimoto's lattice hindrance, of order 1.76 (phi/N)^{1/3} of the Stokes velocity (0.16 at
-phi = 0.02, N = 27). With several counts (`--particles 27 64`) each phi is run at every N and
-v_m is extrapolated to N -> infinity linearly in N^{-1/3} (the form of that correction; Ladd,
-Phys. Fluids 9, 491 (1997) uses the same extrapolation), its error propagated from the
-runs' errors; the fit is then made on the extrapolated values.
-
-With several seeds (`--seed 1 2 3`) each phi and N is run on that many random packings and
-the packings' mean goes into the extrapolation, its error the packings' standard error (one
-packing's configuration is the largest scatter of a point, +-5 to 10 % at N = 27).
-`--combine a.csv b.csv` repeats the analysis on rows written before, without running.
-The box is whole cells, so without `--exact-phi` its phi moves with N by up to 3 % (0.292
-and 0.306 for 0.3 at r/h = 7 with 27 and 64 spheres), and the extrapolation in N amplifies
-that; `--exact-phi` resizes the spheres instead (r/h then moves by up to 3 %, and runs within
-3 % of one r/h count as one grid).
-
-`--scheme EulerRKC` is as exact as `Euler` for moving spheres (docs/direct_model.md, "Closed
-cells and the incremental pressure") and takes larger steps: on the phi = 0.1 case (27
-spheres, 1.2 a/V_Stokes) `Euler` took 911 steps in 5.7 s, `EulerRKC` 577 steps in 4.1 s at
-`--step-fraction 0.05` (+0.07 %) and 145 in 1.1 s at 0.2 (+0.8 %).
+Not kept from the sweep's own case writer (before the study), since randomPacking cannot
+express them: a minimum gap between the spheres (randomPacking only excludes overlap: gaps of
+0.1 to 0.2 h occur) and a periodic packing. randomPacking keeps every sphere inside the box,
+so no centre starts within d/2 of a face: with few spheres they start as a denser cube
+separated from its images by a clear layer one diameter thick, which settles faster (the RPY
+mobility along gravity of 27 spheres at phi = 0.1: 0.47 to 0.69 of Stokes over seeds 1-5, 0.36
+for the old periodic packing's seed 1), and fsim lands 8 to 10 % below RPY along gravity there
+(3 % with the old packing: tools/tests/test_sedimentation_tools.py). So the numbers of
+docs/richardson_zaki.md, made with the old packing, are not reproduced. A dense box of few
+spheres cannot be packed at all (phi = 0.3 fails with 27 and 64 spheres, packs with 125; the
+study's dry run names the point and no point runs), hence the default phi stops at 0.25.
+`--keep` and `--no-build` went too (the study folder stays; `--fsim`, else the study's build).
 """
 import argparse
 import csv
+import json
 import math
 import os
-import shutil
-import subprocess
 import sys
-import tempfile
-import time
 
 import numpy as np
 
@@ -79,11 +72,19 @@ sys.path.insert(0, HERE)
 import direct_cases  # noqa: E402
 import hindered_settling  # noqa: E402
 import periodic_rpy  # noqa: E402
+import study  # noqa: E402
+import study_references  # noqa: E402
 import vtk_checks  # noqa: E402
 
-# A liquid; the viscosity follows from the Reynolds number asked for
-RHO_F = 1000.0
-RHO_P = 2000.0
+TUTORIAL = os.path.join(ROOT, "tutorials", "sedimentation")
+# the tutorial's spheres and liquid; the viscosity follows from the Reynolds number asked for
+D = study_references.fixed_diameter(TUTORIAL)
+RHO_F = study_references.fluid_density(TUTORIAL)
+RHO_P = study_references.scalar(TUTORIAL, "constant/kinematicCloudProperties",
+                                "constantProperties/rho0")
+G = math.hypot(*study_references.vector(TUTORIAL, "constant/g", "value"))
+CLOUD = "constant/kinematicCloudProperties:subModels/"
+SPHERES = CLOUD + "injectionModels/spheres/"
 # the RPY references a row carries: the starting packing's mobility and fixed-array 1/F,
 # and the developed configurations' mobility along gravity ([`developed_rpy`])
 RPY_KEYS = ["rpy_ratio", "rpy_fixed_ratio", "rpy_developed"]
@@ -122,50 +123,111 @@ def box_cells(phi, count, cells_per_radius, exact_phi=False):
     return n, cells_per_radius
 
 
-def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length, threads, seed,
-            scheme="Euler", step_fraction=0.2, settling_radii=None, windows=1, exact_phi=False):
-    h = 1e-4
+def point(phi, count, cells_per_radius, reynolds, run_length, seed, scheme="Euler",
+          step_fraction=0.2, settling_radii=None, windows=1, exact_phi=False):
+    """One point of the sweep: its parameters and the tutorial's entries it sets. The spheres
+    keep the tutorial's size; the cell size h follows from r/h."""
     n, cells_per_radius = box_cells(phi, count, cells_per_radius, exact_phi)
-    d = 2 * cells_per_radius * h
-    L = [n * h] * 3
-    phi_actual = count * direct_cases.sphere_volume(d) / (n * h) ** 3
+    h = D / (2 * cells_per_radius)
+    L = n * h
+    phi_box = count * direct_cases.sphere_volume(D) / L ** 3
     # Re = V_0 d / nu with V_0 = (rho_p/rho_f - 1) g d^2 / (18 nu)
-    nu = math.sqrt((RHO_P / RHO_F - 1) * 9.81 * d ** 3 / (18 * reynolds))
-    v0 = direct_cases.stokes_velocity(d, RHO_P, RHO_F, nu)
-    end = run_length * (n * h) ** 2 / nu
-    if settling_radii:
-        end = settling_radii * (d / 2) / v0
-    max_dt = end / 400
-    if scheme != "Euler":
-        max_dt = min(end / 100, step_fraction * response_time(d, nu))
-    case = os.path.join(scratch, f"phi{phi:g}")
-    shutil.rmtree(case, ignore_errors=True)
-    # random sequential addition jams near phi = 0.38: keep the gaps small when dense
-    centres = direct_cases.periodic_packing(L, d, count, seed=seed,
-                                            min_gap=(0.5 if phi < 0.25 else 0.1) * h)
-    direct_cases.write_case(case, cells=[n, n, n], h=h, d=d, rho_f=RHO_F, nu=nu, rho_p=RHO_P,
-                            end_time=end, write_interval=end / windows, centres=centres,
-                            max_co=0.5, max_dt=max_dt, restitution=0.5, scheme=scheme,
-                            coupling_extra=direct_cases.LINEAR,
-                            title=f"sedimentation sweep, phi = {phi_actual:.4f}")
-    log = os.path.join(case, "log.fsimFoam")
-    start = time.monotonic()
-    with open(log, "w") as f:
-        subprocess.run(["nice", binary, "-case", case, "-threads", str(threads)], stdout=f,
-                       stderr=subprocess.STDOUT, check=True)
-    wall = time.monotonic() - start
+    nu = math.sqrt((RHO_P / RHO_F - 1) * G * D ** 3 / (18 * reynolds))
+    v0 = direct_cases.stokes_velocity(D, RHO_P, RHO_F, nu, G)
+    end = settling_radii * (D / 2) / v0 if settling_radii else run_length * L ** 2 / nu
+    if scheme == "Euler":
+        # just under the explicit viscous bound h^2/(6 nu) (paper eq. 3), which rules at h < r
+        max_dt = min(end / 400, 0.95 * h * h / (6 * nu))
+    else:
+        max_dt = min(end / 100, step_fraction * response_time(D, nu))
+    # soft enough for few collision sub-steps, stiff enough that a head-on impact at the
+    # Stokes velocity overlaps by 0.5 % of d: t_c = pi delta / v, kn = (pi/t_c)^2 m/2
+    t_c = math.pi * 0.005 * D / v0
+    kn = (math.pi / t_c) ** 2 * RHO_P * direct_cases.sphere_volume(D) / 2
+    corners = [(i * L, j * L, k * L) for k in (0, 1) for i, j in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    num = study.format_number
+    entries = {
+        SPHERES + "type": "randomPacking",
+        SPHERES + "box": f"(0 0 0) ({num(L)} {num(L)} {num(L)})",
+        # exactly `count` spheres: randomPacking places round(phi V / V_sphere)
+        SPHERES + "volumeFraction": num(phi_box),
+        SPHERES + "seed": str(seed),
+        CLOUD + "pairCollisionCoeffs/pairLinearSpringDashpotCoeffs/kn": num(kn),
+        CLOUD + "pairCollisionCoeffs/wallLinearSpringDashpotCoeffs/kn": num(kn),
+        "system/blockMeshDict:vertices": "( " + " ".join(
+            "(" + " ".join(num(x) for x in c) + ")" for c in corners) + " )",
+        "system/blockMeshDict:blocks": f"( hex (0 1 2 3 4 5 6 7) ({n} {n} {n}) "
+                                       "simpleGrading (1 1 1) )",
+        "constant/transportProperties:nu": num(nu),
+        "system/fvSolution:fsim/timeScheme": scheme,
+        "system/controlDict:endTime": num(end),
+        "system/controlDict:writeInterval": num(end / windows),
+        "system/controlDict:deltaT": num(max_dt),
+        "system/controlDict:maxDeltaT": num(max_dt),
+    }
+    return dict(phi=phi_box, particles=count, n=n, r_over_h=cells_per_radius, h=h, nu=nu,
+                stokes=v0, end_time=end, scheme=scheme, seed=seed, windows=windows,
+                entries=entries)
+
+
+def write_spec(folder, points):
+    """The study of `points` as a TOML file in `folder` (zipped axes, one value per point)."""
+    lines = ["# the sedimentation sweep's study, written by tools/sedimentation_sweep.py",
+             'tutorial = "sedimentation"', 'name = "sweep"', "zip = true", "add = true",
+             '# the sweep compares with its own references (the hard-sphere and RPY values)',
+             'reference = "none"',
+             "", "[set]"]
+    for key in points[0]["entries"]:
+        values = ", ".join(json.dumps(p["entries"][key]) for p in points)
+        lines.append(f"{json.dumps(key)} = [{values}]")
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "sweep.toml")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def run_points(folder, points, fsim=None, workers=None, threads=None):
+    """Runs (or resumes) the study of `points` in `folder`; returns (rows of the finished
+    points, [(point, message)] of the failed ones). Exits on a bad sweep or a stop."""
+    argv = ["run", "--spec", write_spec(folder, points), "--out", str(folder)]
+    argv += ["--fsim", str(fsim)] if fsim else []
+    argv += ["--workers", str(workers)] if workers else []
+    argv += ["--threads-per-point", str(threads)] if threads else []
+    code = study.main(argv)
+    if code not in (0, 1):
+        sys.exit(code)
+    table = study.read_table(os.path.join(folder, "results.csv"))
+    assert len(table) == len(points), f"{folder}/results.csv: {len(table)} rows"
+    rows, failed = [], []
+    for p, t in zip(points, table):
+        assert int(t[SPHERES.split(":")[1] + "seed"]) == p["seed"], (t["point"], p["seed"])
+        if t["status"] == "done":
+            rows.append(measure(os.path.join(folder, t["point"]), p, t))
+        else:
+            failed.append((p, t.get("message")))
+    return rows, failed
+
+
+def measure(case, p, table_row):
+    """A finished point's row: v_m over the second half of the run, against Stokes, the
+    hard-sphere reference and the RPY mobility of the same spheres."""
     m = read_monitor(case)
     t = m["Time"]
     late = t >= 0.5 * t[-1]
     vm, err = block_mean(m["settlingVelocity"][late])
-    rpy = periodic_rpy.settling(centres, d / 2, n * h, phi_actual)
-    row = dict(phi=phi_actual, particles=count, cells=n ** 3, r_over_h=cells_per_radius,
-               v_m=vm, v_m_error=err, stokes=v0, ratio=vm / v0,
-               reynolds=vm * d / nu, end_time=end,
+    v0, L = p["stokes"], p["n"] * p["h"]
+    centres = written_centres(case)
+    rpy = periodic_rpy.settling(centres[0], D / 2, L, p["phi"])
+    row = dict(point=table_row["point"], phi=p["phi"], particles=p["particles"],
+               cells=p["n"] ** 3, r_over_h=p["r_over_h"], v_m=vm, v_m_error=err, stokes=v0,
+               ratio=vm / v0, reynolds=vm * D / p["nu"], end_time=p["end_time"],
                rpy_ratio=rpy["mobility"], rpy_fixed_ratio=rpy["resistance"],
-               hard_sphere_ratio=hindered_settling.hard_spheres(phi_actual),
-               scheme=scheme, steps=len(t), wall_seconds=round(wall, 1),
-               settling_radii=end * v0 / (d / 2), seed=seed)
+               hard_sphere_ratio=hindered_settling.hard_spheres(p["phi"]),
+               scheme=p["scheme"], steps=int(table_row["steps"]),
+               wall_seconds=round(float(table_row["wall_time"]), 1),
+               settling_radii=p["end_time"] * v0 / (D / 2), seed=p["seed"])
+    windows = p["windows"]
     if windows > 1:
         # how the settling velocity and the RPY mobility of the spheres (along gravity, the
         # direction a settled microstructure singles out) move as the suspension settles
@@ -173,16 +235,27 @@ def run_one(binary, scratch, phi, count, cells_per_radius, reynolds, run_length,
         for w in range(windows):
             inside = (t > bounds[w]) & (t <= bounds[w + 1])
             row[f"ratio_{w + 1}"] = float(m["settlingVelocity"][inside].mean() / v0)
-        for w, centres_w in enumerate([centres] + written_centres(case, windows)):
-            row[f"rpy_y_{w}"] = periodic_rpy.settling(centres_w, d / 2, n * h, phi_actual,
+        for w, centres_w in enumerate(centres[-(windows + 1):]):
+            row[f"rpy_y_{w}"] = periodic_rpy.settling(centres_w, D / 2, L, p["phi"],
                                                       axes=[1])["mobility"]
     return row
 
 
-def written_centres(case, count):
-    """The sphere centres of the case's last `count` time directories, in time order."""
-    times = vtk_checks.time_directories(case)[-count:]
-    return [vtk_checks.read_particles(case, name)["positions"] for name, _ in times]
+def written_centres(case):
+    """The sphere centres of the case's time directories (the start's first), in time order."""
+    return [vtk_checks.read_particles(case, name)["positions"]
+            for name, _ in vtk_checks.time_directories(case)]
+
+
+def sweep(folder, phis, counts, seeds, cells_per_radius=3.0, gap_cells=0.0, reynolds=0.15,
+          run_length=0.15, settling_radii=None, scheme="Euler", step_fraction=0.2, windows=1,
+          exact_phi=False, fsim=None, workers=None, threads=None):
+    """Every phi at every count and seed, as one study in `folder`: (rows, failed)."""
+    points = [point(phi, count, resolution(phi, cells_per_radius, gap_cells), reynolds,
+                    run_length, seed, scheme=scheme, step_fraction=step_fraction,
+                    settling_radii=settling_radii, windows=windows, exact_phi=exact_phi)
+              for phi in phis for count in counts for seed in seeds]
+    return run_points(folder, points, fsim, workers, threads)
 
 
 def resolution(phi, cells_per_radius, gap_cells):
@@ -313,7 +386,7 @@ def read_rows(paths):
     for path in paths:
         with open(path, newline="") as f:
             for row in csv.DictReader(f):
-                rows.append({k: (v if k in ("scheme", "seed") else float(v))
+                rows.append({k: (v if k in ("scheme", "seed", "point") else float(v))
                              for k, v in row.items() if v != ""})
     return rows
 
@@ -347,14 +420,14 @@ def fit_fixed_v0(rows):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--phi", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3])
+    ap.add_argument("--phi", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.15, 0.2, 0.25])
     ap.add_argument("--particles", type=int, nargs="+", default=[27],
                     help="spheres per periodic box; two or more: extrapolate to N -> infinity")
     ap.add_argument("--cells-per-radius", type=float, default=3.0)
     ap.add_argument("--gap-cells", type=float, default=0.0,
                     help="raise r/h so that the mean gap between neighbours spans this many cells")
     ap.add_argument("--exact-phi", action="store_true",
-                    help="size the spheres so that every box holds exactly phi (its r/h then "
+                    help="size the cells so that every box holds exactly phi (its r/h then "
                          "differs from --cells-per-radius by up to a few percent); without it "
                          "the box rounds to whole cells and phi moves with N")
     ap.add_argument("--reynolds", type=float, default=0.15, help="V_0 d / nu of an isolated sphere")
@@ -368,48 +441,40 @@ def main():
     ap.add_argument("--windows", type=int, default=1,
                     help="split the run into this many windows: the settling velocity of each, "
                          "and the RPY mobility of the spheres where each ends")
-    ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--seed", type=int, nargs="+", default=[1],
                     help="random packings: each phi and N is run on each, and averaged")
+    ap.add_argument("--study", default=os.path.join(ROOT, "studies", "sedimentation-sweep"),
+                    help="the study folder (finished points in it are reused)")
+    ap.add_argument("--workers", type=int, help="points at once (default: tools/study's)")
+    ap.add_argument("--threads", type=int, help="fsimFoam -threads of each point")
+    ap.add_argument("--fsim", help="the fsimFoam to run (default: tools/study's)")
     ap.add_argument("--combine", nargs="+",
                     help="analyse the rows of these sweep CSVs instead of running")
     ap.add_argument("--csv", default="sedimentation_sweep.csv")
-    ap.add_argument("--keep", help="keep the cases in this directory")
-    ap.add_argument("--no-build", action="store_true")
     a = ap.parse_args()
 
     if a.combine:
         report(read_rows(a.combine))
         return
-    if not a.no_build:
-        subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
-    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-    binary = os.path.join(target, "release", "fsimFoam")
-    scratch = a.keep or tempfile.mkdtemp(prefix="fsim-sedimentation-")
-    os.makedirs(scratch, exist_ok=True)
-    runs = []
-    try:
-        for phi, count, seed in [(p, c, s) for p in a.phi for c in a.particles
-                                 for s in a.seed]:
-            r = run_one(binary, os.path.join(scratch, f"N{count}"), phi, count,
-                        resolution(phi, a.cells_per_radius, a.gap_cells), a.reynolds,
-                        a.run_length, a.threads, seed, scheme=a.scheme,
-                        step_fraction=a.step_fraction, settling_radii=a.settling_radii,
-                        windows=a.windows, exact_phi=a.exact_phi)
-            runs.append(r)
-            print(f"phi {r['phi']:.4f}, N {count}, seed {seed}: v_m = {r['v_m']:.4e} +- "
-                  f"{r['v_m_error']:.1e} m/s, v_m/V_Stokes = {r['ratio']:.4f} "
-                  f"(RPY, starting packing: {r['rpy_ratio']:.4f}), "
-                  f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
-                  f"{r['wall_seconds']} s", flush=True)
-            if a.windows > 1:
-                print("  by window: v_m/V_Stokes " + " ".join(
-                    f"{r[f'ratio_{w + 1}']:.4f}" for w in range(a.windows))
-                    + "; RPY along gravity " + " ".join(
-                    f"{r[f'rpy_y_{w}']:.4f}" for w in range(a.windows + 1)), flush=True)
-    finally:
-        if not a.keep:
-            shutil.rmtree(scratch, ignore_errors=True)
+    runs, failed = sweep(a.study, a.phi, a.particles, a.seed, a.cells_per_radius, a.gap_cells,
+                         a.reynolds, a.run_length, a.settling_radii, a.scheme, a.step_fraction,
+                         a.windows, a.exact_phi, a.fsim, a.workers, a.threads)
+    for p, message in failed:
+        print(f"phi {p['phi']:.4f}, N {p['particles']}, seed {p['seed']}: not finished "
+              f"({message})", flush=True)
+    for r in runs:
+        print(f"{r['point']}: phi {r['phi']:.4f}, N {r['particles']}, seed {r['seed']}: "
+              f"v_m = {r['v_m']:.4e} +- {r['v_m_error']:.1e} m/s, v_m/V_Stokes = "
+              f"{r['ratio']:.4f} (RPY, starting packing: {r['rpy_ratio']:.4f}), "
+              f"Re = {r['reynolds']:.3f}, {r['cells']} cells, {r['steps']} steps, "
+              f"{r['wall_seconds']} s", flush=True)
+        if a.windows > 1:
+            print("  by window: v_m/V_Stokes " + " ".join(
+                f"{r[f'ratio_{w + 1}']:.4f}" for w in range(a.windows))
+                + "; RPY along gravity " + " ".join(
+                f"{r[f'rpy_y_{w}']:.4f}" for w in range(a.windows + 1)), flush=True)
+    if not runs:
+        sys.exit("no point finished")
     with open(a.csv, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(runs[0].keys()))
         w.writeheader()
