@@ -466,12 +466,21 @@ impl Cloud {
                 }
                 // largest first packs best
                 diameters.sort_by(|a, b| b.total_cmp(a));
+                // Along a cyclic axis that the box spans, the packing wraps across the
+                // periodic faces: a homogeneous suspension, no sphere-free layer there.
+                let wrap = [0, 1, 2].map(|a| {
+                    let tol = 1e-9 * (domain.hi[a] - domain.lo[a]);
+                    domain.is_periodic(a)
+                        && (lo[a] - domain.lo[a]).abs() <= tol
+                        && (hi[a] - domain.hi[a]).abs() <= tol
+                });
                 let centres = random_packing_sizes(
                     lo.into(),
                     hi.into(),
                     &diameters,
                     phi,
                     seed.wrapping_add(1),
+                    wrap,
                 )
                 .map_err(|err| at_value(m, "volumeFraction", err.to_string()))?;
                 for (x, d) in centres.into_iter().zip(diameters) {

@@ -87,18 +87,22 @@ pub fn random_packing(
     }
     let volume = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
     let wanted = (target * volume / sphere_volume(d)).round() as usize;
-    random_packing_sizes(lo, hi, &vec![d; wanted], target, seed)
+    random_packing_sizes(lo, hi, &vec![d; wanted], target, seed, [false; 3])
 }
 
 /// Centres for spheres of the given `diameters` (placed in that order: largest first packs
-/// best) inside the box `[lo, hi]`, with a fixed `seed`. `target` is only quoted back in the
-/// error when RSA stalls before placing them all.
+/// best) in the box `[lo, hi]`, with a fixed `seed`. Along an axis with `wrap[a]` the box is
+/// one period of a periodic domain: centres fill `[lo, hi)` and spheres may cross its faces
+/// (overlaps are tested with the nearest image), so the suspension is homogeneous across
+/// them; along the other axes every sphere lies entirely inside. `target` is only quoted
+/// back in the error when RSA stalls before placing them all.
 pub fn random_packing_sizes(
     lo: Vec3,
     hi: Vec3,
     diameters: &[f64],
     target: f64,
     seed: u64,
+    wrap: [bool; 3],
 ) -> Result<Vec<Vec3>, PackingError> {
     let mut d_max: f64 = 0.0;
     for (k, &d) in diameters.iter().enumerate() {
@@ -140,23 +144,33 @@ pub fn random_packing_sizes(
     for &d in diameters {
         let mut rejections = 0usize;
         loop {
-            let x = Vec3::new(
-                lo[0] + 0.5 * d + rng.next_f64() * (length[0] - d),
-                lo[1] + 0.5 * d + rng.next_f64() * (length[1] - d),
-                lo[2] + 0.5 * d + rng.next_f64() * (length[2] - d),
-            );
+            // uniform over one period along a wrapped axis, else with the sphere inside
+            let mut x = Vec3::zeros();
+            for a in 0..3 {
+                x[a] = if wrap[a] {
+                    lo[a] + rng.next_f64() * length[a]
+                } else {
+                    lo[a] + 0.5 * d + rng.next_f64() * (length[a] - d)
+                };
+            }
             let c = [coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)];
+            let [rx, ry, rz] = [0, 1, 2].map(|a| neighbour_cells(c[a], n[a], wrap[a]));
             let mut free = true;
-            'search: for cz in c[2].saturating_sub(1)..=(c[2] + 1).min(n[2] - 1) {
-                for cy in c[1].saturating_sub(1)..=(c[1] + 1).min(n[1] - 1) {
-                    for cx in c[0].saturating_sub(1)..=(c[0] + 1).min(n[0] - 1) {
+            'search: for &cz in &rz.0[..rz.1] {
+                for &cy in &ry.0[..ry.1] {
+                    for &cx in &rx.0[..rx.1] {
                         let mut s = head[cx + n[0] * (cy + n[1] * cz)];
                         while s != u32::MAX {
                             let y = centres[s as usize];
                             let reach = 0.5 * (d + diameters[s as usize]);
-                            let dd = (x[0] - y[0]).powi(2)
-                                + (x[1] - y[1]).powi(2)
-                                + (x[2] - y[2]).powi(2);
+                            let mut dd = 0.0;
+                            for a in 0..3 {
+                                let mut r = x[a] - y[a];
+                                if wrap[a] {
+                                    r -= length[a] * (r / length[a]).round(); // nearest image
+                                }
+                                dd += r * r;
+                            }
                             if dd < reach * reach {
                                 free = false;
                                 break 'search;
@@ -185,6 +199,20 @@ pub fn random_packing_sizes(
         }
     }
     Ok(centres)
+}
+
+/// The linked cells next to cell `c` of `n` along one axis (itself and its neighbours,
+/// across the periodic faces when `wrap`), each once: the first `count` of the array.
+fn neighbour_cells(c: usize, n: usize, wrap: bool) -> ([usize; 3], usize) {
+    if wrap && n >= 3 {
+        ([(c + n - 1) % n, c, (c + 1) % n], 3)
+    } else if wrap {
+        ([0, 1, 2], n)
+    } else {
+        let first = c.saturating_sub(1);
+        let last = (c + 1).min(n - 1);
+        ([first, first + 1, first + 2], last - first + 1)
+    }
 }
 
 #[cfg(test)]
@@ -228,7 +256,7 @@ mod tests {
         let mut d: Vec<f64> = (0..300).map(|_| 0.5 + rng.next_f64()).collect();
         d.sort_by(|a, b| b.partial_cmp(a).unwrap());
         let (lo, hi) = (Vec3::zeros(), [8.0, 8.0, 8.0]);
-        let c = random_packing_sizes(lo, Vec3::from(hi), &d, 0.0, 3).unwrap();
+        let c = random_packing_sizes(lo, Vec3::from(hi), &d, 0.0, 3, [false; 3]).unwrap();
         assert_eq!(c.len(), d.len());
         // brute-force reference (allowed in tests only)
         for i in 0..c.len() {
@@ -261,5 +289,45 @@ mod tests {
             random_packing(Vec3::zeros(), [6.0; 3], -1.0, 0.1, 1),
             Err(PackingError::BadInput(_))
         ));
+    }
+
+    #[test]
+    fn a_wrapped_packing_is_homogeneous_across_the_periodic_faces() {
+        // periodic along x and z, walls along y: centres reach the periodic faces, no two
+        // spheres overlap through them (nearest image), and the y faces are kept
+        let (lo, hi, d) = (Vec3::zeros(), Vec3::new(6.0, 5.0, 6.0), 1.0);
+        let wrap = [true, false, true];
+        let c = random_packing_sizes(lo, hi, &vec![d; 40], 0.0, 5, wrap).unwrap();
+        assert_eq!(c.len(), 40);
+        // brute-force reference (allowed in tests only)
+        for i in 0..c.len() {
+            assert!(c[i][1] >= 0.5 * d && c[i][1] <= hi[1] - 0.5 * d);
+            for a in [0, 2] {
+                assert!(c[i][a] >= 0.0 && c[i][a] < hi[a]);
+            }
+            for j in 0..i {
+                let mut r2 = 0.0;
+                for a in 0..3 {
+                    let mut r = c[i][a] - c[j][a];
+                    if wrap[a] {
+                        r -= hi[a] * (r / hi[a]).round();
+                    }
+                    r2 += r * r;
+                }
+                assert!(
+                    r2.sqrt() >= d,
+                    "{i} and {j} overlap through a periodic face"
+                );
+            }
+        }
+        // spheres cross the x faces: some centres lie within a radius of them
+        let near = c
+            .iter()
+            .filter(|x| x[0] < 0.5 * d || x[0] > hi[0] - 0.5 * d)
+            .count();
+        assert!(near > 0, "no sphere crosses a periodic face");
+        // and a box narrower than 3 linked cells wraps too
+        let c = random_packing_sizes(lo, Vec3::new(2.0, 2.0, 2.0), &vec![d; 2], 0.0, 1, [true; 3]);
+        assert_eq!(c.unwrap().len(), 2);
     }
 }
