@@ -70,22 +70,23 @@ def test_runs_on_different_grids_are_not_averaged_and_the_best_row_is_fitted():
 
 
 def test_free_suspension_settles_near_the_rpy_mobility_of_the_same_spheres(fsim, tmp_path):
-    # 27 spheres at phi = 0.1 (fsim's randomPacking, seed 1), r/h = 3, Re = 0.15, run as a
-    # one-point study of the sedimentation tutorial (tools/study): fsim's direct model against
-    # the periodic Rotne-Prager-Yamakawa mobility along gravity of the same starting spheres
-    # (rpy_y_0, tools/periodic_rpy.py), an independent far-field solution. Measured: -10 %
-    # (-8 to -10 % on seeds 1-5; along gravity, since one packing of 27 spheres is far from
-    # isotropic: the mean over the three axes is 16 % lower here). The sweep's former periodic
-    # packing (gaps of at least h/2, no clear layer at the faces) gave -2.7 % against RPY: -2.5 %
-    # is the coarse grid and the Reynolds number (docs/richardson_zaki.md); randomPacking's
-    # near-contact pairs (19 gaps below 2 cells, down to 0.17 h: unresolved at r/h = 3) and what RPY
-    # leaves out (near-field hydrodynamics) take the rest. A solver that moved the spheres as
-    # one body would give the fixed array's 1/F instead, 24 % lower here (over the three axes).
+    # 27 spheres at phi = 0.1 (fsim's randomPacking, seed 1, wrapped across the periodic
+    # faces), r/h = 3, Re = 0.15, run as a one-point study of the sedimentation tutorial
+    # (tools/study): fsim's direct model against the periodic Rotne-Prager-Yamakawa mobility
+    # along gravity of the same starting spheres (rpy_y_0, tools/periodic_rpy.py), an
+    # independent far-field solution. Measured: -7.0 %. The sweep's former packing (gaps of at
+    # least h/2) gave -2.7 %, the coarse grid and the Reynolds number (docs/richardson_zaki.md);
+    # randomPacking's near-contact pairs (gaps below a cell: unresolved at r/h = 3, and the
+    # near field RPY leaves out) take the rest. A solver that moved the spheres as one body
+    # would give the fixed array's 1/F instead, 14.5 % lower here (over the three axes).
     rows, failed = sedimentation_sweep.sweep(tmp_path / "study", [0.1], [27], [1], windows=2,
                                              fsim=fsim)
     assert not failed and len(rows) == 1, failed
     r = rows[0]
     assert r["particles"] == 27 and abs(r["phi"] / 0.1 - 1) < 0.03, r
+    print(f"fsim / RPY along gravity {r['ratio'] / r['rpy_y_0']:.3f}; RPY fixed / free "
+          f"{r['rpy_fixed_ratio'] / r['rpy_ratio']:.3f}; RPY along gravity {r['rpy_y_0']:.3f}, "
+          f"over the axes {r['rpy_ratio']:.3f}")
     assert 0.85 < r["ratio"] / r["rpy_y_0"] < 0.97, r
     assert r["rpy_fixed_ratio"] < 0.92 * r["rpy_ratio"], r
 
