@@ -43,8 +43,10 @@ const CLOUD_MONITOR_COLUMNS: [&str; 9] = [
 /// Columns of the drag-law monitor `postProcessing/dragLaw/<startTime>/dragLaw.dat`: the
 /// smallest ε, the pressure drop along gravity less the fluid's weight (Pa), the drag on the
 /// particles and its reaction on the fluid (N; equal and opposite), the total hydrodynamic
-/// force, the mean particle velocity, the pressure CG's iterations and the continuity error.
-const DRAG_MONITOR_COLUMNS: [&str; 17] = [
+/// force, the mean particle velocity, the pressure CG's iterations, the continuity error, and
+/// with a `meanVelocityForce` the drag coefficient `K` of paper eq. 19
+/// ([`DragLawModel::drag_coefficient`]; 0 without the fvOption).
+const DRAG_MONITOR_COLUMNS: [&str; 18] = [
     "Time",
     "alphaMin",
     "pressureDrop",
@@ -62,6 +64,7 @@ const DRAG_MONITOR_COLUMNS: [&str; 17] = [
     "UpZ",
     "pIterations",
     "continuityError",
+    "K",
 ];
 
 /// Columns of the direct model's monitor `postProcessing/direct/<startTime>/direct.dat`:
@@ -360,6 +363,14 @@ impl StepReporter {
                  {iterations}, continuity error = {continuity:.3e}",
                 e.min_fluid_fraction, drop
             ))?;
+            let k = model.drag_coefficient(&sim.fluid);
+            if sim.fluid.mean_velocity_force().is_some() {
+                let f = e.hydrodynamic_force;
+                self.log.line(&format!(
+                    "Hydrodynamic force: total ({:.6e} {:.6e} {:.6e}) N, K = {k:.6}",
+                    f[0], f[1], f[2]
+                ))?;
+            }
             if let Some(v) = d
                 .last_fluid
                 .map(|r| r.viscous)
@@ -388,6 +399,7 @@ impl StepReporter {
                 up[2],
                 iterations,
                 continuity,
+                k,
             ])
             .map_err(output_error)?;
         }

@@ -48,6 +48,11 @@ def _find(text, keys, start=0, end=None):
             expect_key = depth == 0
         elif kind == "semi":
             expect_key = depth == 0
+        elif depth == 0 and expect_key and kind == "word" and value.startswith("#"):
+            # A directive (`#include "file"`, `#inputMode merge`) and its one argument end
+            # without a `;`: the next word is a keyword again.
+            if i + 1 < len(tokens) and tokens[i + 1][0] in ("word", "string"):
+                i += 1
         elif depth == 0 and expect_key and kind in ("word", "string"):
             expect_key = False
             if value.strip('"') == keys[0]:

@@ -168,15 +168,17 @@ def name_columns(axes):
 
 def sweep_points(axes, zipped):
     """The points as lists of (axis, value), in order: the Cartesian product (last axis
-    fastest) or, with zipped, the element-wise pairs."""
+    fastest) or, with zipped, the element-wise pairs (an axis of one value in every point)."""
     if not axes:
         return [[]]
     if zipped:
-        lengths = {len(a.values) for a in axes}
+        lengths = {len(a.values) for a in axes if len(a.values) > 1}
         if len(lengths) > 1:
             raise StudyError("--zip: the axes have different lengths: " + ", ".join(
                 f"{a.label} {len(a.values)}" for a in axes))
-        return [[(a, a.values[k]) for a in axes] for k in range(len(axes[0].values))]
+        count = lengths.pop() if lengths else 1
+        return [[(a, a.values[k if len(a.values) > 1 else 0]) for a in axes]
+                for k in range(count)]
     points = [[]]
     for a in axes:
         points = [p + [(a, v)] for p in points for v in a.values]

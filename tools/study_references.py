@@ -230,6 +230,15 @@ def porous_media_measure(case):
     return {"K": median}
 
 
+def porous_media_drag_law(case):
+    """The porousMedia array under the drag-law model at h ~ 2r (its fluid fraction uniform):
+    the closure's own K, the paper's eq. 18 at Re << 1 (K_eq18), beside the exact K and
+    Sangani & Acrivos' eq. 17 (tools/figures/fig2_k_vs_phi_draglaw.toml)."""
+    phi = scalar(case, "constant/porousParameters", "phi")
+    return {"K_eq18": ergun_eq18(phi), "K": exact_simple_cubic(phi),
+            "K_SA": sangani_acrivos(phi)}
+
+
 def settling_sphere(case):
     """One sphere in a periodic box settles as the simple cubic array of the same phi resists:
     v = U_Stokes / K(phi), U_Stokes = (rho_p - rho_f) g d^2 / (18 mu)."""
@@ -427,6 +436,10 @@ REFERENCES = {
         compare={"measured.K": "K", "direct.K.final": "K"},
         about="simple cubic array: the exact K (Zick & Homsy's table; Sangani & Acrivos, "
               "paper eq. 17, between its points up to phi = 0.125)"),
+    "porousMediaDragLaw": Reference(
+        porous_media_drag_law, compare={"dragLaw.K.final": "K_eq18"},
+        about="the simple cubic array under the drag-law model at h ~ 2r: the closure's K, "
+              "paper eq. 18 at Re << 1 (Wen & Yu below phi = 0.2, Ergun above)"),
     "settlingSphere": Reference(
         settling_sphere, compare={"sedimentation.settlingVelocity.final": "settlingVelocity"},
         about="a sphere in a periodic box: U_Stokes / K(phi) (Sangani & Acrivos)"),

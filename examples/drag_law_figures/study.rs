@@ -114,9 +114,13 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
             }
             let count = particles.len() as f64;
             let dem = periodic_dem(particles, length, 0.0);
-            // G small enough for Re ≪ 1: U ~ G L³/(6πμr K).
+            // G small enough for Re ≪ 1: U ~ G L³/(6πμr K). G is a mean pressure gradient
+            // (as fsimFoam's meanVelocityForce imposes it), not a body force: the beads then
+            // read ∇p from cell centres with their ε stencil, which conserves momentum, so
+            // that Σ f_h = ρ G V_box exactly (the face-staggered reading a gravity-driven box
+            // takes gives beads centred on a face plane, h = L/2, a spurious share of ∇p).
             let g = 1e-3;
-            let mut s = DragLawSettings::paper(RHO, NU, Vec3::new(0.0, 0.0, g));
+            let mut s = DragLawSettings::paper(RHO, NU, Vec3::zeros());
             s.closure = Some(closure);
             s.form = match closure.convention() {
                 Convention::DragOnly => fsim::fluid::VolumeAveragedForm::Paper,
@@ -125,7 +129,9 @@ pub fn porous_media(phis: &[f64], closure: DragClosure, steps: usize) -> Vec<Por
             s.semi_implicit = true;
             let h = h_of(unit, cells);
             let dt = 0.1 * h * h / NU;
-            let mut model = drag_law_model(s, &mut fluid, dem, dt);
+            let mut coupling = DragLawCoupling::new(s, &fluid, &dem).expect("a valid set-up");
+            coupling.fluid.set_mean_pressure_gradient([0.0, 0.0, -g]);
+            let mut model = DragLawModel::start(coupling, dem, &mut fluid, dt);
             for _ in 0..steps {
                 step(&mut fluid, &mut model, dt);
             }

@@ -35,9 +35,12 @@
 //!   error with a spelling hint.
 //!
 //! fsim's own `dragLawCoeffs { form DPMFoam|paper; velocityInterpolation
-//! cell|cellPoint|trilinear; voidFraction cell|trilinear; }` in `constant/couplingProperties`
-//! chooses the equations and overrides the interpolation and the ε rule, so that the same case
-//! runs with DPMFoam's choices or with the paper's.
+//! cell|cellPoint|trilinear; voidFraction cell|trilinear; fixedParticles no|yes; }` in
+//! `constant/couplingProperties` chooses the equations and overrides the interpolation and the
+//! ε rule, so that the same case runs with DPMFoam's choices or with the paper's;
+//! `fixedParticles yes` holds every particle in place (a fixed bed, porous media), as
+//! `direct { fixedParticles yes; }` does for the direct model. DPMFoam has no such switch, so
+//! it is fsim's own keyword, beside the model's other settings.
 
 use super::control_dict::{at_value, choice};
 use super::dictionary::Dict;
@@ -134,6 +137,8 @@ pub struct DragLawOptions {
     pub void_fraction: VoidFraction,
     /// `integrationSchemes.U`.
     pub integration: ParticleIntegration,
+    /// `dragLawCoeffs { fixedParticles yes; }`: every particle held in place.
+    pub fixed_particles: bool,
 }
 
 impl DragLawOptions {
@@ -249,6 +254,7 @@ impl DragLawOptions {
         };
 
         let mut form = VolumeAveragedForm::DpmFoam;
+        let mut fixed_particles = false;
         if let Some(own) = coupling
             .map(|c| c.opt_dict("dragLawCoeffs"))
             .transpose()?
@@ -278,6 +284,7 @@ impl DragLawOptions {
                     _ => VoidFraction::Trilinear,
                 };
             }
+            fixed_particles = own.get_bool_or("fixedParticles", false)?;
             for (key, loc) in own.unused() {
                 let (line, col) = loc.line_col();
                 notes.push(format!(
@@ -321,6 +328,7 @@ impl DragLawOptions {
             velocity_interpolation,
             void_fraction,
             integration,
+            fixed_particles,
         })
     }
 
@@ -596,6 +604,7 @@ subModels
                 velocity_interpolation: Interpolation::Cell,
                 void_fraction: VoidFraction::Cell,
                 integration: ParticleIntegration::Euler,
+                fixed_particles: false,
             }
         );
         assert!(notes.is_empty(), "{notes:?}");
@@ -806,5 +815,29 @@ subModels
         );
         let e = read_with(GOLDSCHMIDT_LIKE, Some("dragLawCoeffs { form DPM; }")).unwrap_err();
         assert!(e.message.contains("expected one of DPMFoam, paper"), "{e}");
+    }
+
+    #[test]
+    fn fixed_particles_is_the_drag_law_block_s_own_switch() {
+        assert!(!read(GOLDSCHMIDT_LIKE).unwrap().0.fixed_particles);
+        let (s, notes) = read_with(
+            GOLDSCHMIDT_LIKE,
+            Some("dragLawCoeffs { fixedParticles yes; }"),
+        )
+        .unwrap();
+        assert!(s.fixed_particles);
+        assert!(notes.is_empty(), "{notes:?}");
+        // the direct model's block is not the drag-law model's
+        let (s, _) = read_with(
+            GOLDSCHMIDT_LIKE,
+            Some("direct { fixedParticles yes; } dragLawCoeffs { }"),
+        )
+        .unwrap();
+        assert!(!s.fixed_particles);
+        assert!(read_with(
+            GOLDSCHMIDT_LIKE,
+            Some("dragLawCoeffs { fixedParticles 3; }")
+        )
+        .is_err());
     }
 }

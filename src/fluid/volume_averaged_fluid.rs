@@ -677,6 +677,66 @@ impl VolumeAveragedFluid {
         self.fill_ghosts(u);
     }
 
+    /// The superficial mean velocity along `d`, `⟨ε u⟩_d = Σ_faces ε_f u_f / N_faces` over the
+    /// faces where component `d` is advanced: the `U` of paper eq. 19.
+    pub fn superficial_mean(&self, u: &[Vec<f64>; 3], d: usize) -> f64 {
+        let l = &self.layout;
+        let sd = l.stride[d];
+        let r = self.momentum_ranges[d];
+        let eps = &self.eps[..];
+        let (mut sum, mut count) = (0.0, 0usize);
+        for k in r[2].0..=r[2].1 {
+            for j in r[1].0..=r[1].1 {
+                for i in r[0].0..=r[0].1 {
+                    let f = l.index(i, j, k);
+                    sum += 0.5 * (eps[f] + eps[f - sd]) * u[d][f];
+                    count += 1;
+                }
+            }
+        }
+        sum / count as f64
+    }
+
+    /// `meanVelocityForce` on the volume-averaged equations: holds the *superficial* mean
+    /// `⟨ε u⟩_d` at `Ubar` (paper eq. 19's `U`, the same quantity the direct model's drive
+    /// holds, so that one `Ubar` means one flow rate in both models). After the step the gap
+    /// `δ = relaxation (Ubar − ⟨ε u⟩_d)` raises the driving gradient by `δG = δ/Δt` (a
+    /// uniform mean pressure gradient: the body acceleration `c (g − G)` of paper eq. 7 gains
+    /// `c δG` along `d`, and in the paper's form each particle feels `V ρ δG` of paper eq. 10),
+    /// and closes the gap at once by `u_f += δ/ε_f` on every face along `d`: a uniform
+    /// superficial flux, so `∇·(ε_f u) + ∂ε/∂t` is unchanged (continuity holds exactly).
+    /// (DPMFoam's fvOption holds the plain mean of the interstitial `Uc` instead; the two
+    /// differ by about the factor ε.) Returns the driving gradient `G_drive`, m/s².
+    pub fn hold_superficial_velocity(
+        &mut self,
+        fluid: &mut FluidSolver,
+        drive: &mut super::MeanVelocityForce,
+        dt: f64,
+    ) -> f64 {
+        let d = drive.direction;
+        let bulk = self.superficial_mean(fluid.velocity(), d);
+        let dg = drive.increment(bulk, dt);
+        drive.gradient += dg;
+        // G is the mean of ∂p/∂x: a driving gradient along +d is a negative mean gradient.
+        self.mean_pressure_gradient[d] -= dg;
+        let shift = dt * dg;
+        let l = &self.layout;
+        let sd = l.stride[d];
+        let r = self.momentum_ranges[d];
+        let eps = &self.eps[..];
+        let u = fluid.velocity_mut();
+        for k in r[2].0..=r[2].1 {
+            for j in r[1].0..=r[1].1 {
+                for i in r[0].0..=r[0].1 {
+                    let f = l.index(i, j, k);
+                    u[d][f] += shift / (0.5 * (eps[f] + eps[f - sd]));
+                }
+            }
+        }
+        self.fill_ghosts(u);
+        drive.gradient
+    }
+
     /// `max |∇·(ε_f u) + ∂ε/∂t|` for the current velocity.
     pub fn continuity_error(&mut self, u: &[Vec<f64>; 3], dt: f64) -> f64 {
         self.superficial_divergence(u, dt, true)

@@ -70,12 +70,6 @@ pub(super) fn drag_law(
     let Some(read) = &cloud.drag_law else {
         return Ok(None);
     };
-    if !case.mean_velocity_forces.is_empty() {
-        return Err(FsimError::input(
-            "fvOptions: meanVelocityForce is not supported with the drag-law model (drive the \
-             flow with an inlet, or with constant/g)",
-        ));
-    }
     let settings = read.settings(&case.transport, case.gravity);
     let mut coupling = DragLawCoupling::new(settings, fluid, dem)
         .map_err(|e| FsimError::input(format!("drag-law model: {e}")))?;

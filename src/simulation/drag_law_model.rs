@@ -64,4 +64,43 @@ impl DragLawModel {
     pub fn correct_pressure(&mut self, fluid: &mut FluidSolver, dt: f64) -> VolumeAveragedReport {
         self.coupling.correct_pressure(fluid, dt)
     }
+
+    /// `meanVelocityForce` (a periodic flow through a fixed bed): the superficial mean
+    /// velocity `⟨ε u⟩` held at `Ubar` by a uniform driving pressure gradient on the
+    /// volume-averaged momentum equation (paper eq. 7;
+    /// [`crate::fluid::VolumeAveragedFluid::hold_superficial_velocity`]). Returns the
+    /// driving gradient, m/s² (`None` without the fvOption).
+    pub fn hold_mean_velocity(&mut self, fluid: &mut FluidSolver, dt: f64) -> Option<f64> {
+        let mut drive = fluid.mean_velocity_force()?.clone();
+        let g = self
+            .coupling
+            .fluid
+            .hold_superficial_velocity(fluid, &mut drive, dt);
+        fluid
+            .set_mean_velocity_force(Some(drive))
+            .expect("the drive's direction was checked when it was set");
+        Some(g)
+    }
+
+    /// The porous-media drag coefficient of paper eq. 19 with a `meanVelocityForce`:
+    /// `K = f_h / (6 π μ r U)`, `f_h` the mean hydrodynamic force per particle along the drive
+    /// (drag, paper eq. 11–12, plus in the paper's form the pressure-gradient force of paper
+    /// eq. 10), `r` the mean radius, `U = Ubar` the superficial velocity the drive holds. In
+    /// a fixed periodic array `Σ f_h = ρ G V_box` at steady state (the drive's force on the
+    /// whole box). Zero without the fvOption or particles.
+    pub fn drag_coefficient(&self, fluid: &FluidSolver) -> f64 {
+        let p = self.particles.dem.particles();
+        let Some(drive) = fluid.mean_velocity_force() else {
+            return 0.0;
+        };
+        if p.is_empty() || drive.ubar == 0.0 {
+            return 0.0;
+        }
+        let n = p.len() as f64;
+        let radius = p.diameter.iter().sum::<f64>() / (2.0 * n);
+        let mu = self.coupling.settings.mu();
+        self.coupling.last.hydrodynamic_force[drive.direction]
+            / n
+            / (6.0 * std::f64::consts::PI * mu * radius * drive.ubar)
+    }
 }

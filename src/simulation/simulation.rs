@@ -159,9 +159,15 @@ impl Simulation {
             Some((dir, state)) => restore_particles(cloud, state, dir)?,
             None => {
                 let mut state = cloud.particles.clone();
-                if case.coupling.model == CouplingModel::Direct
-                    && case.coupling.direct.fixed_particles
-                {
+                // `direct { fixedParticles yes; }` or `dragLawCoeffs { fixedParticles yes; }`
+                let fixed = match case.coupling.model {
+                    CouplingModel::Direct => case.coupling.direct.fixed_particles,
+                    CouplingModel::DragLaw => {
+                        cloud.drag_law.as_ref().is_some_and(|d| d.fixed_particles)
+                    }
+                    CouplingModel::None => false,
+                };
+                if fixed {
                     state.fixed.iter_mut().for_each(|f| *f = true);
                 }
                 let dem = Dem::new(cloud.config.clone(), cloud.domain.clone(), state)

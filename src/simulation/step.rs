@@ -134,10 +134,11 @@ pub fn step_drag_law(
         model.update_fluid_fraction(end)?; // paper eq. 14–16
         model.predict_momentum(fluid, dt); // paper eq. 7–9
         model.correct_pressure(fluid, dt); // paper eq. 7, continuity
+        let driving_gradient = model.hold_mean_velocity(fluid, dt); // fvOptions
         Ok(StepReport {
             dt,
             time: fluid.time(),
-            driving_gradient: None,
+            driving_gradient,
         })
     })?;
     let diagnostics = fluid.diagnostics(dt);

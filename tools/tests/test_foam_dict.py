@@ -48,6 +48,13 @@ def test_comments_and_inline_dictionaries_do_not_confuse_the_path():
         foam_dict.get_entry(CLOUD, "comment")
 
 
+def test_the_entry_after_a_directive_is_found():
+    text = '#include "porousParameters"\n\nsolution\n{\n    coupled true;\n}\n'
+    assert foam_dict.get_entry(text, "solution/coupled") == "true"
+    changed = foam_dict.set_entry(text, "solution/sourceTerms", "{ schemes { U semiImplicit 1; } }")
+    assert foam_dict.get_entry(changed, "solution/sourceTerms/schemes/U") == "semiImplicit 1"
+
+
 def test_a_missing_entry_is_added_to_its_dictionary_and_a_missing_parent_refused():
     changed = foam_dict.set_entry(CLOUD, "solution/coupled", "true")
     assert foam_dict.get_entry(changed, "solution/coupled") == "true"

@@ -65,6 +65,9 @@ def test_product_and_zip():
     c = study.Axis("f", "c", ["u", "v"], "c")
     assert [[v for _, v in p] for p in study.sweep_points([a, c], zipped=True)] == [
         ["1", "u"], ["2", "v"]]
+    one = study.Axis("f", "one", ["w"], "one")
+    assert [[v for _, v in p] for p in study.sweep_points([a, one, c], zipped=True)] == [
+        ["1", "w", "u"], ["2", "w", "v"]]
 
 
 def test_threads_never_oversubscribe_the_cores():

@@ -285,12 +285,21 @@ impl DragLawCoupling {
             let gradient = self.fluid.pressure_gradient();
             for c in 0..3 {
                 let sc = l.stride[c];
+                // Along a periodic direction the last cell's upper face is the first face
+                // (the gradient is held on faces 1..=n only, its slot n + 1 is not filled).
+                let periodic = matches!(
+                    self.fluid.boundary_conditions().face(c, 0),
+                    crate::fluid::FaceCondition::Periodic
+                );
+                let wrap = (l.n[c] - 1) * sc;
                 let (g, out) = (&gradient[c], &mut self.cell_gradient[c]);
                 for k in 1..=n2 {
                     for j in 1..=n1 {
                         for i in 1..=n0 {
                             let f = l.index(i, j, k);
-                            out[f] = 0.5 * (g[f] + g[f + sc]);
+                            let last = [i, j, k][c] == l.n[c];
+                            let upper = if periodic && last { f - wrap } else { f + sc };
+                            out[f] = 0.5 * (g[f] + g[upper]);
                         }
                     }
                 }
