@@ -297,7 +297,7 @@ mod tests {
         // spheres overlap through them (nearest image), and the y faces are kept
         let (lo, hi, d) = (Vec3::zeros(), Vec3::new(6.0, 5.0, 6.0), 1.0);
         let wrap = [true, false, true];
-        let c = random_packing_sizes(lo, hi, &vec![d; 40], 0.0, 5, wrap).unwrap();
+        let c = random_packing_sizes(lo, hi, &[d; 40], 0.0, 5, wrap).unwrap();
         assert_eq!(c.len(), 40);
         // brute-force reference (allowed in tests only)
         for i in 0..c.len() {
@@ -327,7 +327,7 @@ mod tests {
             .count();
         assert!(near > 0, "no sphere crosses a periodic face");
         // and a box narrower than 3 linked cells wraps too
-        let c = random_packing_sizes(lo, Vec3::new(2.0, 2.0, 2.0), &vec![d; 2], 0.0, 1, [true; 3]);
+        let c = random_packing_sizes(lo, Vec3::new(2.0, 2.0, 2.0), &[d; 2], 0.0, 1, [true; 3]);
         assert_eq!(c.unwrap().len(), 2);
     }
 }
