@@ -10,44 +10,35 @@ prints every point against the exact K (Zick & Homsy's table; Sangani & Acrivos 
 phi = 0.01), and draws docs/figures/fig2_k_vs_phi.png: K against phi with Zick & Homsy's
 exact values, Sangani & Acrivos (paper eq. 17) and the paper's eq. 18, and each point's error.
 
-The drag-law model's K (h = 2r, one fixed bead per cell, the paper's closure) is not a
-fsimFoam case yet: it comes from `cargo run --release --example drag_law_figures -- DIR`
-(examples/drag_law_figures, fsim's library API), run once into studies/dragLawFigures/ when
-its CSV is not there; --no-drag-law leaves it out, and a failed build only leaves it out.
+The drag-law model's K comes from the study tools/figures/fig2_k_vs_phi_draglaw.toml: the
+same tutorial with `model dragLaw` (the paper's form and closure, the beads held by
+`dragLawCoeffs { fixedParticles yes; }`, the flow by meanVelocityForce), about one cell per
+bead (h = 2r, n = round(L/2r)), at phi = 0.05 to 0.5; K is the dragLaw monitor's final K
+(paper eq. 19). --no-drag-law leaves it out.
 """
-import csv
 import math
-import subprocess
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from figure import ROOT, arguments, porous_points, run_study  # noqa: E402
+from figure import ROOT, arguments, porous_points, run_study, study_tool  # noqa: E402
 
 import study_references as refs  # noqa: E402
 
 SPEC = ROOT / "tools" / "figures" / "fig2_k_vs_phi.toml"
 STUDY = ROOT / "studies" / "porousMedia-fig2-k-vs-phi"
 OUT = ROOT / "docs" / "figures" / "fig2_k_vs_phi.png"
-DRAG_LAW = ROOT / "studies" / "dragLawFigures"
+SPEC_DRAG_LAW = ROOT / "tools" / "figures" / "fig2_k_vs_phi_draglaw.toml"
+DRAG_LAW = ROOT / "studies" / "porousMedia-fig2-k-vs-phi-draglaw"
 NOMINAL = (4, 8, 12)     # the r/h series of the study
 
 
-def drag_law(out, run):
-    """{phi: K} of the drag-law model from examples/drag_law_figures' CSV (run it when absent
-    and `run`); {} when it cannot be had."""
-    path = out / "drag_law_porous_media.csv"
-    if not path.exists() and run:
-        done = subprocess.run(["cargo", "run", "--release", "--example", "drag_law_figures",
-                               "--", str(out), "paper"], cwd=ROOT)
-        if done.returncode != 0:
-            print("fig2: the drag-law example did not run; drawn without it", file=sys.stderr)
-    if not path.exists():
-        return {}
-    lines = [line for line in path.read_text().splitlines() if not line.startswith("#")]
-    return {float(r["phi"]): float(r["K_dragLaw"]) for r in csv.DictReader(lines)}
+def drag_law(study, run):
+    """{phi: K} of the drag-law model's study (run or resumed when `run`)."""
+    if run:
+        run_study(SPEC_DRAG_LAW, study)
+    return {row["phi"]: row["dragLaw.K.final"] for row in study_tool.finished_points(study)}
 
 
 def read(study):
@@ -112,7 +103,7 @@ def main(argv=None):
     if dl:
         phis = sorted(p for p in dl if p <= math.pi / 6)     # a lattice of touching beads
         a.semilogy(phis, [dl[p] for p in phis], "v", color="tab:red", mfc="w",
-                   label="fsim, drag-law model, h = 2r (examples/drag_law_figures)")
+                   label="fsim, drag-law model, h = 2r")
         b.plot(phis, [100 * (dl[p] / refs.exact_simple_cubic(p) - 1) for p in phis], "v:",
                color="tab:red", mfc="w", label="drag law, h = 2r")
     a.set_xlabel("solid volume fraction φ")
