@@ -161,8 +161,7 @@ def exact_simple_cubic(phi):
 def ergun_eq18(phi):
     """The paper's eq. 18 (Wen & Yu below phi = 0.2, Ergun above, at Re << 1) per particle, as
     docs/numerics.md reads the garbled copy of the paper (which prints phi where the fluid
-    fraction 1 - phi belongs): (1 - phi)^-4.7 below 0.2, (25/3) phi / (1 - phi)^3 above (the
-    same as examples/drag_law_figures)."""
+    fraction 1 - phi belongs): (1 - phi)^-4.7 below 0.2, (25/3) phi / (1 - phi)^3 above."""
     if not 0 < phi < 1:
         return math.nan
     eps = 1 - phi

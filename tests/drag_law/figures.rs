@@ -1,37 +1,7 @@
-//! The CSV producer of `examples/drag_law_figures` (paper Fig. 2 and 3 for the drag-law model)
-//! on a few points: where the bed is one sphere per cell (uniform ε), K is the closure's own
-//! (Ergun's at φ ≥ 0.2: paper eq. 18), and the lattice settles slower than an isolated sphere.
-
-#[path = "../../examples/drag_law_figures/study.rs"]
-mod study;
-
-use fsim::coupling::drag::DragClosure;
-
-#[test]
-fn porous_media_k_and_sedimentation_csv() {
-    // φ = 0.5: L = (4π/(3·0.5))^(1/3) r = 2.03 r → one cell: ε uniform, K = (25/3) φ/ε³ = 33.3.
-    let rows = study::porous_media(&[0.5], DragClosure::Paper, 300);
-    assert_eq!(rows[0].cells, 1);
-    let k = rows[0].k_drag_law;
-    assert!(
-        (k - study::k_ergun(0.5)).abs() < 0.01 * study::k_ergun(0.5),
-        "{k}"
-    );
-    let csv = study::porous_csv(&rows, DragClosure::Paper);
-    let lines: Vec<&str> = csv.lines().collect();
-    assert_eq!(lines[1], "phi,cells,K_dragLaw,K_Sangani,K_Ergun");
-    let fields: Vec<f64> = lines[2].split(',').map(|x| x.parse().unwrap()).collect();
-    assert_eq!(fields.len(), 5);
-    assert!((fields[3] - study::k_sangani(0.5)).abs() < 1e-12);
-
-    let rows = study::sedimentation(&[0.2], DragClosure::Paper, 2, 200);
-    let v = rows[0].v_over_v0;
-    // Hindered settling: slower than the isolated sphere, faster than nothing.
-    assert!(v > 0.05 && v < 1.0, "{v}");
-    let csv = study::sedimentation_csv(&rows, DragClosure::Paper);
-    assert!(csv.lines().nth(1) == Some("phi,particles,v_over_V0,RichardsonZaki"));
-    assert_eq!(csv.lines().count(), 3);
-}
+//! The paper's Fig. 2 for the drag-law model through `fsimFoam`: the porousMedia tutorial
+//! with `model dragLaw` (what `tools/figures/fig2_k_vs_phi_draglaw.toml` runs). Where the bed
+//! is one sphere per cell or two cells per sphere (ε uniform), K is the closure's own: paper
+//! eq. 18 at Re ≪ 1.
 
 /// Edits `file` (under `case`): each `from` must be there once.
 fn edit(case: &std::path::Path, file: &str, pairs: &[(&str, &str)]) {
@@ -142,41 +112,45 @@ fn draglaw_case_k(
     last.split_whitespace().last().unwrap().parse().unwrap()
 }
 
-/// Fig. 2 by `fsimFoam` (the porousMedia case with `model dragLaw`, what
-/// `tools/figures/fig2_k_vs_phi_draglaw.toml` runs) against the example's library set-up,
-/// `study::porous_media` (paper eq. 19's K of the same array, grid, fluid and closure, driven
-/// by a uniform gradient): the case's `meanVelocityForce` holds the example's own superficial
-/// velocity, so the closure sees the same Reynolds number. The example's box of `copies³` unit
-/// cells and the tutorial's single cell give the same K. Measured: within 3e-12 relative (the
-/// same discrete equations, both converged after 400 steps); held to 1e-9.
+/// Paper eq. 18 as docs/numerics.md reads it: Wen & Yu `(1 − φ)^−4.7` below φ = 0.2, Ergun
+/// `(25/3) φ/(1 − φ)³` above (K per particle at Re ≪ 1).
+fn k_eq18(phi: f64) -> f64 {
+    let eps = 1.0 - phi;
+    if phi < 0.2 {
+        eps.powf(-4.7)
+    } else {
+        25.0 / 3.0 * phi / eps.powi(3)
+    }
+}
+
+/// Fig. 2 by `fsimFoam` against paper eq. 18: with ε uniform the drag law's K is its
+/// closure's, `meanVelocityForce` holding the superficial velocity ⟨ε u⟩ at Re = 2·10⁻⁴
+/// (Wen & Yu's Reynolds correction 1 + 0.15 Re^0.687 is then 4·10⁻⁴). The tutorial's single
+/// unit cell and a box of 3³ of them give the same K. Measured: 4.3·10⁻⁴ (φ = 0.1, the
+/// Reynolds correction) and 7.8·10⁻⁶ (φ = 0.3); held to 10⁻³. Holding the interstitial mean
+/// instead of ⟨ε u⟩ gives K 10 % low.
 #[test]
-fn draglaw_case_gives_the_example_s_k() {
+fn draglaw_case_k_is_eq_18() {
     use std::f64::consts::PI;
     let scratch = crate::support::Scratch::new("draglaw-porous");
-    let (r, nu, rho, g, steps) = (1e-4, 1e-6, 1000.0, 1e-3, 400);
+    let (r, nu, steps) = (1e-4, 1e-6, 400);
     // φ = 0.1: 2 cells per unit (ε uniform, the sphere on a node); φ = 0.3: one cell per unit.
     for phi in [0.1, 0.3] {
-        let example = study::porous_media(&[phi], DragClosure::Paper, steps)[0].k_drag_law;
         let unit = (4.0 * PI * r * r * r / (3.0 * phi)).cbrt();
         let cells = ((unit / (2.0 * r)).round() as usize).max(1);
-        let copies = ((4.6 * r / unit).ceil() as usize).max(1);
-        // The example's superficial velocity: its force per sphere ρ G L³ over 6π μ r K.
-        let u = rho * g * unit.powi(3) / (6.0 * PI * rho * nu * r * example);
         let h = unit / cells as f64;
         let dt = 0.1 * h * h / nu;
-        // The example's copies³ unit cells, and the tutorial's one (what the study runs).
-        for copies in [copies, 1] {
+        let u = 1e-6; // Re = 2 r u / nu = 2e-4
+        for copies in [1, 3] {
             let name = format!("phi{phi}-{copies}");
             let k = draglaw_case_k(&scratch.0, &name, (unit, cells, copies), u, dt, steps);
-            let error = (k - example).abs() / example;
+            let error = (k - k_eq18(phi)).abs() / k_eq18(phi);
             println!(
-                "phi {phi}, {copies}^3 unit cells: K fsimFoam {k:.8}, example {example:.8}, \
-                 relative {error:.2e}"
+                "phi {phi}, {copies}^3 unit cells: K fsimFoam {k:.8}, eq. 18 {:.8}, relative \
+                 {error:.2e}",
+                k_eq18(phi)
             );
-            assert!(
-                error < 1e-9,
-                "phi {phi}, {copies}^3 unit cells: K {k} against the example's {example}"
-            );
+            assert!(error < 1e-3, "phi {phi}, {copies}^3 unit cells: K {k}");
         }
     }
 }

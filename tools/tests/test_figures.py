@@ -32,7 +32,7 @@ def test_exact_k_is_zick_and_homsy_at_their_phi_and_sangani_acrivos_between():
     mid = refs.exact_simple_cubic(0.5 * (0.216 + 0.343))
     assert mid == pytest.approx(math.sqrt(7.442 * 15.4), rel=1e-12)
     assert math.isnan(refs.exact_simple_cubic(0.6))
-    # eq. 18 as docs/numerics.md reads it; examples/drag_law_figures prints 1.6408 and 7.2886
+    # eq. 18 as docs/numerics.md reads it: 1.6408 and 7.2886 at phi = 0.1 and 0.3
     assert refs.ergun_eq18(0.1) == pytest.approx(0.9 ** -4.7)
     assert refs.ergun_eq18(0.1) == pytest.approx(1.6408, abs=1e-4)
     assert refs.ergun_eq18(0.3) == pytest.approx(7.2886, abs=1e-4)
