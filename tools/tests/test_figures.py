@@ -133,3 +133,13 @@ def test_the_fluidized_bed_reference_is_the_buoyant_weight_per_area(tmp_path):
     assert measured["pressureDrop"] == 425.0
     assert measured["dragPerArea"] == pytest.approx(1.01 * 425.0, rel=1e-12)
     assert refs.REFERENCES["fluidizedBed"].compare == {"measured.pressureDrop": "pressureDrop"}
+
+
+def test_the_sedimentation_grid_limit_recovers_a_known_limit_and_order():
+    # v = v_inf + C (h/r)^p on the cost chart's grids: the fit returns v_inf, p and C
+    cost = load("cost_sedimentation")
+    rows = [dict(r_over_h=x, ratio=0.455 - 0.3 * (1 / x) ** 3.5) for x in (3, 3.6, 4.2, 4.8, 6)]
+    v_inf, p, c = cost.grid_limit(rows)
+    assert v_inf == pytest.approx(0.455, abs=1e-6)
+    assert p == pytest.approx(3.5, abs=0.011)
+    assert c == pytest.approx(-0.3, rel=0.02)
