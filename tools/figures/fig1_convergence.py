@@ -15,8 +15,11 @@ r/h from about 2.2 to 16; points finished before are reused), then reads its res
 - prints the cheapest run (wall time) within 1 %, 3 % and 10 % of the exact K per phi, and
   the cheapest from which every finer run stays within (the error is not monotone on coarse
   grids);
+- runs tools/figures/fig1_convergence_draglaw.toml (the same arrays with the drag-law model
+  on 1 to 4 cells per unit cell) and prints its K and errors;
 - draws docs/figures/fig1_convergence.png: |error| against h/r with the fitted lines and the
-  paper's O(h^1.5), and |error| against wall time with each phi's Pareto front.
+  paper's O(h^1.5), and |error| against wall time with each phi's Pareto front and the
+  drag-law points.
 """
 import math
 
@@ -25,10 +28,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from figure import (ROOT, arguments, cheapest, cost_axes, pareto,  # noqa: E402
-                    porous_points, run_study)
+                    porous_points, run_study, study_tool)
 
 SPEC = ROOT / "tools" / "figures" / "fig1_convergence.toml"
 STUDY = ROOT / "studies" / "porousMedia-fig1-convergence"
+SPEC_DRAG_LAW = ROOT / "tools" / "figures" / "fig1_convergence_draglaw.toml"
+STUDY_DRAG_LAW = ROOT / "studies" / "porousMedia-fig1-draglaw"
 OUT = ROOT / "docs" / "figures" / "fig1_convergence.png"
 FIT_FROM = 4.0      # r/h from which the order is fitted (the asymptotic range)
 BOUNDS = (0.01, 0.03, 0.10)
@@ -65,6 +70,11 @@ def main(argv=None):
     args = arguments(__doc__, STUDY, OUT).parse_args(argv)
     if not args.no_run:
         run_study(SPEC, args.study)
+        run_study(SPEC_DRAG_LAW, STUDY_DRAG_LAW)
+    drag = study_tool.finished_points(STUDY_DRAG_LAW) if STUDY_DRAG_LAW.exists() else []
+    for r in drag:
+        r["signed"] = r["dragLaw.K.final"] / r["reference.K"] - 1
+        r["error"] = abs(r["signed"])
 
     rows = read(args.study)
     phis = sorted({r["phi"] for r in rows})
@@ -106,6 +116,11 @@ def main(argv=None):
                  color=col, alpha=0.5)
         b.loglog([r["wall_time"] for r in front], [100 * r["error"] for r in front], "-",
                  color=col, lw=1.5, label=f"φ = {phi:g}: Pareto front")
+        mine_drag = [r for r in drag if r["phi"] == phi]
+        if mine_drag:
+            b.loglog([r["wall_time"] for r in mine_drag], [100 * r["error"] for r in mine_drag],
+                     "s", color=col, mfc="w", ms=7,
+                     label=f"φ = {phi:g}: drag law, {len(mine_drag)} grids")
     # the paper's O(h^1.5) through the middle of the data
     mid = sorted(rows, key=lambda r: r["r_over_h"])[len(rows) // 2]
     xs = [1 / 16.5, 1 / 2.1]
@@ -120,7 +135,8 @@ def main(argv=None):
     a.legend(fontsize=8)
     cost_axes(b, BOUNDS)
     b.set_ylabel("|K − K$_{exact}$| / K$_{exact}$ (%)")
-    b.set_title("accuracy against cost (grey: 1 %, 3 %, 10 %)", fontsize=10)
+    b.set_title("accuracy against cost, direct (dots) and drag-law model (squares)\n"
+                "(grey: 1 %, 3 %, 10 %)", fontsize=10)
     b.legend(fontsize=8)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.out, dpi=110)
@@ -144,6 +160,14 @@ def main(argv=None):
                       if all(q["error"] <= bound for q in mine[k:])]
             if steady:
                 print(f"  {'':>17}  from {describe(steady[0])} on")
+    print("\ndrag-law model on the same arrays (n cells per unit cell; K against the exact K)")
+    for r in sorted(drag, key=lambda r: (r["phi"], r["n"])):
+        print(f"  phi = {r['phi']:g}, n = {r['n']:.0f}: K = {r['dragLaw.K.final']:.4f}, "
+              f"{100 * r['signed']:+.1f} %, {r['wall_time']:.2f} s, {r['peak_memory_mb']:.1f} MB")
+    for bound in BOUNDS:
+        best = cheapest(drag, bound)
+        print(f"  drag law within {100 * bound:2g} %: "
+              + (f"phi = {best['phi']:g}, n = {best['n']:.0f}" if best else "none"))
     print(f"\nwrote {args.out.relative_to(ROOT) if args.out.is_relative_to(ROOT) else args.out}")
 
 
