@@ -143,3 +143,20 @@ def test_the_sedimentation_grid_limit_recovers_a_known_limit_and_order():
     assert v_inf == pytest.approx(0.455, abs=1e-6)
     assert p == pytest.approx(3.5, abs=0.011)
     assert c == pytest.approx(-0.3, rel=0.02)
+
+
+def test_the_stability_maps_classification_of_a_run():
+    # refused: exit 2, the case turned down at start (a deltaT past the scheme's bound);
+    # unstable: failed while running (exit 1, a signal) or ended with no finite error;
+    # inaccurate / stable: |error| against the threshold (grid error + 1 %)
+    classify = load("stability_direct").classify
+    assert classify("failed", 2, None, 0.03) == "refused"
+    assert classify("failed", 1, None, 0.03) == "unstable"
+    assert classify("failed", -9, None, 0.03) == "unstable"
+    assert classify("done", 0, float("nan"), 0.03) == "unstable"
+    assert classify("done", 0, None, 0.03) == "unstable"
+    assert classify("done", 0, -0.031, 0.03) == "inaccurate"
+    assert classify("done", 0, 0.05, 0.03) == "inaccurate"
+    assert classify("done", 0, -0.029, 0.03) == "stable"
+    assert classify("done", 0, 0.0, 0.03) == "stable"
+    assert classify("", None, None, 0.03) is None
