@@ -3,6 +3,7 @@
 //! Data flows one way: case files → a validated [`case::Case`] → a simulation (grid, fluid
 //! state, particles, coupling) → the time loop in [`run`] → writers in [`output`].
 
+pub mod auto;
 pub mod case;
 pub mod cli;
 pub mod coupling;

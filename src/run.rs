@@ -41,11 +41,19 @@ pub fn run(options: &Options) -> Result<(), FsimError> {
     pool.install(|| run_case(&mut case, options, threads, watch))
 }
 
-/// Reads and validates every file of the case, listing the keywords fsim ignores.
+/// Reads and validates every file of the case, listing the keywords fsim ignores; with
+/// `model auto`, chooses the model and grid (src/auto) and prints the candidates.
 fn load_case(options: &Options) -> Result<Case, FsimError> {
-    let case = Case::load(&options.case)?;
+    let mut case = Case::load(&options.case)?;
     for warning in &case.warnings {
         eprintln!("fsimFoam: note: {warning}");
+    }
+    if case.coupling.auto_tolerance.is_some() {
+        let choice = crate::auto::choose(&mut case)?;
+        print!("{}", choice.report);
+        for change in &choice.changes {
+            eprintln!("fsimFoam: note: model auto: {change}");
+        }
     }
     Ok(case)
 }

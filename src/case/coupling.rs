@@ -3,7 +3,9 @@
 //! cloud, in `drag_law_options.rs`.)
 //!
 //! ```text
-//! model           direct;     // none | direct | dragLaw
+//! model           direct;     // none | direct | dragLaw | auto
+//! tolerance       0.05;       // auto: the relative error accepted (docs/user-guide/
+//!                             // choosing-a-model.md); fsim picks the model and grid
 //! virtualMass     2;          // direct: C_v of the virtual mass split off the lagged force
 //!                             // (0: the paper's plain explicit coupling)
 //! direct
@@ -48,17 +50,31 @@ impl CouplingModel {
     }
 }
 
-/// The model, the direct model's settings (defaults unless `model direct`), and, when the
-/// file exists, its dictionary (the drag-law settings read `dragLawCoeffs` from it).
+/// The model, the direct model's settings (defaults unless `model direct` or `auto`), and,
+/// when the file exists, its dictionary (the drag-law settings read `dragLawCoeffs` from it).
 #[derive(Clone, Debug)]
 pub struct Coupling {
+    /// With `model auto`, `Direct` until [`crate::auto`] has chosen.
     pub model: CouplingModel,
+    /// `model auto`: the relative error the user accepts (`tolerance`, default
+    /// [`DEFAULT_TOLERANCE`]).
+    pub auto_tolerance: Option<f64>,
     pub direct: DirectSettings,
     pub motion: MotionSettings,
     pub dict: Option<Dict>,
 }
 
-const TOP_LEVEL_KEYWORDS: [&str; 4] = ["model", "virtualMass", "direct", "dragLawCoeffs"];
+const TOP_LEVEL_KEYWORDS: [&str; 5] = [
+    "model",
+    "tolerance",
+    "virtualMass",
+    "direct",
+    "dragLawCoeffs",
+];
+
+/// `model auto`'s tolerance when none is given: 5 %, between the drag law's best (a few
+/// percent in dense beds) and the direct model's cheap grids.
+pub const DEFAULT_TOLERANCE: f64 = 0.05;
 const DIRECT_KEYWORDS: [&str; 3] = ["interpolation", "fixedParticles", "rebuildDistance"];
 
 impl Coupling {
@@ -78,27 +94,19 @@ impl Coupling {
             };
             return Ok(Coupling {
                 model,
+                auto_tolerance: None,
                 direct: DirectSettings::default(),
                 motion: MotionSettings::default(),
                 dict: None,
             });
         };
-        // `model auto` (fsim choosing the model) is announced but not built yet.
-        if choice(&d, "model", &["auto"], None).is_ok() {
-            return Err(at_value(
-                &d,
-                "model",
-                "model auto is not available yet in this fsim; choose direct (resolved \
-                 particles) or dragLaw (CFD-DEM): docs/user-guide/direct-model.md, \
-                 docs/user-guide/drag-law-model.md"
-                    .to_string(),
-            ));
-        }
-        let model = match choice(&d, "model", &["none", "direct", "dragLaw"], None)? {
-            0 => CouplingModel::None,
-            1 => CouplingModel::Direct,
-            _ => CouplingModel::DragLaw,
-        };
+        let (model, auto_tolerance) =
+            match choice(&d, "model", &["none", "direct", "dragLaw", "auto"], None)? {
+                0 => (CouplingModel::None, None),
+                1 => (CouplingModel::Direct, None),
+                2 => (CouplingModel::DragLaw, None),
+                _ => (CouplingModel::Direct, Some(tolerance(&d)?)),
+            };
         let (direct, motion) = match model {
             CouplingModel::Direct => (direct_settings(&d)?, motion_settings(&d)?),
             _ => (DirectSettings::default(), MotionSettings::default()),
@@ -125,10 +133,25 @@ impl Coupling {
         }
         Ok(Coupling {
             model,
+            auto_tolerance,
             direct,
             motion,
             dict: Some(d),
         })
+    }
+}
+
+/// `tolerance` of `model auto`: a relative error in (0, 1).
+fn tolerance(d: &Dict) -> Result<f64, CaseError> {
+    let t = d.get_scalar_or("tolerance", DEFAULT_TOLERANCE)?;
+    if t > 0.0 && t < 1.0 {
+        Ok(t)
+    } else {
+        Err(at_value(
+            d,
+            "tolerance",
+            format!("tolerance {t}: expected a relative error in (0, 1), e.g. 0.05 for 5 %"),
+        ))
     }
 }
 
@@ -235,5 +258,29 @@ mod tests {
             notes[0].contains("ignored keyword 'virtulMass'"),
             "{notes:?}"
         );
+    }
+
+    #[test]
+    fn model_auto_reads_its_tolerance_and_the_direct_settings() {
+        let (c, notes) = coupling("model auto;").unwrap();
+        assert_eq!(c.auto_tolerance, Some(DEFAULT_TOLERANCE));
+        assert!(notes.is_empty(), "{notes:?}");
+        let (c, _) =
+            coupling("model auto; tolerance 0.01; direct { fixedParticles yes; }").unwrap();
+        assert_eq!(c.auto_tolerance, Some(0.01));
+        assert!(
+            c.direct.fixed_particles,
+            "auto may choose direct: its settings are read"
+        );
+        for bad in ["0", "1", "-0.1"] {
+            let e = coupling(&format!("model auto; tolerance {bad};")).unwrap_err();
+            assert!(
+                e.to_string()
+                    .contains("expected a relative error in (0, 1)"),
+                "{e}"
+            );
+        }
+        let (c, _) = coupling("model direct; tolerance 0.01;").unwrap();
+        assert_eq!(c.auto_tolerance, None);
     }
 }

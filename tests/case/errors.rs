@@ -497,21 +497,21 @@ fn dimension_sets_other_than_fsims_are_refused_at_the_set() {
 }
 
 #[test]
-fn model_auto_is_refused_until_it_exists() {
+fn model_auto_needs_particles_and_is_listed() {
     let c = TempCase::from_sample("channel");
     c.edit(
         "constant/couplingProperties",
         "model           none;",
         "model           auto;",
     );
-    let at = c.position("constant/couplingProperties", "auto;", 0);
-    check(
-        &c.error(),
-        "constant/couplingProperties",
-        at,
-        "model auto is not available yet",
+    let mut case = Case::load(&c.dir).expect("model auto loads");
+    let e = fsim::auto::choose(&mut case).unwrap_err().to_string();
+    assert!(
+        e.contains("model auto chooses how particles and fluid are coupled"),
+        "{e}"
     );
-    // the models that exist are listed, without auto
+    assert!(e.contains("use model none"), "{e}");
+    // the models are listed, auto with them
     c.edit(
         "constant/couplingProperties",
         "model           auto;",
@@ -519,8 +519,7 @@ fn model_auto_is_refused_until_it_exists() {
     );
     let e = c.error().to_string();
     assert!(
-        e.contains("expected one of none, direct, dragLaw for 'model'"),
+        e.contains("expected one of none, direct, dragLaw, auto for 'model'"),
         "{e}"
     );
-    assert!(!e.contains("auto"), "{e}");
 }
