@@ -37,6 +37,7 @@ use crate::Vec3;
 
 mod collision_step;
 mod monitors;
+pub use monitors::{OverlapPartner, WorstOverlap};
 
 /// Every array needed to continue a run bit for bit: particles in their current order (with
 /// the last contact forces, which the next half-kick uses), the positions at the last list
@@ -1125,6 +1126,31 @@ mod tests {
             touching += (a.norm() > 0.0) as usize;
         }
         assert!(touching > n / 4, "{touching} of {n} particles touch");
+    }
+
+    #[test]
+    fn the_worst_overlap_names_its_pair() {
+        // d = 0.1: ids 1, 2 overlap by 0.05 d; ids 3, 4 by 0.3 d across the periodic x faces
+        let mut p = ParticleState::default();
+        p.push(1, [0.3, 0.5, 0.5], 0.1, 2500.0);
+        p.push(2, [0.395, 0.5, 0.5], 0.1, 2500.0);
+        p.push(3, [0.965, 0.2, 0.5], 0.1, 2500.0);
+        p.push(4, [0.035, 0.2, 0.5], 0.1, 2500.0);
+        let dom = DomainBox::uniform(Vec3::zeros(), [1.0; 3], FaceCondition::Periodic);
+        let dem = Dem::new(
+            lenient(PairModel::linear(1e3, 0.5, 0.3), WallModel::None),
+            dom,
+            p,
+        )
+        .unwrap();
+        let worst = dem.worst_overlap();
+        assert!((worst.ratio - 0.3).abs() < 1e-9, "{worst:?}");
+        let ids = match worst.with {
+            OverlapPartner::Particle(j) => [dem.particles.id[worst.particle], dem.particles.id[j]],
+            OverlapPartner::Wall(f) => panic!("wall {f}"),
+        };
+        assert!(ids == [3, 4] || ids == [4, 3], "{ids:?}");
+        assert_eq!(dem.max_overlap_ratio(), worst.ratio);
     }
 
     #[test]

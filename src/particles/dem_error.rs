@@ -63,7 +63,8 @@ pub enum DemError {
     BadDomain { lo: Vec3, hi: Vec3 },
 }
 
-const FACE_NAMES: [&str; 6] = ["x-min", "x-max", "y-min", "y-max", "z-min", "z-max"];
+/// The box faces as messages name them, in the order `x−, x+, y−, y+, z−, z+`.
+pub const FACE_NAMES: [&str; 6] = ["x-min", "x-max", "y-min", "y-max", "z-min", "z-max"];
 
 impl fmt::Display for DemError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

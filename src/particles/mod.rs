@@ -59,9 +59,9 @@ mod snapshot_arrays;
 
 pub use crate::Vec3;
 pub use contact_model::{PairModel, TangentialRule, WallModel};
-pub use dem::{sphere_volume, Dem, DemSnapshot};
+pub use dem::{sphere_volume, Dem, DemSnapshot, OverlapPartner, WorstOverlap};
 pub use dem_config::DemConfig;
-pub use dem_error::DemError;
+pub use dem_error::{DemError, FACE_NAMES};
 pub use domain_box::{DomainBox, FaceCondition};
 pub use neighbour_list::ContactHistory;
 pub use particle_state::ParticleState;

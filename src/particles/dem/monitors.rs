@@ -59,17 +59,31 @@ impl Dem {
 
     /// Largest overlap over the diameter: `δ / min(d_i, d_j)` for pairs, `δ / d` at walls.
     pub fn max_overlap_ratio(&self) -> f64 {
+        self.worst_overlap().ratio
+    }
+
+    /// The largest overlap over the diameter and where it is (the first of equal ones, by
+    /// particle index): a run that stops on it names the pair or the wall.
+    pub fn worst_overlap(&self) -> WorstOverlap {
         let (length, inv_l) = (self.domain.length(), self.domain.inverse_periodic_length());
         let x = &self.particles.position;
         let lists = &self.lists;
         let radius = &self.radius;
         let domain = &self.domain;
         let periodic = inv_l != Vec3::zeros();
+        let none = WorstOverlap {
+            ratio: 0.0,
+            particle: 0,
+            with: OverlapPartner::Particle(0),
+        };
         (0..self.particles.len())
             .into_par_iter()
             .with_min_len(CHUNK)
             .map(|i| {
-                let mut worst: f64 = 0.0;
+                let mut worst = WorstOverlap {
+                    particle: i,
+                    ..none
+                };
                 for k in lists.row_start[i] as usize..lists.row_start[i + 1] as usize {
                     let j = lists.partner[k] as usize;
                     let mut d = Vec3::new(x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
@@ -84,16 +98,50 @@ impl Dem {
                         continue;
                     }
                     let overlap = radius[i] + radius[j] - dist2.sqrt();
-                    worst = worst.max(overlap / (2.0 * radius[i].min(radius[j])));
+                    let ratio = overlap / (2.0 * radius[i].min(radius[j]));
+                    if ratio > worst.ratio {
+                        worst.ratio = ratio;
+                        worst.with = OverlapPartner::Particle(j);
+                    }
                 }
                 for f in 0..6 {
                     if domain.faces[f] == FaceCondition::Wall {
-                        worst = worst
-                            .max((radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]));
+                        let ratio =
+                            (radius[i] - wall_distance(domain, f, x[i])) / (2.0 * radius[i]);
+                        if ratio > worst.ratio {
+                            worst.ratio = ratio;
+                            worst.with = OverlapPartner::Wall(f);
+                        }
                     }
                 }
                 worst
             })
-            .reduce(|| 0.0, f64::max)
+            .reduce(
+                || none,
+                |a, b| {
+                    // `reduce` keeps the order of the items: ties go to the lower index
+                    if b.ratio > a.ratio {
+                        b
+                    } else {
+                        a
+                    }
+                },
+            )
     }
+}
+
+/// The largest overlap of a cloud: `ratio` = δ over the smaller diameter (over `d` at a
+/// wall), between `particle` and `with` (indices into the particle arrays).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorstOverlap {
+    pub ratio: f64,
+    pub particle: usize,
+    pub with: OverlapPartner,
+}
+
+/// What a particle overlaps: another particle (its index) or a wall face (`2·axis + side`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum OverlapPartner {
+    Particle(usize),
+    Wall(usize),
 }
