@@ -14,6 +14,7 @@ mod case_settings;
 mod coupling;
 mod direct_model;
 mod drag_law_model;
+mod health;
 mod particles;
 mod restart;
 #[allow(clippy::module_inception)]
@@ -25,6 +26,7 @@ pub use case_settings::{boundary_conditions, continues, interstitial_inlets};
 pub use coupling::Coupling;
 pub use direct_model::{DirectModel, HydrodynamicReport};
 pub use drag_law_model::DragLawModel;
+pub use health::MAX_OVERLAP;
 pub use particles::{CloudReport, Particles};
 pub use simulation::{PhaseTimes, Simulation, StepSizing};
 pub use step::{step_direct, step_drag_law, step_fluid_alone, ModelStep, TakenStep};

@@ -67,17 +67,15 @@ impl Particles {
         }
     }
 
-    /// The first particle (by id) whose velocity or position is no longer finite.
-    pub fn first_diverged(&self) -> Option<u64> {
+    /// The first particle (by index) whose velocity or position is no longer finite.
+    pub fn first_diverged_index(&self) -> Option<usize> {
         let s = self.dem.particles();
-        (0..s.len())
-            .find(|&i| {
-                !(s.velocity[i]
-                    .iter()
-                    .chain(&s.position[i])
-                    .all(|v| v.is_finite()))
-            })
-            .map(|i| s.id[i])
+        (0..s.len()).find(|&i| {
+            !(s.velocity[i]
+                .iter()
+                .chain(&s.position[i])
+                .all(|v| v.is_finite()))
+        })
     }
 
     /// Writes the particles (id, d, U, omega, F_hydro, F_contact) to `path`.

@@ -18,7 +18,7 @@ use crate::case::{Case, Cloud, ControlDict, CouplingModel, InternalField};
 use crate::coupling::direct::{periodic_directions, DirectCoupling};
 use crate::coupling::drag::DragLawCoupling;
 use crate::error::FsimError;
-use crate::fluid::{FluidDiagnostics, FluidSettings, FluidSolver};
+use crate::fluid::{FluidSettings, FluidSolver};
 use crate::grid::Grid;
 use crate::output::{RestartState, TimeEntry};
 use crate::particles::Dem;
@@ -222,27 +222,6 @@ impl Simulation {
         {
             self.time.set_writes(write_control, control.write_interval);
         }
-    }
-
-    /// The step's diagnostics back, unless the run diverged: a velocity that is no longer
-    /// finite, or a particle whose velocity or position is not.
-    pub fn check_health(&self, d: FluidDiagnostics) -> Result<FluidDiagnostics, FsimError> {
-        if !d.kinetic_energy.is_finite() || !d.max_courant.is_finite() {
-            return Err(FsimError::run(format!(
-                "the solution diverged at t = {} s (step {}): the velocity is no longer finite",
-                self.time.time, self.time.step
-            )));
-        }
-        if let Some(id) = self.particles().and_then(Particles::first_diverged) {
-            return Err(FsimError::run(format!(
-                "the solution diverged at t = {} s (step {}): particle {id} has no finite \
-                 velocity or position{}",
-                self.time.time,
-                self.time.step,
-                self.virtual_mass_hint()
-            )));
-        }
-        Ok(d)
     }
 
     /// The hint a diverged run of the direct model gets: light spheres need the virtual mass.

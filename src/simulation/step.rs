@@ -62,7 +62,7 @@ impl Simulation {
             Coupling::DragLaw(model) => step_drag_law(fluid, model, time + dt, dt, clock)?,
         };
         let write_due = self.time.advance(dt);
-        let health = self.check_health(diagnostics)?;
+        let health = self.check_health(diagnostics, cloud.as_ref())?;
         Ok(TakenStep {
             dt,
             fluid: report,

@@ -39,8 +39,9 @@ impl Simulation {
                     let grown = if self.time.step > 0 {
                         format!(
                             " (step {}; it held until now: the velocity has grown, the \
-                             solution may be diverging)",
-                            self.time.step
+                             solution may be diverging{})",
+                            self.time.step,
+                            self.fastest_velocities()
                         )
                     } else {
                         String::new()
@@ -113,11 +114,12 @@ impl Simulation {
         FsimError::run(format!(
             "the solution diverged at t = {} s (step {}): the step the Courant rule allows \
              fell to {allowed:e} s, {:.1e} of the largest step taken ({:e} s); the velocity \
-             grows without bound{}",
+             grows without bound{}{}",
             self.time.time,
             self.time.step,
             allowed / self.largest_dt,
             self.largest_dt,
+            self.fastest_velocities(),
             self.virtual_mass_hint()
         ))
     }

@@ -166,6 +166,15 @@ fn added_mass_instability_stops_and_keeps_the_last_good_time() {
         stderr.contains("the step the Courant rule allows fell to"),
         "{stderr}"
     );
+    // and it names what grew: the fluid's fastest cell and the sphere
+    for part in [
+        "the fluid's largest velocity is |U| = ",
+        "in cell (",
+        "the fastest particle's |U| = ",
+        "particle 0 (id 0) at (",
+    ] {
+        assert!(stderr.contains(part), "{part} not in {stderr}");
+    }
     let step: usize = stderr
         .split("(step ")
         .nth(1)

@@ -8,4 +8,5 @@ mod support;
 mod control;
 mod dry_run_plan;
 mod errors;
+mod failures;
 mod restart;
