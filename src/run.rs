@@ -79,7 +79,14 @@ fn run_case(
     for note in sim.particles().iter().flat_map(|p| &p.notes) {
         eprintln!("fsimFoam: note: {note}");
     }
-    for warning in &sim.warnings {
+    // the drag-law model's notes on what its grid lets happen (a cell that a few particles
+    // can over-fill)
+    let drag_law_warnings = sim.coupling.drag_law().map(|m| &m.coupling.warnings);
+    for warning in sim
+        .warnings
+        .iter()
+        .chain(drag_law_warnings.into_iter().flatten())
+    {
         eprintln!("fsimFoam: warning: {warning}");
     }
     check_first_step(&mut sim)?;

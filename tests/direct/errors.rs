@@ -283,3 +283,50 @@ fn an_adjustable_step_is_held_to_the_coupling_bound() {
         100.0 * spread
     );
 }
+
+/// Issue 40: under-resolution is reported with what fixes it. Too few cells per radius names
+/// the count, the thinnest spheres and the cells for r/h = 2 and 4 (8 cells: r/h 1.78; 9 give
+/// 2.0 and 18 give 4.0); narrow gaps name the pairs and the cells that resolve the smallest;
+/// a sphere's gap to its own periodic image counts, and one of 2 cells does not warn.
+#[test]
+fn under_resolution_names_the_particles_and_the_grid_that_fixes_it() {
+    let s = Scratch::new("direct-resolution-fix");
+    let case = broken(&s, "settlingSphere", |c| {
+        replace(&c.join("system/blockMeshDict"), "(36 36 36)", "(8 8 8)")
+    });
+    assert_refused(
+        &case,
+        &[
+            "1 of 1 particle(s) have fewer",
+            "(9 9 9) cells for r/h = 2",
+            "(18 18 18) cells for r/h = 4",
+        ],
+    );
+    let case = broken(&s, "sedimentation", |c| {
+        set_positions(c, &[[0.005, 0.01, 0.005], [0.0066, 0.01, 0.005]]);
+    });
+    assert_dry_run_warns(
+        &case,
+        &["particles 0 and 1 (0.40 h)", "resolve the smallest"],
+    );
+    // one sphere per periodic cube: φ = 0.5 leaves 0.43 h to its images, φ = 0.3 at n = 28
+    // leaves (L − d)/h = 28 (1 − (6·0.3/π)^⅓) = 4.3 cells
+    let dense = broken(&s, "porousMedia", |c| {
+        replace(
+            &c.join("constant/porousParameters"),
+            "phi         0.1;",
+            "phi         0.5;",
+        )
+    });
+    assert_dry_run_warns(&dense, &["its periodic image along x (0.43 h)"]);
+    let fine = broken(&s, "porousMedia", |c| {
+        replace(
+            &c.join("constant/porousParameters"),
+            "phi         0.1;",
+            "phi         0.3;",
+        )
+    });
+    let out = fsim(&fine, &["-dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("periodic image"), "{err}");
+}

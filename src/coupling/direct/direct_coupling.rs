@@ -132,17 +132,13 @@ impl DirectCoupling {
         let length = grid.length();
         let mut coarse = 0;
         let mut smallest = f64::INFINITY;
+        let mut thin = Vec::new();
         for i in 0..p.len() {
             let r = 0.5 * p.diameter[i];
             let resolution = r / h;
             smallest = smallest.min(resolution);
             if resolution < MIN_CELLS_PER_RADIUS {
-                return Err(format!(
-                    "model direct needs spheres of at least {MIN_CELLS_PER_RADIUS} cells in radius: particle {} \
-                     (id {}) has r/h = {resolution:.3} (h = {h:e} m); refine the grid",
-                    i + 1,
-                    p.id[i]
-                ));
+                thin.push(i);
             }
             if resolution < COARSE_CELLS_PER_RADIUS {
                 coarse += 1;
@@ -160,11 +156,51 @@ impl DirectCoupling {
                 }
             }
         }
+        // the cells per side that give the smallest sphere `cells` cells per radius
+        let r_min = smallest * h;
+        let cells_for = |cells: f64| -> String {
+            let n: Vec<String> = (0..3)
+                .map(|a| ((length[a] * cells / r_min).ceil() as usize).to_string())
+                .collect();
+            format!("h ≤ {:.3e} m, ({}) cells", r_min / cells, n.join(" "))
+        };
+        if !thin.is_empty() {
+            thin.sort_by(|&a, &b| p.diameter[a].total_cmp(&p.diameter[b]));
+            let named: Vec<String> = thin
+                .iter()
+                .take(3)
+                .map(|&i| {
+                    format!(
+                        "particle {} (id {}) r/h = {:.3}",
+                        i + 1,
+                        p.id[i],
+                        0.5 * p.diameter[i] / h
+                    )
+                })
+                .collect();
+            let more = match thin.len() - named.len() {
+                0 => String::new(),
+                n => format!(" and {n} more"),
+            };
+            return Err(format!(
+                "model direct needs spheres of at least {MIN_CELLS_PER_RADIUS} cells in radius: \
+                 {} of {} particle(s) have fewer (h = {h:.3e} m): {}{more}; refine the grid to \
+                 {} for r/h = {MIN_CELLS_PER_RADIUS}, or to {} for r/h = \
+                 {COARSE_CELLS_PER_RADIUS} (drag errors under 2 %), or use model dragLaw",
+                thin.len(),
+                p.len(),
+                named.join(", "),
+                cells_for(MIN_CELLS_PER_RADIUS),
+                cells_for(COARSE_CELLS_PER_RADIUS),
+            ));
+        }
         let mut notes = Vec::new();
         if coarse > 0 {
             notes.push(format!(
                 "model direct: {coarse} particle(s) below {COARSE_CELLS_PER_RADIUS} cells in radius (smallest \
-                 r/h = {smallest:.2}); expect drag errors of 2 % and more"
+                 r/h = {smallest:.2}); expect drag errors of 2 % and more ({} give r/h = \
+                 {COARSE_CELLS_PER_RADIUS})",
+                cells_for(COARSE_CELLS_PER_RADIUS)
             ));
         }
         Ok(notes)

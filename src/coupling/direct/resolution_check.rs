@@ -87,8 +87,10 @@ pub fn check_resolution(
         ));
     }
     let mut overlaps = 0usize;
-    let mut narrow = 0usize;
     let mut worst = None::<(usize, usize, f64)>;
+    // the narrow gaps: what the pair or wall is, its width
+    let mut narrow: Vec<(String, f64)> = Vec::new();
+    let mut counts = [0usize; 3]; // pairs, walls, own periodic images
     ClosePairs::default().visit(p, domain, RESOLVED_GAP_CELLS * h, |i, j, _, _, gap| {
         report.min_gap_cells = report.min_gap_cells.min(gap / h);
         if -gap > overlap_tolerance * p.diameter[i].min(p.diameter[j]) {
@@ -97,7 +99,8 @@ pub fn check_resolution(
                 worst = Some((i, j, gap));
             }
         } else {
-            narrow += 1;
+            counts[0] += 1;
+            narrow.push((format!("particles {} and {}", p.id[i], p.id[j]), gap));
         }
     });
     if let Some((i, j, gap)) = worst {
@@ -106,7 +109,6 @@ pub fn check_resolution(
             p.id[i], p.id[j], -gap
         ));
     }
-    let mut near_walls = 0usize;
     for i in 0..p.len() {
         let r = p.diameter[i] / 2.0;
         for face in (0..6).filter(|&f| walls[f]) {
@@ -117,18 +119,62 @@ pub fn check_resolution(
                 p.position[i][a] - domain.lo[a] - r
             };
             if gap < RESOLVED_GAP_CELLS * h {
-                near_walls += 1;
+                counts[1] += 1;
                 report.min_gap_cells = report.min_gap_cells.min(gap / h);
+                let side = ["x-", "x+", "y-", "y+", "z-", "z+"][face];
+                narrow.push((format!("particle {} and the {side} wall", p.id[i]), gap));
+            }
+        }
+        // A sphere and its own image across a periodic box: a gap the pairs do not see
+        // (no lubrication either: the image moves with the sphere). Zero or less is the
+        // error of a sphere that does not fit the box.
+        for a in (0..3).filter(|&a| domain.periodic[a]) {
+            let gap = domain.hi[a] - domain.lo[a] - 2.0 * r;
+            if gap > 0.0 && gap < RESOLVED_GAP_CELLS * h {
+                counts[2] += 1;
+                report.min_gap_cells = report.min_gap_cells.min(gap / h);
+                let axis = ["x", "y", "z"][a];
+                narrow.push((
+                    format!("particle {} and its periodic image along {axis}", p.id[i]),
+                    gap,
+                ));
             }
         }
     }
-    if narrow + near_walls > 0 {
+    if !narrow.is_empty() {
+        narrow.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let named: Vec<String> = narrow
+            .iter()
+            .take(3)
+            .map(|(what, gap)| format!("{what} ({:.2} h)", gap / h))
+            .collect();
+        let more = if narrow.len() > named.len() {
+            format!(" and {} more", narrow.len() - named.len())
+        } else {
+            String::new()
+        };
+        let smallest = narrow[0].1;
+        let fix = if smallest > 0.0 {
+            let target = smallest / RESOLVED_GAP_CELLS;
+            let n: Vec<String> = (0..3)
+                .map(|a| ((length[a] / target).ceil() as usize).to_string())
+                .collect();
+            format!(
+                "cells of h ≤ {target:.3e} m ({} cells) resolve the smallest",
+                n.join(" ")
+            )
+        } else {
+            "spheres in contact have no grid that resolves their gap".to_string()
+        };
         report.warnings.push(format!(
-            "{narrow} particle pair(s) and {near_walls} particle-wall gap(s) are narrower than \
-             {RESOLVED_GAP_CELLS} cells (smallest {:.2} h, h = {h:e} m): the grid does not \
-             resolve the flow there (the lubrication correction covers the normal force below \
-             its cut-off); refine the grid for accurate forces",
-            report.min_gap_cells
+            "{} particle pair(s), {} particle-wall gap(s) and {} gap(s) of a particle to its \
+             own periodic image are narrower than {RESOLVED_GAP_CELLS} cells (h = {h:e} m): \
+             {}{more}; the grid does not resolve the flow there (the lubrication correction \
+             covers the normal force of pairs and walls below its cut-off); {fix}",
+            counts[0],
+            counts[1],
+            counts[2],
+            named.join(", "),
         ));
     }
     if !driven && p.fixed.iter().any(|&f| f) && p.fixed.iter().all(|&f| f) {
@@ -194,11 +240,35 @@ mod tests {
         assert!(r.errors[0].contains("particles 2 and 3"), "{}", r.errors[0]);
         assert_eq!(r.warnings.len(), 1, "{r:?}");
         assert!(
-            r.warnings[0].contains("1 particle pair(s)"),
+            r.warnings[0].contains("1 particle pair(s)")
+                && r.warnings[0].contains("particles 1 and 2 (0.50 h)"),
             "{}",
             r.warnings[0]
         );
         assert!((r.min_gap_cells + 4.5).abs() < 1e-9, "{}", r.min_gap_cells);
+    }
+
+    #[test]
+    fn a_sphere_close_to_its_own_periodic_image_warns() {
+        let mut p = ParticleState::default();
+        // gap L − d = 0.039 = 1.95 h: narrower than 2 cells
+        p.push(4, [0.5; 3], 0.961, 2500.0);
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert_eq!(r.warnings.len(), 1, "{r:?}");
+        let w = &r.warnings[0];
+        assert!(
+            w.contains("3 gap(s) of a particle to its own periodic image"),
+            "{w}"
+        );
+        assert!(
+            w.contains("particle 4 and its periodic image along x (1.95 h)"),
+            "{w}"
+        );
+        assert!(w.contains("(52 52 52 cells)"), "{w}");
+        // 2.05 h: resolved
+        p.diameter[0] = 0.959;
+        let r = check_resolution(&grid(50, 1.0), &p, &periodic(1.0), [false; 6], true, 1e-3);
+        assert!(r.warnings.is_empty(), "{r:?}");
     }
 
     #[test]

@@ -92,6 +92,9 @@ pub struct DragLawCoupling {
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
+    /// What the grid lets happen before the run ([`overfill_warning`]), for `-dry-run` and
+    /// the log.
+    pub warnings: Vec<String>,
 }
 
 impl DragLawCoupling {
@@ -141,9 +144,20 @@ impl DragLawCoupling {
             cell_gradient: [(); 3].map(|_| vec![0.0; len]),
             last_fluid: None,
             last: ExchangeReport::default(),
+            warnings: Vec::new(),
         };
         coupling.compute_fluid_fraction(dem.particles())?;
         coupling.fluid.reset_fluid_fraction(&coupling.cells);
+        let empty =
+            std::array::from_fn(|d| matches!(bc.face(d, 0), crate::fluid::FaceCondition::Empty));
+        let settings = &coupling.settings;
+        coupling.warnings.extend(overfill_warning(
+            &grid,
+            empty,
+            p,
+            settings.alpha_max,
+            settings.averaging,
+        ));
         Ok(coupling)
     }
 
@@ -241,20 +255,61 @@ impl DragLawCoupling {
             }
         }
         if min < floor || min <= 0.0 {
-            return Err(format!(
-                "the fluid fraction of cell ({} {} {}) is {min:.6}, below 1 − alphaMax = \
-                 {floor} (alphaMax {}): the particles are packed beyond alphaMax there (a \
-                 cell smaller than the particles, or {} averaging of a dense bed); use a \
-                 coarser mesh or raise alphaMax",
-                worst[0],
-                worst[1],
-                worst[2],
-                self.settings.alpha_max,
-                self.settings.averaging.name()
-            ));
+            return Err(self.overfill_report(p, min, worst));
         }
         self.last.min_fluid_fraction = min;
         Ok(min)
+    }
+
+    /// The stop of [`Self::compute_fluid_fraction`]: the worst cell `worst` (fluid fraction
+    /// `min`), how many cells are beyond the limit, the particles that fill the worst cell
+    /// (a few named), and the grid that would hold them.
+    fn overfill_report(&self, p: &ParticleState, min: f64, worst: [usize; 3]) -> String {
+        let floor = 1.0 - self.settings.alpha_max;
+        let beyond = self
+            .cells
+            .iter()
+            .filter(|&&e| e < floor || e <= 0.0)
+            .count();
+        let l = self.fluid.layout();
+        let index = l.index(worst[0] + 1, worst[1] + 1, worst[2] + 1);
+        let inside: Vec<usize> = (0..p.len().min(self.write_cells.len()))
+            .filter(|&i| self.write_cells[i].weight_at(index) > 0.0)
+            .collect();
+        let named: Vec<String> = inside
+            .iter()
+            .take(4)
+            .map(|&i| p.id[i].to_string())
+            .collect();
+        let more = match inside.len() {
+            n if n > named.len() => format!(" and {} more", n - named.len()),
+            _ => String::new(),
+        };
+        let solid = (1.0 - min) * self.transfer.cell_volume();
+        let grid = self.fluid.grid();
+        let empty = std::array::from_fn(|d| {
+            matches!(
+                self.fluid.boundary_conditions().face(d, 0),
+                crate::fluid::FaceCondition::Empty
+            )
+        });
+        let s = &self.settings;
+        let fix = match coarser_grid(grid, empty, p, s.alpha_max, s.averaging) {
+            Some(fix) => format!("use cells of {fix}, or raise alphaMax"),
+            None => "use a coarser mesh or raise alphaMax".to_string(),
+        };
+        format!(
+            "the fluid fraction of cell ({} {} {}) is {min:.6}, below 1 − alphaMax = {floor} \
+             (alphaMax {}), in {beyond} cell(s): particles {}{more} (id) put {solid:.3e} m³ \
+             of solid in that cell of {:.3e} m³ ({} averaging); {fix}",
+            worst[0],
+            worst[1],
+            worst[2],
+            s.alpha_max,
+            named.join(", "),
+            self.transfer.cell_volume(),
+            averaging_name(s.averaging),
+        )
     }
 
     /// Step part 1: the hydrodynamic force on every particle into the cloud's external loads
@@ -656,4 +711,245 @@ pub fn mean_pressure_gradient(
     }
     let rho_mix = (rho * (box_volume - solid) + mass) / box_volume;
     gravity.map(|g| rho_mix / rho * g)
+}
+
+/// The case's word for a volume-averaging stencil (`averagingMethod`).
+fn averaging_name(stencil: crate::coupling::drag::Stencil) -> &'static str {
+    match stencil {
+        crate::coupling::drag::Stencil::Cell => "basic (cell)",
+        crate::coupling::drag::Stencil::Trilinear => "dual (trilinear)",
+    }
+}
+
+/// How a few particles can over-fill one cell: `count` of the case's largest particles
+/// sharing it put `solid` m³ in a cell of `volume` m³, beyond `alphaMax · volume`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CellOverfill {
+    pub count: usize,
+    pub solid: f64,
+    pub volume: f64,
+}
+
+/// Whether up to four of the largest particles (volumes `largest`, descending, diameter `d`
+/// the largest) can fill one cell of spacing `h` beyond `alpha_max`, with the cell volume
+/// rule `stencil`. Along an `empty` axis the cell spans the box (`length`) and a particle's
+/// weight there is one.
+///
+/// - `Cell` (DPMFoam's `basic`): every particle puts its whole volume in the cell of its
+///   centre, so `k` particles give `ε = 1 − Σ V_p / V_c` wherever their centres are in the
+///   cell. Two fit when the cell's diagonal exceeds `d`, four (the alternate corners) when
+///   each face diagonal does.
+/// - `Trilinear` (`dual`): a particle gives a cell at most its whole volume, at the cell's
+///   centre, and the weight falls off linearly to zero one spacing away along each axis;
+///   two particles at least `d` apart: the best placement is searched.
+///
+/// Four is the bound: a cell that only five or more touching particles over-fill does so
+/// only in a packing denser than a bed reaches in the cell's neighbourhood (a bed at random
+/// close packing, solid fraction 0.64, puts 0.64 V_c on average in a cell, with `alphaMax`
+/// well above that the fluctuation it takes grows with the count).
+pub fn cell_overfill(
+    h: [f64; 3],
+    empty: [bool; 3],
+    length: [f64; 3],
+    d: f64,
+    largest: &[f64],
+    alpha_max: f64,
+    stencil: crate::coupling::drag::Stencil,
+) -> Option<CellOverfill> {
+    let extent: [f64; 3] = std::array::from_fn(|a| {
+        if empty[a] {
+            (length[a] - d).max(0.0)
+        } else {
+            h[a]
+        }
+    });
+    let cell: [f64; 3] = std::array::from_fn(|a| if empty[a] { length[a] } else { h[a] });
+    let volume: f64 = cell.iter().product();
+    let limit = alpha_max * volume;
+    let sum = |k: usize| largest.iter().take(k).sum::<f64>();
+    let candidates: Vec<(usize, f64)> = match stencil {
+        crate::coupling::drag::Stencil::Cell => {
+            let diagonal = extent.iter().map(|e| e * e).sum::<f64>().sqrt();
+            let faces = (0..3)
+                .map(|a| {
+                    let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+                    (extent[b] * extent[b] + extent[c] * extent[c]).sqrt()
+                })
+                .fold(f64::INFINITY, f64::min);
+            let mut c = vec![(1, sum(1))];
+            if diagonal > d && largest.len() >= 2 {
+                c.push((2, sum(2)));
+            }
+            if faces > d {
+                for k in 3..=4.min(largest.len()) {
+                    c.push((k, sum(k)));
+                }
+            }
+            c
+        }
+        crate::coupling::drag::Stencil::Trilinear => {
+            let mut c = vec![(1, sum(1))];
+            if largest.len() >= 2 {
+                // the tent weight of an offset `x` from the cell's centre
+                let weight = |x: [f64; 3]| -> f64 {
+                    (0..3)
+                        .map(|a| {
+                            if empty[a] {
+                                if x[a].abs() <= extent[a] {
+                                    1.0
+                                } else {
+                                    0.0
+                                }
+                            } else {
+                                (1.0 - x[a].abs() / h[a]).max(0.0)
+                            }
+                        })
+                        .product()
+                };
+                let mut best = 0.0f64;
+                let steps = 24;
+                for i in 0..=steps {
+                    let theta = 0.5 * PI * i as f64 / steps as f64;
+                    for j in 0..=steps {
+                        let phi = 0.5 * PI * j as f64 / steps as f64;
+                        let u = [
+                            theta.sin() * phi.cos(),
+                            theta.sin() * phi.sin(),
+                            theta.cos(),
+                        ];
+                        for t in 0..=20 {
+                            let t = t as f64 / 20.0;
+                            let a = std::array::from_fn(|k| -t * d * u[k]);
+                            let b = std::array::from_fn(|k| (1.0 - t) * d * u[k]);
+                            best = best.max(weight(a) * largest[0] + weight(b) * largest[1]);
+                        }
+                    }
+                }
+                c.push((2, best));
+            }
+            c
+        }
+    };
+    candidates
+        .into_iter()
+        .find(|&(_, solid)| solid > limit)
+        .map(|(count, solid)| CellOverfill {
+            count,
+            solid,
+            volume,
+        })
+}
+
+/// The four largest particle volumes (descending) and the largest diameter of `p`.
+fn largest_particles(p: &ParticleState) -> (Vec<f64>, f64) {
+    let mut d: Vec<f64> = p.diameter.clone();
+    d.sort_by(|a, b| b.total_cmp(a));
+    d.truncate(4);
+    let volumes = d.iter().map(|d| PI * d * d * d / 6.0).collect();
+    (volumes, d.first().copied().unwrap_or(0.0))
+}
+
+/// The coarsest-needed grid: the spacing (scaled alike on every axis that is not empty) and
+/// the cell counts at which no four of the largest particles over-fill a cell, as
+/// "h ≥ … m (… cells)"; `None` when the box has no such grid.
+fn coarser_grid(
+    grid: &crate::grid::Grid,
+    empty: [bool; 3],
+    p: &ParticleState,
+    alpha_max: f64,
+    stencil: crate::coupling::drag::Stencil,
+) -> Option<String> {
+    let (largest, d) = largest_particles(p);
+    let length = grid.length();
+    let over = |h: [f64; 3]| cell_overfill(h, empty, length, d, &largest, alpha_max, stencil);
+    let mut scale = 1.0;
+    while over(std::array::from_fn(|a| grid.h[a] * scale)).is_some() {
+        scale *= 1.01;
+        if (0..3).any(|a| !empty[a] && grid.h[a] * scale > length[a]) {
+            return None;
+        }
+    }
+    let mut n: [usize; 3] = std::array::from_fn(|a| {
+        if empty[a] {
+            grid.n[a]
+        } else {
+            ((length[a] / (grid.h[a] * scale)).floor() as usize).max(1)
+        }
+    });
+    // whole cells are at least as coarse; step down where a jump of the criterion needs it
+    for _ in 0..8 {
+        let h: [f64; 3] = std::array::from_fn(|a| length[a] / n[a] as f64);
+        if over(h).is_none() {
+            let coarse = (0..3)
+                .filter(|&a| !empty[a])
+                .map(|a| h[a])
+                .fold(f64::INFINITY, f64::min);
+            return Some(format!(
+                "{coarse:.3e} m or more ({} {} {} cells)",
+                n[0], n[1], n[2]
+            ));
+        }
+        n = std::array::from_fn(|a| if empty[a] { n[a] } else { (n[a] - 1).max(1) });
+    }
+    None
+}
+
+/// The dry-run warning when the grid lets a few particles over-fill one cell
+/// ([`cell_overfill`]); none when every particle is fixed (they never meet).
+pub fn overfill_warning(
+    grid: &crate::grid::Grid,
+    empty: [bool; 3],
+    p: &ParticleState,
+    alpha_max: f64,
+    stencil: crate::coupling::drag::Stencil,
+) -> Option<String> {
+    if p.is_empty() || p.fixed.iter().all(|&f| f) {
+        return None;
+    }
+    let (largest, d) = largest_particles(p);
+    let o = cell_overfill(
+        grid.h,
+        empty,
+        grid.length(),
+        d,
+        &largest,
+        alpha_max,
+        stencil,
+    )?;
+    let fix = match coarser_grid(grid, empty, p, alpha_max, stencil) {
+        Some(fix) => format!("cells of {fix}"),
+        None => "a coarser mesh".to_string(),
+    };
+    let dual = match stencil {
+        crate::coupling::drag::Stencil::Cell
+            if cell_overfill(
+                grid.h,
+                empty,
+                grid.length(),
+                d,
+                &largest,
+                alpha_max,
+                crate::coupling::drag::Stencil::Trilinear,
+            )
+            .is_none() =>
+        {
+            ", or averagingMethod dual"
+        }
+        _ => "",
+    };
+    Some(format!(
+        "drag-law model: {} of the largest particles (d = {d:.3e} m) sharing one cell put \
+         {:.3e} m³ of solid in it, {:.3} of the cell's {:.3e} m³, beyond alphaMax = {} \
+         ({} averaging, h = {:.3e} m): the run stops if that many gather in one cell; use {fix}{dual}",
+        o.count,
+        o.solid,
+        o.solid / o.volume,
+        o.volume,
+        alpha_max,
+        averaging_name(stencil),
+        (0..3)
+            .filter(|&a| !empty[a])
+            .map(|a| grid.h[a])
+            .fold(f64::INFINITY, f64::min),
+    ))
 }

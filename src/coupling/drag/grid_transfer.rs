@@ -314,6 +314,17 @@ impl SampleStencil {
         }
     }
 
+    /// The weight the stencil gives the padded index `index` (zero if it has no sample there).
+    pub fn weight_at(&self, index: usize) -> f64 {
+        let mut sum = 0.0;
+        self.for_each_sample(|i, w| {
+            if i == index {
+                sum += w
+            }
+        });
+        sum
+    }
+
     /// `Σ w f[i]` over the samples.
     #[inline]
     pub fn gather(&self, field: &[f64]) -> f64 {
