@@ -11,9 +11,8 @@ use crate::fluid::FluidDiagnostics;
 use crate::particles::{FaceCondition, OverlapPartner, FACE_NAMES};
 
 /// The largest overlap over the diameter a run may reach (particle–particle over the smaller
-/// d, particle–wall over d): soft-sphere DEM keeps overlaps near 1 % of d and below (Cleary:
-/// stiffness chosen for mean overlaps of 0.1–0.5 % of d), while soft contacts chosen for
-/// speed peak at 6–9 % (settlingColumn, fluidizedBed and its cost study); at 20 % Hertz's
+/// d, particle–wall over d): soft-sphere DEM chooses its stiffness for small overlaps, a few
+/// percent of d at most, and soft contacts chosen for speed peak at 6–9 % (settlingColumn, fluidizedBed and its cost study); at 20 % Hertz's
 /// small-contact assumption is gone (contact radius √(2δ/d) = 0.63 of R) and the overlaps
 /// double-count a visible part of the solid volume, so the results mean nothing.
 pub const MAX_OVERLAP: f64 = 0.2;
@@ -173,7 +172,7 @@ impl Simulation {
         };
         FsimError::run(format!(
             "{what} at t = {} s (step {}), beyond the {MAX_OVERLAP} fsim allows (soft-sphere DEM \
-             keeps overlaps near 0.01): the contacts are too soft for these loads or impact \
+             keeps overlaps to a few percent): the contacts are too soft for these loads or impact \
              speeds; stiffen them (youngsModulus, or kn of a linear spring model), raise \
              collisionResolutionSteps, or lower deltaT ({} collision sub-steps in this step)",
             self.time.time, self.time.step, cloud.substeps
