@@ -26,7 +26,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import (FixedLocator, FormatStrFormatter,  # noqa: E402
                                NullFormatter)
-from figure import (ROOT, arguments, block_cells, cost_axes,  # noqa: E402
+from figure import (ROOT, arguments, block_cells, cost_axes, describe_bed,  # noqa: E402
                     print_front_and_cheapest, run_study, save, study_tool)
 
 SPEC = ROOT / "tools" / "figures" / "cost_fluidized_bed.toml"
@@ -74,10 +74,7 @@ def failed(study):
 
 
 def describe(r):
-    nx, ny, nz = r["cells"]
-    return (f"{nx}x{ny}x{nz} (h = {r['h_over_d']:g} d), deltaT {r['deltaT']:g} s, "
-            f"{r[INTERPOLATION]}, endTime {r['endTime']:g} s: {100 * r['signed']:+.2f} %, "
-            f"{r['wall_time']:.2f} s, {r['peak_memory_mb']:.1f} MB")
+    return describe_bed(r, INTERPOLATION)
 
 
 def main(argv=None):

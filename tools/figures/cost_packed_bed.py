@@ -19,7 +19,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from figure import (ROOT, arguments, block_cells, cost_axes,  # noqa: E402
+from figure import (ROOT, arguments, block_cells, cost_axes, describe_bed,  # noqa: E402
                     print_front_and_cheapest, run_study, save, study_tool)
 
 SPEC = ROOT / "tools" / "figures" / "cost_packed_bed.toml"
@@ -43,10 +43,7 @@ def read(study):
 
 
 def describe(r):
-    nx, ny, nz = r["cells"]
-    return (f"{nx}x{ny}x{nz} (h = {r['h_over_d']:g} d), deltaT {r['deltaT']:g} s, "
-            f"{r[INTERPOLATION]}, endTime {r['endTime']:g} s: {100 * r['signed']:+.2f} %, "
-            f"{r['wall_time']:.2f} s, {r['peak_memory_mb']:.1f} MB")
+    return describe_bed(r, INTERPOLATION)
 
 
 def main(argv=None):

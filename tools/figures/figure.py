@@ -94,3 +94,12 @@ def save(fig, out):
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=110)
     print(f"\nwrote {out.relative_to(ROOT) if out.is_relative_to(ROOT) else out}")
+
+
+def describe_bed(r, interpolation):
+    """One run of a bed's cost chart: its grid (r["cells"], h/d), step, the interpolation
+    (the column `interpolation`), endTime, signed error, wall time and peak memory."""
+    nx, ny, nz = r["cells"]
+    return (f"{nx}x{ny}x{nz} (h = {r['h_over_d']:g} d), deltaT {r['deltaT']:g} s, "
+            f"{r[interpolation]}, endTime {r['endTime']:g} s: {100 * r['signed']:+.2f} %, "
+            f"{r['wall_time']:.2f} s, {r['peak_memory_mb']:.1f} MB")
