@@ -160,3 +160,18 @@ def test_the_stability_maps_classification_of_a_run():
     assert classify("done", 0, -0.029, 0.03) == "stable"
     assert classify("done", 0, 0.0, 0.03) == "stable"
     assert classify("", None, None, 0.03) is None
+
+
+def test_the_drag_law_stability_maps_table_values_and_worst_error():
+    # results.csv holds sedimentation_measure's values as numpy's repr ('np.float64(x)'),
+    # which the table reader leaves as text; the map reads them as numbers
+    module = load("stability_draglaw")
+    assert module.number("np.float64(0.7817411488455231)") == 0.7817411488455231
+    assert module.number(0.5) == 0.5
+    assert math.isnan(module.number("np.float64(nan)"))
+    assert module.number("") is None and module.number(None) is None
+    assert module.relative_error("np.float64(0.75)", 0.5) == pytest.approx(0.5)
+    assert module.relative_error(float("nan"), 0.5) is None
+    # the worst of the restitutions' errors, signed; NaN when any is not finite
+    assert module.worst([0.01, -0.03, 0.02]) == -0.03
+    assert math.isnan(module.worst([0.01, float("inf")]))
