@@ -418,7 +418,7 @@ def sedimentation_measure(case):
         phi = 1 - eps.mean() if math.isnan(phi) else phi
         if t >= 0.5 * times[-1][0] and t > 0:
             late.append((1 - phi) * v.mean() - (eps * u).mean())
-    return {"phi": phi, "settlingRatio": sum(late) / len(late) / stokes}
+    return {"phi": float(phi), "settlingRatio": float(sum(late) / len(late) / stokes)}
 
 
 REFERENCES = {

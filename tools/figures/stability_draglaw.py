@@ -113,9 +113,9 @@ def run_unrunnable(tutorial, args, reference, folder):
 
 
 def number(value):
-    """A table value as a float: a float, or the text 'np.float64(x)' that results.csv holds
-    for sedimentation_measure's values (numpy's repr, which read_table leaves as text);
-    None otherwise."""
+    """A table value as a float: a float, or the text 'np.float64(x)' that tables written
+    before sedimentation_measure returned plain floats hold (numpy's repr, which read_table
+    leaves as text); None otherwise."""
     if isinstance(value, float):
         return value
     if isinstance(value, str):

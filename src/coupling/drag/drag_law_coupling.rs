@@ -92,7 +92,7 @@ pub struct DragLawCoupling {
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
-    /// What the grid lets happen before the run ([`overfill_warning`]), for `-dry-run` and
+    /// What the grid lets happen before the run (`overfill_warning`), for `-dry-run` and
     /// the log.
     pub warnings: Vec<String>,
 }
