@@ -125,10 +125,11 @@ fn unresolvable_spheres_are_refused() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("at least 2 cells in radius: particle 1 (id"),
+        err.contains("at least 2 cells in radius: 1 of 1 particle(s) have fewer"),
         "{err}"
     );
-    assert!(err.contains("r/h = 1.728"), "{err}");
+    assert!(err.contains("particle 1 (id 0) r/h = 1.728"), "{err}");
+    assert!(err.contains("(7 7 7) cells for r/h = 2"), "{err}");
 
     let large = copy_tutorial("porousMedia", &scratch.0, "large");
     set_entry(&large.join("constant/porousParameters"), "phi", "0.6"); // d = 1.05 L
