@@ -103,3 +103,21 @@ def describe_bed(r, interpolation):
     return (f"{nx}x{ny}x{nz} (h = {r['h_over_d']:g} d), deltaT {r['deltaT']:g} s, "
             f"{r[interpolation]}, endTime {r['endTime']:g} s: {100 * r['signed']:+.2f} %, "
             f"{r['wall_time']:.2f} s, {r['peak_memory_mb']:.1f} MB")
+
+
+def run_refused_points(tutorial, args, folder, reference):
+    """Points fsimFoam's dry run rejects, which a study will not run (a study with a rejected
+    point runs none): their case copies by `tools/study run … --check` (which stops at the
+    rejection), then each started by fsimFoam itself, then the table rebuilt."""
+    tool = str(ROOT / "tools" / "study")
+    subprocess.run([tool, "run", tutorial, *args, "--reference", reference, "--check",
+                    "--workers", "1", "--out", str(folder)],
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    fsim = study_tool.fsim_binary(None)
+    for point in sorted(folder.glob("point-*")):
+        if not (point / "done.json").exists():
+            record = study_tool.run_point(point, fsim, 1)
+            print(f"  {folder.name}/{point.name}: exit {record.get('exit_code')}")
+    done = subprocess.run([tool, "table", str(folder)], stdout=subprocess.DEVNULL)
+    if done.returncode != 0:
+        sys.exit(done.returncode)

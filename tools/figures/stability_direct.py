@@ -35,8 +35,6 @@ bound, bottom row EulerRKC (no viscous bound) at multiples of the response bound
 0.25 tau_p, tau_p = rho_p d^2/(18 mu).
 """
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import matplotlib
@@ -44,7 +42,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Patch, Rectangle  # noqa: E402
-from figure import ROOT, arguments, block_cells, run_study, save, study_tool  # noqa: E402
+from figure import (ROOT, arguments, block_cells, run_refused_points,  # noqa: E402
+                    run_study, save, study_tool)
 
 FREE_SPEC = ROOT / "tools" / "figures" / "stability_direct_free.toml"
 FIXED_SPEC = ROOT / "tools" / "figures" / "stability_direct_fixed.toml"
@@ -122,23 +121,6 @@ def unrunnable_sets():
                   "--set", "constant/porousParameters:n=" + ",".join(str(n) for n, _ in fixed),
                   "--set", "system/controlDict:deltaT=" + ",".join(d for _, d in fixed)]
     return [("settlingSphere", free_args), ("porousMedia", fixed_args)]
-
-
-def run_unrunnable(tutorial, args, folder):
-    """Case copies by `tools/study run … --check` (which stops at the rejection), then each
-    started by fsimFoam itself, then the table rebuilt."""
-    tool = str(ROOT / "tools" / "study")
-    subprocess.run([tool, "run", tutorial, "--zip", *args, "--reference", tutorial,
-                    "--check", "--workers", "1", "--out", str(folder)],
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    fsim = study_tool.fsim_binary(None)
-    for point in sorted(folder.glob("point-*")):
-        if not (point / "done.json").exists():
-            record = study_tool.run_point(point, fsim, 1)
-            print(f"  {folder.name}/{point.name}: exit {record.get('exit_code')}")
-    done = subprocess.run([tool, "table", str(folder)], stdout=subprocess.DEVNULL)
-    if done.returncode != 0:
-        sys.exit(done.returncode)
 
 
 def rows_of(folder):
@@ -237,7 +219,7 @@ def main(argv=None):
         run_study(FIXED_SPEC, args.fixed_study)
         run_study(FREE_SPEC, args.study)
         for (tutorial, extra_args), folder in zip(unrunnable_sets(), (free_extra, fixed_extra)):
-            run_unrunnable(tutorial, extra_args, folder)
+            run_refused_points(tutorial, ["--zip", *extra_args], folder, tutorial)
 
     free = free_cells(rows_of(args.study) + rows_of(free_extra))
     fixed = fixed_cells(rows_of(args.fixed_study) + rows_of(fixed_extra))

@@ -32,7 +32,6 @@ CONTACTS_THRESHOLD), stable. Prints every cell and draws docs/figures/stability_
 import json
 import math
 import re
-import subprocess
 import sys
 import tomllib
 from pathlib import Path
@@ -42,7 +41,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Patch, Rectangle  # noqa: E402
-from figure import ROOT, arguments, block_cells, run_study, save, study_tool  # noqa: E402
+from figure import (ROOT, arguments, block_cells, run_refused_points,  # noqa: E402
+                    run_study, save, study_tool)
 from stability_direct import COLOURS, classify, rows_of  # noqa: E402
 
 CELLS_SPEC = ROOT / "tools" / "figures" / "stability_draglaw_cells.toml"
@@ -93,23 +93,6 @@ def contacts_unrunnable_args():
             "--set", f"{key}{WALL_RESOLUTION}=" + ",".join(f"{n:g}" for n, _ in points),
             "--set", "system/controlDict:deltaT=" + ",".join(f"{dt:g}" for _, dt in points),
             "--set", "system/controlDict:writeInterval=0.001"]
-
-
-def run_unrunnable(tutorial, args, reference, folder):
-    """Case copies by `tools/study run … --check` (which stops at the rejection), then each
-    started by fsimFoam itself, then the table rebuilt."""
-    tool = str(ROOT / "tools" / "study")
-    subprocess.run([tool, "run", tutorial, *args, "--reference", reference, "--check",
-                    "--workers", "1", "--out", str(folder)],
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    fsim = study_tool.fsim_binary(None)
-    for point in sorted(folder.glob("point-*")):
-        if not (point / "done.json").exists():
-            record = study_tool.run_point(point, fsim, 1)
-            print(f"  {folder.name}/{point.name}: exit {record.get('exit_code')}")
-    done = subprocess.run([tool, "table", str(folder)], stdout=subprocess.DEVNULL)
-    if done.returncode != 0:
-        sys.exit(done.returncode)
 
 
 def number(value):
@@ -276,8 +259,8 @@ def main(argv=None):
     if not args.no_run:
         run_study(CELLS_SPEC, args.study)
         run_study(CONTACTS_SPEC, args.contacts_study)
-        run_unrunnable("sedimentation", cells_unrunnable_args(), "sedimentation", cells_extra)
-        run_unrunnable("impacts", contacts_unrunnable_args(), "none", contacts_extra)
+        run_refused_points("sedimentation", cells_unrunnable_args(), cells_extra, "sedimentation")
+        run_refused_points("impacts", contacts_unrunnable_args(), contacts_extra, "none")
 
     sys.path.insert(0, str(ROOT / "tutorials"))
     from plotting import restitution  # noqa: E402
