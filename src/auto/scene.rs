@@ -116,5 +116,5 @@ impl Scene {
 }
 
 fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+    crate::Vec3::from(v).norm()
 }

@@ -308,7 +308,7 @@ impl DragLawCoupling {
             s.alpha_max,
             named.join(", "),
             self.transfer.cell_volume(),
-            averaging_name(s.averaging),
+            s.averaging.averaging_method(),
         )
     }
 
@@ -713,14 +713,6 @@ pub fn mean_pressure_gradient(
     gravity.map(|g| rho_mix / rho * g)
 }
 
-/// The case's word for a volume-averaging stencil (`averagingMethod`).
-fn averaging_name(stencil: crate::coupling::drag::Stencil) -> &'static str {
-    match stencil {
-        crate::coupling::drag::Stencil::Cell => "basic (cell)",
-        crate::coupling::drag::Stencil::Trilinear => "dual (trilinear)",
-    }
-}
-
 /// How a few particles can over-fill one cell: `count` of the case's largest particles
 /// sharing it put `solid` m³ in a cell of `volume` m³, beyond `alphaMax · volume`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -946,7 +938,7 @@ pub fn overfill_warning(
         o.solid / o.volume,
         o.volume,
         alpha_max,
-        averaging_name(stencil),
+        stencil.averaging_method(),
         (0..3)
             .filter(|&a| !empty[a])
             .map(|a| grid.h[a])

@@ -23,6 +23,15 @@ impl Stencil {
             Stencil::Trilinear => "trilinear",
         }
     }
+
+    /// The stencil as a case names it for volume averaging (`averagingMethod`), for
+    /// messages.
+    pub fn averaging_method(self) -> &'static str {
+        match self {
+            Stencil::Cell => "basic (cell)",
+            Stencil::Trilinear => "dual (trilinear)",
+        }
+    }
 }
 
 /// Settings of the drag-law model.
