@@ -23,7 +23,6 @@ and prints the constants of src/coupling/auto/model_fit.rs with the fit's scatte
 """
 import argparse
 import math
-import re
 import sys
 from pathlib import Path
 
@@ -31,19 +30,19 @@ import numpy as np
 
 TOOLS = Path(__file__).resolve().parent
 sys.path.insert(0, str(TOOLS))
+sys.path.insert(0, str(TOOLS / "figures"))
 import hindered_settling  # noqa: E402
+from figure import block_cells  # noqa: E402
 import study  # noqa: E402
 import study_references as refs  # noqa: E402
 
-BLOCK = re.compile(r"hex\s*\([^()]*\)\s*\(\s*(\d+)\s+(\d+)\s+(\d+)\s*\)")
 
 
 def cells(row, case):
     text = row.get("blocks") or (case / "system" / "blockMeshDict").read_text()
     if row.get("n") and "blocks" not in row:
         return int(row["n"]) ** 3
-    found = BLOCK.search(str(text))
-    return math.prod(int(v) for v in found.groups())
+    return math.prod(block_cells(text))
 
 
 def gap_cells(phi, r_over_h):
@@ -56,7 +55,7 @@ def direct_points(root):
     """(r/h, phi, |error|, kind) of the direct model's validation studies."""
     out = []
     for r in study.finished_points(root / "settlingSphere-cost"):
-        n = int(BLOCK.search(r["blocks"]).group(1))
+        n = block_cells(r["blocks"])[0]
         e = abs(r["sedimentation.settlingVelocity.final"] / r["reference.settlingVelocity"] - 1)
         out.append((n / 4.5, 0.0456, e, "settling sphere"))
     for name in ("porousMedia-fig1-convergence", "porousMedia-fig2-k-vs-phi"):
@@ -99,7 +98,7 @@ def drag_tables(root):
              for r in study.finished_points(root / "porousMedia-fig2-k-vs-phi-draglaw")}
     free = {}
     for r in study.finished_points(root / "sedimentation-fig3-draglaw"):
-        if BLOCK.search(r["blocks"]).group(1) != "3":
+        if block_cells(r["blocks"])[0] != 3:
             continue
         m = refs.sedimentation_measure(root / "sedimentation-fig3-draglaw" / r["point"])
         free.setdefault(round(m["phi"], 3), []).append(
@@ -169,7 +168,7 @@ def main(argv=None):
             if r.get("fsim/timeScheme") == "EulerRKC" and r["maxDeltaT"] == 2.8e-4]
     v_inf = 0.4550   # the direct model's grid limit (docs/figures/README.md)
     for r in held:
-        n = int(BLOCK.search(r["blocks"]).group(1))
+        n = block_cells(r["blocks"])[0]
         r_over_h = 0.75e-3 * n / 0.01
         m = refs.sedimentation_measure(root / "sedimentation-cost" / r["point"])
         measured = abs(m["settlingRatio"] / v_inf - 1)

@@ -238,17 +238,22 @@ def porous_media_drag_law(case):
             "K_SA": sangani_acrivos(phi)}
 
 
-def settling_sphere(case):
-    """One sphere in a periodic box settles as the simple cubic array of the same phi resists:
-    v = U_Stokes / K(phi), U_Stokes = (rho_p - rho_f) g d^2 / (18 mu)."""
+def stokes_velocity(case):
+    """U_Stokes = (rho_p - rho_f) |g| d^2 / (18 rho_f nu) of the case's fixed-size spheres."""
     rho_f = fluid_density(case)
     nu = scalar(case, "constant/transportProperties", "nu")
     rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
     g = math.hypot(*vector(case, "constant/g", "value"))
+    return (rho_p - rho_f) * g * fixed_diameter(case) ** 2 / (18 * rho_f * nu)
+
+
+def settling_sphere(case):
+    """One sphere in a periodic box settles as the simple cubic array of the same phi resists:
+    v = U_Stokes / K(phi) (stokes_velocity)."""
     d = fixed_diameter(case)
     lx, ly, lz = block_extent(case)
     phi = math.pi * d ** 3 / 6 / (lx * ly * lz)
-    stokes = (rho_p - rho_f) * g * d ** 2 / (18 * rho_f * nu)
+    stokes = stokes_velocity(case)
     return {"settlingVelocity": stokes / sangani_acrivos(phi), "stokesVelocity": stokes,
             "phi": phi}
 
@@ -256,13 +261,10 @@ def settling_sphere(case):
 def single_bead(case):
     """One bead under Schiller-Naumann drag and buoyant gravity: its terminal velocity."""
     rho_f = fluid_density(case)
-    nu = scalar(case, "constant/transportProperties", "nu")
-    rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
-    g = math.hypot(*vector(case, "constant/g", "value"))
-    d = fixed_diameter(case)
-    mu = rho_f * nu
-    stokes = (rho_p - rho_f) * g * d ** 2 / (18 * mu)
-    return {"settlingVelocity": schiller_naumann_terminal(stokes, rho_f, d, mu)}
+    mu = rho_f * scalar(case, "constant/transportProperties", "nu")
+    stokes = stokes_velocity(case)
+    return {"settlingVelocity": schiller_naumann_terminal(stokes, rho_f, fixed_diameter(case),
+                                                          mu)}
 
 
 def velocity_along_gravity(case):
@@ -353,15 +355,6 @@ def fluidized_bed_measure(case):
     drag = m["FdParticles" + "XYZ"[axis]]
     return {"pressureDrop": sum(m["pressureDrop"][k] for k in late) / len(late),
             "dragPerArea": up * sum(drag[k] for k in late) / len(late) / area}
-
-
-def stokes_velocity(case):
-    """U_Stokes = (rho_p - rho_f) |g| d^2 / (18 rho_f nu) of the case's fixed-size spheres."""
-    rho_f = fluid_density(case)
-    nu = scalar(case, "constant/transportProperties", "nu")
-    rho_p = scalar(case, "constant/kinematicCloudProperties", "constantProperties/rho0")
-    g = math.hypot(*vector(case, "constant/g", "value"))
-    return (rho_p - rho_f) * g * fixed_diameter(case) ** 2 / (18 * rho_f * nu)
 
 
 def suspension_fraction(case):
