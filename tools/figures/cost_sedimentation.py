@@ -34,18 +34,16 @@ from figure import (ROOT, arguments, block_cells, cheapest, cost_axes,  # noqa: 
 
 sys.path.insert(0, str(ROOT / "tools"))
 import study_references  # noqa: E402
+# Fig. 3's drag-law study holds this chart's drag-law points
+from fig3_sedimentation import FRACTION, SEED, SPEC_DRAG, STUDY_DRAG  # noqa: E402
 
 SPEC = ROOT / "tools" / "figures" / "cost_sedimentation.toml"
-SPEC_DRAG = ROOT / "tools" / "figures" / "fig3_sedimentation_draglaw.toml"
 STUDY = ROOT / "studies" / "sedimentation-cost"
-STUDY_DRAG = ROOT / "studies" / "sedimentation-fig3-draglaw"
 OUT = ROOT / "docs" / "figures" / "cost_sedimentation.png"
 BOUNDS = (0.01, 0.03, 0.10)
 SCHEME = "fsim/timeScheme"
 BOX, RADIUS = 0.01, 0.75e-3         # the study's periodic cube and sphere radius (m)
 FIT_STEP = 2.8e-4                    # the step of the grid-convergence points
-FRACTION = "subModels/injectionModels/spheres/volumeFraction"
-SEED = "subModels/injectionModels/spheres/seed"
 
 
 def point(study, r, model):
