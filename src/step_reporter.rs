@@ -110,6 +110,9 @@ pub struct StepReporter {
     sedimentation: Option<Monitor>,
     case_dir: std::path::PathBuf,
     start_name: String,
+    /// Steps with a cloud, and those of them taken in free flight.
+    cloud_steps: u64,
+    free_flight_steps: u64,
 }
 
 fn output_error(e: OutputError) -> FsimError {
@@ -152,6 +155,8 @@ impl StepReporter {
             sedimentation: None,
             case_dir: case_dir.to_path_buf(),
             start_name: start_name.to_string(),
+            cloud_steps: 0,
+            free_flight_steps: 0,
         })
     }
 
@@ -210,6 +215,8 @@ impl StepReporter {
             self.direct_model(sim.time.time, model)?;
         }
         if let (Some(c), Some(m)) = (cloud, self.cloud.as_mut()) {
+            self.cloud_steps += 1;
+            self.free_flight_steps += c.free_flight as u64;
             log_cloud(&mut self.log, c)?;
             let [ux, uy, uz] = c.mean_velocity.into();
             m.row(&[
@@ -413,8 +420,15 @@ impl StepReporter {
         Ok(())
     }
 
-    /// Flushes the monitors and ends the log.
+    /// Flushes the monitors and ends the log, after the count of free-flight steps.
     pub fn finish(mut self) -> Result<(), FsimError> {
+        if self.cloud_steps > 0 {
+            self.log.line(&format!(
+                "Free flight: {} of {} steps (no pair or wall could meet within them: one step \
+                 each, contact detection and, without torque, rotation skipped)\n",
+                self.free_flight_steps, self.cloud_steps
+            ))?;
+        }
         self.fluid.flush().map_err(output_error)?;
         for m in self
             .cloud
@@ -433,10 +447,15 @@ impl StepReporter {
 /// The cloud's lines of the step log, in the manner of DPMFoam's.
 fn log_cloud(log: &mut Log<std::io::Stdout>, c: &CloudReport) -> std::io::Result<()> {
     let [ux, uy, uz] = c.mean_velocity.into();
+    let steps = if c.free_flight {
+        "free flight (no contact possible)".to_string()
+    } else {
+        format!("{} collision sub-steps", c.substeps)
+    };
     log.line(&format!(
-        "Cloud: {} particles, {} collision sub-steps\n    Linear kinetic energy = {:.6e}\n    \
+        "Cloud: {} particles, {steps}\n    Linear kinetic energy = {:.6e}\n    \
          Rotational kinetic energy = {:.6e}\n    Mean velocity = ({:.6e} {:.6e} {:.6e})\n    \
          Max overlap / d = {:.4e}",
-        c.count, c.substeps, c.kinetic_energy.0, c.kinetic_energy.1, ux, uy, uz, c.max_overlap
+        c.count, c.kinetic_energy.0, c.kinetic_energy.1, ux, uy, uz, c.max_overlap
     ))
 }

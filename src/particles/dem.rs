@@ -36,6 +36,7 @@ use super::particle_state::ParticleState;
 use crate::Vec3;
 
 mod collision_step;
+mod free_flight;
 mod monitors;
 pub use monitors::{OverlapPartner, WorstOverlap};
 
@@ -70,6 +71,13 @@ pub struct Dem {
     time: f64,
     steps: u64,
     rebuilds: u64,
+    /// Outer steps taken by [`Dem::free_flight`].
+    contact_free_steps: u64,
+    /// Each particle's acceleration under its constant loads, for the free-flight test.
+    acceleration: Vec<Vec3>,
+    /// Tests compare the free-flight step against the sub-steps it replaces.
+    #[cfg(test)]
+    never_free_flight: bool,
     scratch3: Vec<Vec3>,
     scratch1: Vec<f64>,
 }
@@ -191,6 +199,10 @@ impl Dem {
             time: 0.0,
             steps: 0,
             rebuilds: 0,
+            contact_free_steps: 0,
+            acceleration: Vec::new(),
+            #[cfg(test)]
+            never_free_flight: false,
             scratch3: Vec::new(),
             scratch1: Vec::new(),
         };
@@ -316,6 +328,12 @@ impl Dem {
         self.rebuilds
     }
 
+    /// Outer steps in which no contact could act, taken in one step without contact
+    /// detection ([`Dem::advance`]).
+    pub fn contact_free_steps(&self) -> u64 {
+        self.contact_free_steps
+    }
+
     /// Number of pairs in the neighbour list.
     pub fn pair_count(&self) -> usize {
         self.lists.partner.len()
@@ -326,7 +344,7 @@ impl Dem {
         self.particles.memory_bytes()
             + 8 * (self.radius.capacity() + self.inv_mass.capacity() + self.inv_inertia.capacity())
             + self.lists.memory_bytes()
-            + 24 * self.scratch3.capacity()
+            + 24 * (self.scratch3.capacity() + self.acceleration.capacity())
             + 48 * (self.acc_own.capacity() + self.acc_prev.capacity())
             + 8 * self.scratch1.capacity()
     }
@@ -346,8 +364,13 @@ impl Dem {
     // ----- time stepping (the collision sub-step: dem/collision_step.rs) -----
 
     /// Advances by one outer step `dt_outer` in equal sub-steps (external loads held fixed);
-    /// returns the number of sub-steps taken.
+    /// returns the number of sub-steps taken. A step in which no contact can act is one
+    /// step without contact detection (`dem/free_flight.rs`): exact under constant loads.
     pub fn advance(&mut self, dt_outer: f64) -> usize {
+        if self.contact_free(dt_outer) {
+            self.free_flight(dt_outer);
+            return 1;
+        }
         let n = self.substep_count(dt_outer);
         let h = dt_outer / n as f64;
         // `step` n times, with each sub-step's last pass fused with the next one's first.
@@ -403,6 +426,7 @@ impl Dem {
             rho: &p.density,
             fe: &p.external_force,
             te: &p.external_torque,
+            rotate: true,
         };
         let gather = Gather {
             own: &self.acc_own,

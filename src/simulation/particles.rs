@@ -28,6 +28,9 @@ pub struct CloudReport {
     /// Largest overlap over the diameter.
     pub max_overlap: f64,
     pub substeps: usize,
+    /// No contact could act: one step of free flight, contact detection skipped
+    /// (`particles/dem/free_flight.rs`).
+    pub free_flight: bool,
 }
 
 impl Particles {
@@ -57,6 +60,7 @@ impl Particles {
     /// buoyancy, the external loads set, contact forces), in the engine's collision
     /// sub-steps.
     pub fn advance(&mut self, dt: f64) -> CloudReport {
+        let free_before = self.dem.contact_free_steps();
         self.substeps = self.dem.advance(dt);
         CloudReport {
             count: self.dem.particles().len(),
@@ -64,6 +68,7 @@ impl Particles {
             mean_velocity: self.dem.mean_velocity(),
             max_overlap: self.dem.max_overlap_ratio(),
             substeps: self.substeps,
+            free_flight: self.dem.contact_free_steps() > free_before,
         }
     }
 
