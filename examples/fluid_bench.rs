@@ -47,7 +47,7 @@ fn main() {
             pool.install(|| {
                 let h = 2.0 * PI / n as f64;
                 let grid = Grid::new([n; 3], [h; 3], [0.0; 3]);
-                let settings = FluidSettings { nu: 0.01, scheme, body_force: [0.0; 3] };
+                let settings = FluidSettings { nu: 0.01, scheme, body_force: [0.0; 3], convection: true };
                 let mut s = FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap();
                 s.set_velocity(|c, x| match c {
                     0 => x[0].sin() * x[1].cos() * x[2].cos(),

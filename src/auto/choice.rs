@@ -21,6 +21,18 @@ pub struct Choice {
     pub changes: Vec<String>,
 }
 
+/// The share of the tolerance convection may take when `model auto` turns it off: the rest is
+/// left to the grid's error, which the candidates' table predicts.
+const CONVECTION_SHARE: f64 = 0.1;
+
+/// Oseen's first inertial correction to a sphere's Stokes drag, `F = F_St (1 + 3 Re_p/16)`
+/// (Oseen 1910; Proudman & Pearson 1957): the relative change of the force that dropping the
+/// advection term makes at `Re_p`. An upper estimate in periodic arrays, where the
+/// correction starts at `O(Re_p²)` (docs/user-guide/choosing-a-model.md).
+pub fn convection_effect(reynolds: f64) -> f64 {
+    3.0 * reynolds / 16.0
+}
+
 /// A scheme valid for `model` (the case's when it is one), and its factor on `h²/(6ν)`.
 fn scheme(case: &Case, model: CouplingModel) -> (&'static str, f64) {
     let named = case.time_scheme.as_deref().unwrap_or("");
@@ -163,7 +175,7 @@ pub fn choose(case: &mut Case) -> Result<Choice, FsimError> {
         );
     }
     report.push('\n');
-    let changes = apply(case, &chosen, &scene)?;
+    let changes = apply(case, &chosen, &scene, tolerance)?;
     Ok(Choice {
         chosen,
         candidates,
@@ -173,9 +185,15 @@ pub fn choose(case: &mut Case) -> Result<Choice, FsimError> {
 }
 
 /// Changes `case` to run `chosen`: the model, the block's cells (domain and patches kept),
-/// a scheme the model takes, and an adjustable step when a fixed `deltaT` is above the
-/// candidate's bound.
-fn apply(case: &mut Case, chosen: &Candidate, scene: &Scene) -> Result<Vec<String>, FsimError> {
+/// a scheme the model takes, convection off where it is below a tenth of the `tolerance`
+/// (direct model), and an adjustable step when a fixed `deltaT` is above the candidate's
+/// bound.
+fn apply(
+    case: &mut Case,
+    chosen: &Candidate,
+    scene: &Scene,
+    tolerance: f64,
+) -> Result<Vec<String>, FsimError> {
     let mut changes = Vec::new();
     case.coupling.model = chosen.model;
     let grid = &case.mesh.grid;
@@ -209,6 +227,19 @@ fn apply(case: &mut Case, chosen: &Candidate, scene: &Scene) -> Result<Vec<Strin
             chosen.model.name()
         ));
         case.time_scheme = Some(name.to_string());
+    }
+    let effect = convection_effect(scene.reynolds);
+    if chosen.model == CouplingModel::Direct
+        && case.convection
+        && effect <= CONVECTION_SHARE * tolerance
+    {
+        changes.push(format!(
+            "convection off (the unsteady Stokes equation): at Re_p {:.2e} advection changes \
+             the force by about 3 Re_p/16 = {:.2e} %, within a tenth of the tolerance",
+            scene.reynolds,
+            100.0 * effect
+        ));
+        case.convection = false;
     }
     let control = &mut case.control;
     if !control.adjust_time_step && control.delta_t > chosen.step {

@@ -35,6 +35,9 @@ pub struct Case {
     pub coupling: Coupling,
     /// `fsim { timeScheme …; }` in `system/fvSolution`, unvalidated (the solver checks it).
     pub time_scheme: Option<String>,
+    /// `fsim { convection off; }` in `system/fvSolution` turns the advection term off (the
+    /// unsteady Stokes equation); on by default. `model auto` turns it off at low Re_p.
+    pub convection: bool,
     /// `system/fvSolution`, when present.
     pub fv_solution: Option<Dict>,
     /// `constant/kinematicCloudProperties`, when present (read by the particle code).
@@ -158,10 +161,12 @@ impl Case {
         )?;
 
         let fv_solution = optional("system/fvSolution")?;
+        let mut convection = true;
         let time_scheme = match &fv_solution {
             Some(s) => match s.opt_dict("fsim")? {
                 Some(fsim) => {
                     let scheme = fsim.opt_word("timeScheme")?;
+                    convection = fsim.get_bool_or("convection", true)?;
                     for (key, loc) in fsim.unused() {
                         let (line, col) = loc.line_col();
                         warnings.push(format!(
@@ -190,6 +195,7 @@ impl Case {
             mean_velocity_forces,
             coupling,
             time_scheme,
+            convection,
             fv_solution,
             cloud_properties,
             warnings,

@@ -30,6 +30,9 @@ pub struct FluidSettings {
     pub scheme: TimeScheme,
     /// Uniform body force per unit mass (gravity, an imposed mean pressure gradient), m/s².
     pub body_force: [f64; 3],
+    /// The advection term `−∇·(uu)` is kept (default). Off, the momentum equation is the
+    /// unsteady Stokes equation, and the advective step bounds no longer apply.
+    pub convection: bool,
 }
 
 impl FluidSettings {
@@ -39,6 +42,7 @@ impl FluidSettings {
             nu,
             scheme: TimeScheme::default(),
             body_force: [0.0; 3],
+            convection: true,
         }
     }
 }
@@ -400,6 +404,7 @@ impl FluidSolver {
             force,
             source: self.source.as_ref(),
             ranges: &self.momentum_ranges,
+            convection: self.settings.convection,
         };
         accumulate_tendency(&mut self.q, &self.u, &terms, 0.0, 1.0);
         // The divergence reads the high boundary face, which a periodic direction shares

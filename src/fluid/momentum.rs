@@ -24,6 +24,8 @@ pub(crate) struct MomentumTerms<'a> {
     pub source: Option<&'a [Vec<f64>; 3]>,
     /// Momentum ranges `[c][d]`, inclusive padded indices.
     pub ranges: &'a [[(usize, usize); 3]; 3],
+    /// The advection term is evaluated (false: Stokes flow, `fsim { convection off; }`).
+    pub convection: bool,
 }
 
 /// The stencil of one row of faces of component `c`: every point the tendency touches, as a
@@ -97,6 +99,15 @@ impl<'a> RowStencil<'a> {
         self.terms(i).0
     }
 
+    /// Laplacian `Σ_d δ_d² u_c` at face `i` of the row (as in [`Self::terms`]).
+    #[inline(always)]
+    fn laplacian(&self, i: usize) -> f64 {
+        let q = self.q0[i];
+        (self.qpc[i] - 2.0 * q + self.qmc[i]) * self.inv_h2[0]
+            + (self.qp1[i] - 2.0 * q + self.qm1[i]) * self.inv_h2[1]
+            + (self.qp2[i] - 2.0 * q + self.qm2[i]) * self.inv_h2[2]
+    }
+
     /// Advection `Σ_d δ_d(ū_c ū_d)` and Laplacian `Σ_d δ_d² u_c` at face `i` of the row.
     #[inline(always)]
     fn terms(&self, i: usize) -> (f64, f64) {
@@ -159,7 +170,11 @@ fn accumulate_component(
             return;
         }
         let _ = wide;
-        accumulate_plane(qp, k, u, t, c, a, dt);
+        if t.convection {
+            accumulate_plane::<true>(qp, k, u, t, c, a, dt);
+        } else {
+            accumulate_plane::<false>(qp, k, u, t, c, a, dt);
+        }
     });
 }
 
@@ -187,12 +202,17 @@ unsafe fn accumulate_plane_avx2(
     a: f64,
     dt: f64,
 ) {
-    accumulate_plane(qp, k, u, t, c, a, dt);
+    if t.convection {
+        accumulate_plane::<true>(qp, k, u, t, c, a, dt);
+    } else {
+        accumulate_plane::<false>(qp, k, u, t, c, a, dt);
+    }
 }
 
-/// `q ← a q + Δt F` on the faces of component `c` in padded k-plane `k` (`qp`).
+/// `q ← a q + Δt F` on the faces of component `c` in padded k-plane `k` (`qp`); without
+/// the advection term when `ADVECT` is false (Stokes flow: only `u_c`'s own faces are read).
 #[inline(always)]
-fn accumulate_plane(
+fn accumulate_plane<const ADVECT: bool>(
     qp: &mut [f64],
     k: usize,
     u: &[Vec<f64>; 3],
@@ -214,8 +234,12 @@ fn accumulate_plane(
         let src = source.map(|s| &s[k * plane + row..][..len]);
         let out = &mut qp[row..row + len];
         let rhs = |i: usize| -> f64 {
-            let (adv, lap) = st.terms(i);
-            -adv + nu * lap + force
+            if ADVECT {
+                let (adv, lap) = st.terms(i);
+                -adv + nu * lap + force
+            } else {
+                nu * st.laplacian(i) + force
+            }
         };
         match (src, a == 0.0) {
             (None, true) => {
@@ -345,17 +369,23 @@ pub(crate) fn frozen_tendency(
                 let st = RowStencil::new(u, layout, t.h, c, k * plane + row, len);
                 let src = source.map(|s| &s[k * plane + row..][..len]);
                 let out = &mut qp[row..row + len];
-                match src {
-                    Some(s) => {
+                match (src, t.convection) {
+                    (Some(s), true) => {
                         for i in 0..len {
                             out[i] = force + s[i] - st.advection(i);
                         }
                     }
-                    None => {
+                    (None, true) => {
                         for i in 0..len {
                             out[i] = force - st.advection(i);
                         }
                     }
+                    (Some(s), false) => {
+                        for i in 0..len {
+                            out[i] = force + s[i];
+                        }
+                    }
+                    (None, false) => out.fill(force),
                 }
                 PressureRow::new(n, c, j, k).subtract_gradient(out, pressure, r[0].0, inv_h);
             }
@@ -418,6 +448,7 @@ mod tests {
             nu: 1.0,
             scheme: TimeScheme::Euler,
             body_force: [0.0; 3],
+            convection: true,
         };
         let mut s = FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap();
         let mut seed = 0x2545F4914F6CDD1D;
@@ -438,6 +469,7 @@ mod tests {
             force: [0.0; 3],
             source: None,
             ranges: &ranges,
+            convection: true,
         };
         let mut q = [
             vec![0.0; layout.len],
@@ -492,13 +524,14 @@ mod tests {
             force: [0.1, 0.0, -9.81],
             source: None,
             ranges: &ranges,
+            convection: true,
         };
         let plane = layout.plane_len();
         for c in 0..3 {
             for k in 1..=4 {
                 let mut base = vec![0.5; plane];
                 let mut wide = vec![0.5; plane];
-                accumulate_plane(&mut base, k, &u, &terms, c, -0.5, 0.01);
+                accumulate_plane::<true>(&mut base, k, &u, &terms, c, -0.5, 0.01);
                 // SAFETY: AVX2 checked above.
                 unsafe { accumulate_plane_avx2(&mut wide, k, &u, &terms, c, -0.5, 0.01) };
                 assert!(base
@@ -507,5 +540,55 @@ mod tests {
                     .all(|(a, b)| a.to_bits() == b.to_bits()));
             }
         }
+    }
+
+    /// Without convection the tendency is exactly `ν ∇²u + f` with the advection of the same
+    /// field taken out, bit for bit the same Laplacian as with it, for the explicit stages
+    /// and for `EulerRKC`'s frozen tendency (`f − ∇p` there, the Laplacian in its stages).
+    #[test]
+    fn convection_off_drops_exactly_the_advection() {
+        let layout = PaddedLayout::new([7, 6, 5]);
+        let bc = BoundaryConditions::periodic();
+        let ranges =
+            std::array::from_fn(|c| std::array::from_fn(|d| bc.momentum_range(layout.n, c, d)));
+        let mut seed = 0x51A4_7F1E_33C2_9B05;
+        let u: [Vec<f64>; 3] =
+            std::array::from_fn(|_| (0..layout.len).map(|_| random(&mut seed)).collect());
+        let pressure: Vec<f64> = (0..7 * 6 * 5).map(|_| random(&mut seed)).collect();
+        let terms = |convection, nu| MomentumTerms {
+            layout: &layout,
+            h: [0.3, 0.5, 0.4],
+            nu,
+            force: [0.1, 0.0, -9.81],
+            source: None,
+            ranges: &ranges,
+            convection,
+        };
+        let zero = || -> [Vec<f64>; 3] { std::array::from_fn(|_| vec![0.0; layout.len]) };
+        let (mut with, mut without, mut advection_only) = (zero(), zero(), zero());
+        accumulate_tendency(&mut with, &u, &terms(true, 0.01), 0.0, 1.0);
+        accumulate_tendency(&mut without, &u, &terms(false, 0.01), 0.0, 1.0);
+        // ν = 0, f = 0: the advection alone, −∇·(uu)
+        let mut inviscid = terms(true, 0.0);
+        inviscid.force = [0.0; 3];
+        accumulate_tendency(&mut advection_only, &u, &inviscid, 0.0, 1.0);
+        let (mut frozen_with, mut frozen_without) = (zero(), zero());
+        frozen_tendency(&mut frozen_with, &u, &terms(true, 0.01), &pressure);
+        frozen_tendency(&mut frozen_without, &u, &terms(false, 0.01), &pressure);
+        let mut largest: f64 = 0.0;
+        for c in 0..3 {
+            for p in 0..layout.len {
+                let adv = advection_only[c][p];
+                largest = largest.max(adv.abs());
+                let tolerance = 1e-12 * (1.0 + with[c][p].abs() + adv.abs());
+                assert!(
+                    (with[c][p] - adv - without[c][p]).abs() < tolerance,
+                    "{c} {p}"
+                );
+                let frozen = frozen_with[c][p] - adv - frozen_without[c][p];
+                assert!(frozen.abs() < 1e-12 * (1.0 + adv.abs()), "frozen {c} {p}");
+            }
+        }
+        assert!(largest > 0.1, "the field must advect: {largest}");
     }
 }

@@ -26,6 +26,12 @@ const DRAG_LAW_IMPLICIT: &str = "EulerImplicit";
 pub(super) fn fluid_scheme(case: &Case) -> Result<(TimeScheme, bool), FsimError> {
     let drag_law_case =
         case.coupling.model == CouplingModel::DragLaw && case.cloud_properties.is_some();
+    if drag_law_case && !case.convection {
+        return Err(FsimError::input(
+            "system/fvSolution: fsim { convection off; } is for the resolved fluid (model none \
+             or direct); the drag-law model's predictor keeps its advection (DPMFoam's UcEqn)",
+        ));
+    }
     Ok(match (&case.time_scheme, drag_law_case) {
         (None, true) => (TimeScheme::Euler, false),
         (Some(name), true) => match name.as_str() {

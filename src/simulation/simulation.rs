@@ -74,6 +74,7 @@ impl Simulation {
             nu: case.transport.nu,
             scheme,
             body_force: [0.0; 3],
+            convection: case.convection,
         };
         let mut fluid =
             FluidSolver::new(case.mesh.grid.clone(), boundary_conditions(case)?, settings)

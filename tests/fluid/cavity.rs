@@ -85,6 +85,7 @@ fn cavity(scheme: TimeScheme, max_co: f64) {
         nu,
         scheme,
         body_force: [0.0; 3],
+        convection: true,
     };
     let mut s = FluidSolver::new(grid, bc, settings).unwrap();
     let mut t = 0.0;

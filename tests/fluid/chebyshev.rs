@@ -17,6 +17,7 @@ fn periodic_square(n: usize, nu: f64) -> FluidSolver {
         nu,
         scheme: TimeScheme::EulerRKC,
         body_force: [0.0; 3],
+        convection: true,
     };
     FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap()
 }
@@ -232,6 +233,7 @@ fn rejects_outlets() {
         nu: 1.0,
         scheme: TimeScheme::EulerRKC,
         body_force: [0.0; 3],
+        convection: true,
     };
     let error = FluidSolver::new(grid, bc, settings).err().unwrap();
     assert!(error.contains("outlets"), "{error}");
@@ -247,6 +249,7 @@ fn the_hook_gets_each_component_through_its_stages_then_the_mass_source() {
         nu: 1.0,
         scheme: TimeScheme::EulerRKC,
         body_force: [0.0; 3],
+        convection: true,
     };
     let mut s = FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap();
     s.set_velocity(|c, x| (x[(c + 1) % 3] * 5.0).sin());

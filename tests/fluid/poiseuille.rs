@@ -30,6 +30,7 @@ fn channel(nu: f64, body_force: [f64; 3], scheme: TimeScheme) -> FluidSolver {
             nu,
             scheme,
             body_force,
+            convection: true,
         },
     )
     .unwrap()
@@ -134,6 +135,7 @@ fn channel_with_inlet_and_outlet_develops_the_parabola_and_its_pressure_drop() {
             nu,
             scheme: TimeScheme::RK3,
             body_force: [0.0; 3],
+            convection: true,
         },
     )
     .unwrap();
@@ -190,6 +192,7 @@ fn fluid_at_rest_under_gravity_stays_at_rest_with_hydrostatic_pressure() {
                 nu: 1e-3,
                 scheme,
                 body_force: g,
+                convection: true,
             },
         )
         .unwrap();

@@ -30,6 +30,7 @@ fn solver(scheme: TimeScheme) -> FluidSolver {
             nu: 0.01,
             scheme,
             body_force: [0.0, -0.1, 0.0],
+            convection: true,
         },
     )
     .unwrap();

@@ -13,6 +13,7 @@ fn periodic_box(n: [usize; 3], nu: f64, scheme: TimeScheme) -> FluidSolver {
         nu,
         scheme,
         body_force: [0.0; 3],
+        convection: true,
     };
     FluidSolver::new(grid, BoundaryConditions::periodic(), settings).unwrap()
 }
@@ -82,6 +83,7 @@ fn taylor_green_in_a_slip_walled_box_decays_at_exact_rate() {
         nu,
         scheme: TimeScheme::RK3,
         body_force: [0.0; 3],
+        convection: true,
     };
     let mut s = FluidSolver::new(grid, bc, settings).unwrap();
     s.set_velocity(|c, x| taylor_green(c, x, 1.0));

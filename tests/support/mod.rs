@@ -169,6 +169,7 @@ pub fn wall_channel(
         nu,
         scheme,
         body_force: [g, 0.0, 0.0],
+        convection: true,
     };
     FluidSolver::new(grid, bc, settings).unwrap()
 }

@@ -37,6 +37,7 @@ pub fn slit_fluid(l: usize, lateral: usize, wall_velocity: f64) -> FluidSolver {
         nu: 1.0,
         scheme: TimeScheme::EulerRKC,
         body_force: [0.0; 3],
+        convection: true,
     };
     FluidSolver::new(grid, bc, settings).unwrap()
 }

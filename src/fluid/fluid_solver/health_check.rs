@@ -204,12 +204,15 @@ impl FluidSolver {
     /// The scheme's stability bound on `Δt` for the current velocity (paper eq. 3 for Euler;
     /// see [`TimeScheme::stability_bound`](crate::fluid::TimeScheme::stability_bound)).
     pub fn stability_bound(&self) -> f64 {
-        self.settings.scheme.stability_bound(
-            self.settings.nu,
-            self.grid.h,
-            self.active(),
-            self.max_speed(),
-        )
+        // without advection only the viscous part bounds the step
+        let speed = if self.settings.convection {
+            self.max_speed()
+        } else {
+            [0.0; 3]
+        };
+        self.settings
+            .scheme
+            .stability_bound(self.settings.nu, self.grid.h, self.active(), speed)
     }
 
     /// Courant number per unit time step: `Co = Δt × courant_rate()` (OpenFOAM's definition,

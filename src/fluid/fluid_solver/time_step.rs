@@ -50,6 +50,7 @@ impl FluidSolver {
                 force,
                 source: self.source.as_ref(),
                 ranges: &self.momentum_ranges,
+                convection: self.settings.convection,
             };
             accumulate_tendency(&mut self.q, &self.u, &terms, a, dt);
             add_scaled(&mut self.u, &self.q, b, &self.layout, &self.momentum_ranges);
@@ -150,6 +151,7 @@ impl FluidSolver {
             force,
             source: self.source.as_ref(),
             ranges: &self.momentum_ranges,
+            convection: self.settings.convection,
         };
         frozen_tendency(&mut self.q, &self.u, &terms, &self.p);
         let terms = StageTerms {
