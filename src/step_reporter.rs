@@ -425,7 +425,7 @@ impl StepReporter {
         if self.cloud_steps > 0 {
             self.log.line(&format!(
                 "Free flight: {} of {} steps (no pair or wall could meet within them: one step \
-                 each, contact detection and, without torque, rotation skipped)\n",
+                 each, contact detection skipped)\n",
                 self.free_flight_steps, self.cloud_steps
             ))?;
         }

@@ -426,7 +426,6 @@ impl Dem {
             rho: &p.density,
             fe: &p.external_force,
             te: &p.external_torque,
-            rotate: true,
         };
         let gather = Gather {
             own: &self.acc_own,

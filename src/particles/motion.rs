@@ -26,8 +26,6 @@ pub(super) struct Motion<'a> {
     pub(super) rho: &'a [f64],
     pub(super) fe: &'a [Vec3],
     pub(super) te: &'a [Vec3],
-    /// Integrate `ω` (false only in a step no torque acts in: [`super::Dem::free_flight`]).
-    pub(super) rotate: bool,
 }
 
 impl<'a> Motion<'a> {
@@ -58,11 +56,7 @@ impl<'a> Motion<'a> {
         for a in 0..3 {
             // times 1 (exact) along a free axis, 0 along a two-dimensional case's empty one
             v[a] = (v[a] + self.half * ((f[a] + fe[a]) * inv_m + g[a] * buoy)) * free[a];
-        }
-        if self.rotate {
-            for a in 0..3 {
-                w[a] += self.half * (t[a] + te[a]) * inv_i;
-            }
+            w[a] += self.half * (t[a] + te[a]) * inv_i;
         }
     }
 

@@ -17,8 +17,7 @@
 //! `skin − 2δ`; with `c_v`, `c_a` the centres of the velocities' and accelerations' bounding
 //! boxes, `|v_i − v_j| ≤ 2 max_k |v_k − c_v|` (and the same for `a`) bounds its closing. Every
 //! particle against every wall face (its surface) and rebound face (its centre): the distance
-//! against its own approach to the face. Rotation is not integrated in such a step when the coupling sets no
-//! torque (`ω` is then constant: no contact, no external torque).
+//! against its own approach to the face.
 
 use super::Dem;
 use crate::particles::domain_box::{minimum_image, FaceCondition};
@@ -68,7 +67,15 @@ impl Dem {
         if self.never_free_flight {
             return false;
         }
-        if self.particles.is_empty() {
+        // a contact acting now (the last evaluation's loads) ends the test at once: in a bed
+        // the first particles read decide it
+        let zero = Vec3::zeros();
+        let p = &self.particles;
+        if p.is_empty()
+            || p.contact_force
+                .par_chunks(CHUNK)
+                .any(|f| f.iter().any(|f| *f != zero))
+        {
             return false;
         }
         let mut accelerations = std::mem::take(&mut self.acceleration);
@@ -177,16 +184,10 @@ impl Dem {
     }
 
     /// One kick–drift–kick step of `dt` under the constant loads alone (no contact acts: see
-    /// [`Dem::contact_free`]), `ω` left as it is when no torque is set; rebuilds the lists when
-    /// a particle has moved more than half the skin.
+    /// [`Dem::contact_free`]); rebuilds the lists when a particle has moved more than half the
+    /// skin.
     pub(super) fn free_flight(&mut self, dt: f64) {
-        let rotate = self
-            .particles
-            .external_torque
-            .iter()
-            .any(|t| *t != Vec3::zeros());
-        let (mut motion, _, p) = self.motion_parts(dt);
-        motion.rotate = rotate;
+        let (motion, _, p) = self.motion_parts(dt);
         let zero = Vec3::zeros();
         let moved =
             p.x.par_chunks_mut(CHUNK)
