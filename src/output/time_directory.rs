@@ -296,7 +296,7 @@ pub fn purge_write(
 mod tests {
     use super::*;
     use crate::output::test_support::ScratchDir;
-    use std::os::unix::fs::symlink;
+    use std::os::unix::fs::{symlink, MetadataExt};
 
     fn read_dir_paths(dir: &Path) -> Result<Vec<PathBuf>, std::io::Error> {
         fs::read_dir(dir)?.map(|e| e.map(|e| e.path())).collect()
@@ -408,7 +408,11 @@ mod tests {
         symlink(outside.path().join("U.air"), zero.join("data.txt")).unwrap();
         // a reader holding the old directory open keeps seeing the old one whole
         let old = fs::File::open(&zero).unwrap();
+        let old_inode = old.metadata().unwrap().ino();
         write_time(case.path(), "0", "new");
+        // one directory took the old one's place, rather than files renamed into it
+        assert_ne!(fs::metadata(&zero).unwrap().ino(), old_inode);
+        assert_eq!(old.metadata().unwrap().nlink(), 0, "the old one is deleted");
         assert_eq!(fs::read_to_string(zero.join("data.txt")).unwrap(), "new");
         assert!(fs::symlink_metadata(zero.join("U.air"))
             .unwrap()
