@@ -7,7 +7,7 @@
 
 use fsim::grid::Grid;
 use fsim::output::{
-    write_fluid, write_fluid_vti, write_fluid_vtk, CaseOutput, CellData, RestartHeader,
+    write_fluid, write_fluid_vti, write_fluid_vtk, CaseOutput, CellData, RestartHeader, SafeDir,
     RESTART_FILE_NAME,
 };
 use std::path::Path;
@@ -31,16 +31,17 @@ fn main() {
         "{:<28} {:>10} {:>14} {:>9}",
         "format", "write s", "write+fsync s", "MB"
     );
-    measure(&dir.join("fluid.vtk"), "legacy .vtk (big-endian)", |path| {
-        write_fluid_vtk(path, &grid, "bench", &fields).unwrap()
+    let out = SafeDir::open_case(&dir).unwrap();
+    measure(&dir, "fluid.vtk", "legacy .vtk (big-endian)", |name| {
+        write_fluid_vtk(&out, name, &grid, "bench", &fields).unwrap()
     });
-    measure(&dir.join("fluid.vti"), "XML .vti (raw appended)", |path| {
-        write_fluid_vti(path, &grid, &fields).unwrap()
+    measure(&dir, "fluid.vti", "XML .vti (raw appended)", |name| {
+        write_fluid_vti(&out, name, &grid, &fields).unwrap()
     });
     let flat_u: Vec<f64> = u.iter().flatten().copied().collect();
-    measure(&dir.join("restart.bin"), "restart.bin (CRC-32)", |path| {
+    measure(&dir, "restart.bin", "restart.bin (CRC-32)", |name| {
         RestartHeader::new(0.0, 0, 1.0)
-            .write(path, &[("U", &flat_u), ("p", &p)])
+            .write(&out, name, &[("U", &flat_u), ("p", &p)])
             .unwrap()
     });
     // A whole time directory as the time loop writes it: both fluid files and the restart
@@ -52,9 +53,9 @@ fn main() {
     for step in 1..=3 {
         let start = Instant::now();
         let time = output.begin(step as f64).unwrap();
-        write_fluid(time.path(), &grid, "bench", &fields).unwrap();
+        write_fluid(time.dir(), &grid, "bench", &fields).unwrap();
         RestartHeader::new(step as f64, step, 1.0)
-            .write(&time.file(RESTART_FILE_NAME), &[("U", &flat_u), ("p", &p)])
+            .write(time.dir(), RESTART_FILE_NAME, &[("U", &flat_u), ("p", &p)])
             .unwrap();
         output.commit(time).unwrap();
         best = best.min(start.elapsed().as_secs_f64());
@@ -72,13 +73,14 @@ fn main() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-fn measure(path: &Path, label: &str, write: impl Fn(&Path)) {
+fn measure(dir: &Path, name: &str, label: &str, write: impl Fn(&str)) {
+    let path = &dir.join(name);
     let mut best = f64::INFINITY;
     let mut best_synced = f64::INFINITY;
     for _ in 0..3 {
         let _ = std::fs::remove_file(path);
         let start = Instant::now();
-        write(path);
+        write(name);
         let written = start.elapsed().as_secs_f64();
         std::fs::File::open(path).unwrap().sync_all().unwrap();
         best = best.min(written);

@@ -14,7 +14,7 @@
 use fsim::grid::Grid;
 use fsim::output::{
     write_fluid, Banner, CaseOutput, CellData, Log, Monitor, OutputError, ParticleFields,
-    RestartHeader, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
+    RestartHeader, SafeDir, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
 };
 use fsim::Vec3;
 use std::f64::consts::PI;
@@ -49,15 +49,18 @@ fn main() -> Result<(), OutputError> {
         log.time(&output.time_name(t)).map_err(log_err)?;
         let dir = output.begin(t)?;
         write_fluid(
-            dir.path(),
+            dir.dir(),
             &grid,
             &format!("fsim sample t = {t}"),
             &[CellData::Vector("U", &u), CellData::Scalar("p", &p)],
         )?;
         let count = if t == 1e-5 { 0 } else { 5 };
-        write_particles(&dir.file(PARTICLE_FILE_NAME), t, count)?;
-        RestartHeader::new(t, step as u64, 1e-5)
-            .write(&dir.file(RESTART_FILE_NAME), &[("p", &p)])?;
+        write_particles(dir.dir(), t, count)?;
+        RestartHeader::new(t, step as u64, 1e-5).write(
+            dir.dir(),
+            RESTART_FILE_NAME,
+            &[("p", &p)],
+        )?;
         let path = output.commit(dir)?;
         monitor.row(&[t, p.iter().sum::<f64>() / p.len() as f64])?;
         log.line(&format!("wrote {}", path.display()))
@@ -99,7 +102,7 @@ fn fluid(grid: &Grid, t: f64) -> (Vec<[f64; 3]>, Vec<f64>) {
     (u, p)
 }
 
-fn write_particles(path: &std::path::Path, t: f64, count: usize) -> Result<(), OutputError> {
+fn write_particles(dir: &SafeDir, t: f64, count: usize) -> Result<(), OutputError> {
     let idx = |i: usize| i as f64;
     let positions: Vec<_> = (0..count)
         .map(|i| Vec3::new(-0.4 + 0.15 * idx(i), 0.5, 1.25 + t))
@@ -123,5 +126,5 @@ fn write_particles(path: &std::path::Path, t: f64, count: usize) -> Result<(), O
         hydrodynamic_force: &hydro,
         contact_force: &contact,
     }
-    .write(path)
+    .write(dir, PARTICLE_FILE_NAME)
 }

@@ -14,11 +14,12 @@ use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalFi
 use crate::cli::Options;
 use crate::error::FsimError;
 use crate::output::{
-    write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME, RESTART_FILE_NAME,
+    time_name, write_fluid, Banner, CaseOutput, CellData, OutputError, PARTICLE_FILE_NAME,
+    RESTART_FILE_NAME,
 };
 use crate::run_signals::RunSignals;
 use crate::simulation::{continues, Coupling, Simulation, StepSizing};
-use crate::step_reporter::StepReporter;
+use crate::step_reporter::{StepReporter, MONITOR_NAMES};
 use std::time::Instant;
 
 /// Runs `fsimFoam` with the given options.
@@ -94,6 +95,14 @@ fn run_case(
         return crate::run_plan::print_plan(case, &mut sim, threads);
     }
 
+    // Nothing is written yet: a symbolic link where the run would write is bad input.
+    crate::output::check_no_links_where_written(
+        &case.dir,
+        sim.time.time,
+        &time_name(sim.time.time, case.control.time_precision),
+        &MONITOR_NAMES,
+    )
+    .map_err(|e| FsimError::input(e.to_string()))?;
     let mut output = CaseOutput::open(
         &case.dir,
         case.control.time_precision,
@@ -257,12 +266,12 @@ fn write_time(output: &mut CaseOutput, sim: &mut Simulation) -> Result<(), FsimE
     if let Some(alpha) = &alpha {
         fields.push(CellData::Scalar("alpha", alpha));
     }
-    write_fluid(dir.path(), &grid, &title, &fields).map_err(output_error)?;
+    write_fluid(dir.dir(), &grid, &title, &fields).map_err(output_error)?;
     drop(fields);
     if let Some(particles) = sim.particles() {
-        particles.write(&dir.file(PARTICLE_FILE_NAME))?;
+        particles.write(dir.dir(), PARTICLE_FILE_NAME)?;
     }
-    sim.write_restart(&dir.file(RESTART_FILE_NAME))?;
+    sim.write_restart(dir.dir(), RESTART_FILE_NAME)?;
     output.commit(dir).map_err(output_error)?;
     Ok(())
 }

@@ -98,6 +98,10 @@ const SEDIMENTATION_MONITOR_COLUMNS: [&str; 17] = [
     "minGapOverR",
 ];
 
+/// The monitors a run may open, `postProcessing/<name>/<startTime>/<name>.dat` each: the
+/// places checked for links before the run starts (src/output/case_output.rs).
+pub const MONITOR_NAMES: [&str; 5] = ["fluid", "cloud", "dragLaw", "direct", "sedimentation"];
+
 /// The log and the monitors of one run.
 pub struct StepReporter {
     pub log: Log<Stdout>,

@@ -6,11 +6,11 @@
 //! # fn run(grid: &Grid, u: &[[f64; 3]], p: &[f64]) -> Result<(), OutputError> {
 //! let mut output = CaseOutput::open(Path::new("cavity"), 6, 0, 0.0)?;
 //! let dir = output.begin(0.1)?;
-//! write_fluid(dir.path(), grid, "fsim t = 0.1", &[
+//! write_fluid(dir.dir(), grid, "fsim t = 0.1", &[
 //!     CellData::Vector("U", u),
 //!     CellData::Scalar("p", p),
 //! ])?;
-//! RestartHeader::new(0.1, 100, 1e-3).write(&dir.file(RESTART_FILE_NAME), &[("p", p)])?;
+//! RestartHeader::new(0.1, 100, 1e-3).write(dir.dir(), RESTART_FILE_NAME, &[("p", p)])?;
 //! output.commit(dir)?; // now `cavity/0.1/` exists, whole, and `cavity/cavity.pvd` lists it
 //! # Ok(()) }
 //! ```
@@ -19,8 +19,9 @@ use super::collection::{collection_path, rebuild_collection, write_collection};
 use super::fluid_vti::write_fluid_vti;
 use super::fluid_vtk::{write_fluid_vtk, CellData};
 use super::output_error::OutputError;
+use super::safe_dir::{first_link_below, symlink_refused, EntryKind, SafeDir};
 use super::time_directory::{
-    latest_time, purge_write, remove_partial_time_directories, TimeDirectory, TimeEntry,
+    latest_time, purge_write, remove_partial_time_directories, time_value, TimeDirectory, TimeEntry,
 };
 use super::time_name::time_name;
 use crate::grid::Grid;
@@ -47,16 +48,63 @@ const COLLECTION_PARTS: [&str; 2] = [FLUID_VTI_FILE_NAME, PARTICLE_FILE_NAME];
 /// (a computed field is computed once per file), and one after the other the second core
 /// waited for the whole write.
 pub fn write_fluid(
-    dir: &Path,
+    dir: &SafeDir,
     grid: &Grid,
     title: &str,
     fields: &[CellData],
 ) -> Result<(), OutputError> {
     let (legacy, xml) = rayon::join(
-        || write_fluid_vtk(&dir.join(FLUID_VTK_FILE_NAME), grid, title, fields),
-        || write_fluid_vti(&dir.join(FLUID_VTI_FILE_NAME), grid, fields),
+        || write_fluid_vtk(dir, FLUID_VTK_FILE_NAME, grid, title, fields),
+        || write_fluid_vti(dir, FLUID_VTI_FILE_NAME, grid, fields),
     );
     legacy.and(xml)
+}
+
+/// Refuses, before a run writes anything, a symbolic link where it will write: along
+/// `postProcessing/<monitor>/<start_name>/<monitor>.dat` for each of `monitors`, at the
+/// collection file, and under any time name from `start_time` on (the start's directory is
+/// rewritten, later ones written). Why: a case from elsewhere must not make fsim write outside
+/// it, and a refusal at start leaves nothing half-run; each write checks again on its own.
+pub fn check_no_links_where_written(
+    case_dir: &Path,
+    start_time: f64,
+    start_name: &str,
+    monitors: &[&str],
+) -> Result<(), OutputError> {
+    for monitor in monitors {
+        let file = Path::new("postProcessing")
+            .join(monitor)
+            .join(start_name)
+            .join(format!("{monitor}.dat"));
+        if let Some(link) = first_link_below(case_dir, &file)? {
+            return Err(symlink_refused(&link));
+        }
+    }
+    let collection = collection_path(case_dir)?;
+    if let Some(name) = collection.file_name() {
+        if let Some(link) = first_link_below(case_dir, Path::new(name))? {
+            return Err(symlink_refused(&link));
+        }
+    }
+    let case = SafeDir::open_case(case_dir)?;
+    let mut links: Vec<(f64, String)> = Vec::new();
+    for (name, kind) in case.entries()? {
+        let Some(name) = name.to_str() else { continue };
+        if kind != EntryKind::Symlink {
+            continue;
+        }
+        match time_value(name) {
+            Some(value) if value >= start_time || name == start_name => {
+                links.push((value, name.to_string()))
+            }
+            _ => {}
+        }
+    }
+    links.sort_by(|a, b| a.0.total_cmp(&b.0));
+    match links.first() {
+        Some((_, name)) => Err(symlink_refused(&case.join(name))),
+        None => Ok(()),
+    }
 }
 
 /// Writer of a case's time directories and collection file.
@@ -124,7 +172,7 @@ impl CaseOutput {
         self.purge_write = purge_write;
     }
 
-    /// Starts the time directory of time `t`; write its files at [`TimeDirectory::file`].
+    /// Starts the time directory of time `t`; write its files into [`TimeDirectory::dir`].
     ///
     /// As OpenFOAM does, when `t` differs from the previously written time but would get the
     /// same name, the precision grows (up to 17 digits, enough to tell any two f64 apart) so

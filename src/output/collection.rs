@@ -4,10 +4,13 @@
 //! vtkio does not write `.pvd`; it is a few lines of XML, written here. Parts: the fluid is
 //! part 0, the particles part 1, so ParaView groups both files of a time into one multiblock.
 //! The file is rewritten whole after every write (temporary file, `fsync`, rename) and rebuilt
-//! from the time directories at start, so a continued run lists the whole series.
+//! from the time directories at start, so a continued run lists the whole series. The file
+//! is written in the case directory without following a link ([`SafeDir`]); a link in its
+//! place is refused.
 
 use super::output_error::OutputError;
-use super::time_directory::{list_time_directories, sync_dir};
+use super::safe_dir::{symlink_refused, EntryKind, SafeDir};
+use super::time_directory::list_time_directories;
 use std::fmt::Write as _;
 use std::fs;
 use std::io::Write as _;
@@ -34,7 +37,8 @@ pub fn collection_path(case_dir: &Path) -> Result<PathBuf, OutputError> {
     Ok(case_dir.join(format!("{name}.pvd")))
 }
 
-/// Writes `entries` (in the order given) to `path` atomically.
+/// Writes `entries` (in the order given) to `path` atomically; `path` is a file directly in
+/// the case directory, as [`collection_path`] gives.
 pub fn write_collection(path: &Path, entries: &[CollectionEntry]) -> Result<(), OutputError> {
     let mut xml = String::from(
         "<?xml version=\"1.0\"?>\n\
@@ -53,19 +57,27 @@ pub fn write_collection(path: &Path, entries: &[CollectionEntry]) -> Result<(), 
     }
     xml.push_str("  </Collection>\n</VTKFile>\n");
 
-    let file_name = path.file_name().and_then(|n| n.to_str()).unwrap_or("x.pvd");
-    let temporary = path.with_file_name(format!(".{file_name}.tmp"));
+    let (Some(parent), Some(file_name)) = (path.parent(), path.file_name()) else {
+        return Err(OutputError::invalid(path, "not a file name"));
+    };
+    let parent = if parent.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        parent
+    };
+    let case = SafeDir::open_case(parent)?;
+    if case.kind(file_name)? == Some(EntryKind::Symlink) {
+        return Err(symlink_refused(path));
+    }
+    let temporary = format!(".{}.tmp", file_name.to_string_lossy());
     let io_err = |e| OutputError::io(path, "cannot write collection file", e);
     {
-        let mut file = fs::File::create(&temporary).map_err(io_err)?;
+        let mut file = case.create_file(&temporary)?;
         file.write_all(xml.as_bytes()).map_err(io_err)?;
         file.sync_all().map_err(io_err)?;
     }
-    fs::rename(&temporary, path).map_err(io_err)?;
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        sync_dir(parent)?;
-    }
-    Ok(())
+    case.rename(&temporary, file_name)?;
+    case.sync()
 }
 
 /// Lists, for every time directory of the case in time order, each of `part_files` that

@@ -13,14 +13,19 @@
 
 use super::fluid_vtk::{validate_cell_data, CellData};
 use super::output_error::OutputError;
+use super::safe_dir::SafeDir;
 use crate::grid::Grid;
-use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::Path;
 
-/// Writes `fields` on `grid` to `path` (conventionally `<time>/fluid.vti`). Same arguments
-/// and same cell order as [`super::write_fluid_vtk`].
-pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<(), OutputError> {
+/// Writes `fields` on `grid` to file `name` of `dir` (conventionally `<time>/fluid.vti`). Same
+/// arguments and same cell order as [`super::write_fluid_vtk`].
+pub fn write_fluid_vti(
+    dir: &SafeDir,
+    name: &str,
+    grid: &Grid,
+    fields: &[CellData],
+) -> Result<(), OutputError> {
+    let path = &dir.join(name);
     validate_cell_data(path, grid, fields)?;
     let [nx, ny, nz] = grid.n;
     let [ox, oy, oz] = grid.origin;
@@ -62,7 +67,7 @@ pub fn write_fluid_vti(path: &Path, grid: &Grid, fields: &[CellData]) -> Result<
     );
 
     let io_err = |e| OutputError::io(path, "cannot write VTK file", e);
-    let file = File::create(path).map_err(io_err)?;
+    let file = dir.create_file(name)?;
     let mut out = BufWriter::with_capacity(1 << 20, file);
     out.write_all(header.as_bytes()).map_err(io_err)?;
     for field in fields {
@@ -94,7 +99,8 @@ mod tests {
         let u: Vec<[f64; 3]> = (0..12).map(|i| [i as f64, -(i as f64), 1e-300]).collect();
         let path = dir.path().join("fluid.vti");
         write_fluid_vti(
-            &path,
+            &SafeDir::open_case(dir.path()).unwrap(),
+            "fluid.vti",
             &grid,
             &[CellData::Vector("U", &u), CellData::Scalar("p", &p)],
         )
@@ -136,7 +142,8 @@ mod tests {
         let dir = ScratchDir::new("vti-bad");
         let grid = Grid::new([2, 2, 2], [1.0; 3], [0.0; 3]);
         let err = write_fluid_vti(
-            &dir.path().join("f.vti"),
+            &SafeDir::open_case(dir.path()).unwrap(),
+            "f.vti",
             &grid,
             &[CellData::Scalar("p", &[0.0])],
         )

@@ -16,8 +16,8 @@
 //! reads it back in the tests.
 
 use super::output_error::OutputError;
+use super::safe_dir::SafeDir;
 use crate::grid::Grid;
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -81,21 +81,23 @@ impl CellData<'_> {
     }
 }
 
-/// Writes `fields` on `grid` to `path` (conventionally `<time>/fluid.vtk`).
+/// Writes `fields` on `grid` to file `name` of `dir` (conventionally `<time>/fluid.vtk`).
 ///
 /// The points of the STRUCTURED_POINTS set are the cell corners, `n + 1` per direction, at
 /// `origin + index · h`; the arrays are CELL_DATA, so VTK's cell `(i, j, k)` is the grid's cell
 /// `(i, j, k)` with the same x-fastest order. `title` goes on the header's second line.
 pub fn write_fluid_vtk(
-    path: &Path,
+    dir: &SafeDir,
+    name: &str,
     grid: &Grid,
     title: &str,
     fields: &[CellData],
 ) -> Result<(), OutputError> {
+    let path = &dir.join(name);
     validate_cell_data(path, grid, fields)?;
     let cells = grid.cell_count();
     let io_err = |e| OutputError::io(path, "cannot write VTK file", e);
-    let file = File::create(path).map_err(io_err)?;
+    let file = dir.create_file(name)?;
     let mut out = BufWriter::with_capacity(1 << 20, file);
     write_header(&mut out, grid, title).map_err(io_err)?;
     writeln!(out, "CELL_DATA {cells}").map_err(io_err)?;
@@ -223,7 +225,8 @@ mod tests {
         let (p, u) = sample(&grid);
         let path = dir.path().join("fluid.vtk");
         let fields = [CellData::Vector("U", &u), CellData::Scalar("p", &p)];
-        write_fluid_vtk(&path, &grid, "fsim t = 0.1", &fields).unwrap();
+        let out = SafeDir::open_case(dir.path()).unwrap();
+        write_fluid_vtk(&out, "fluid.vtk", &grid, "fsim t = 0.1", &fields).unwrap();
         let text = std::fs::read(&path).unwrap();
         assert!(text.starts_with(b"# vtk DataFile Version 3.0\nfsim t = 0.1\nBINARY\n"));
         let header = String::from_utf8_lossy(&text[..200]);
@@ -262,13 +265,12 @@ mod tests {
     fn wrong_length_and_bad_names_are_refused_naming_the_file() {
         let dir = ScratchDir::new("fluid-bad");
         let grid = Grid::new([2, 2, 2], [1.0; 3], [0.0; 3]);
-        let path = dir.path().join("fluid.vtk");
-        let err =
-            write_fluid_vtk(&path, &grid, "", &[CellData::Scalar("p", &[1.0; 7])]).unwrap_err();
+        let out = SafeDir::open_case(dir.path()).unwrap();
+        let write = |fields: &[CellData]| write_fluid_vtk(&out, "fluid.vtk", &grid, "", fields);
+        let err = write(&[CellData::Scalar("p", &[1.0; 7])]).unwrap_err();
         assert!(err.to_string().contains("fluid.vtk"), "{err}");
         assert!(err.to_string().contains("7 values"), "{err}");
-        let err =
-            write_fluid_vtk(&path, &grid, "", &[CellData::Scalar("a b", &[1.0; 8])]).unwrap_err();
+        let err = write(&[CellData::Scalar("a b", &[1.0; 8])]).unwrap_err();
         assert!(err.to_string().contains("one word"), "{err}");
     }
 }

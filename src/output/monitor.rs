@@ -4,12 +4,16 @@
 //! own `<startTime>` directory, so no earlier record is touched; a run started again from the
 //! same start time replaces that run's file.
 //!
+//! The file is created without following a link anywhere below the case ([`SafeDir`]): a
+//! link in the way is refused, never written through.
+//!
 //! Rows are buffered and flushed at least once a second (and when the monitor is dropped), so
 //! `tail -f` and a plotting script see progress without a system call per step.
 
 use super::output_error::OutputError;
+use super::safe_dir::SafeDir;
 use super::time_name::format_general;
-use std::fs::{self, File};
+use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -62,9 +66,9 @@ impl Monitor {
                 format!("column name `{bad}` must be one word without spaces"),
             ));
         }
-        fs::create_dir_all(&dir)
-            .map_err(|e| OutputError::io(&dir, "cannot create directory", e))?;
-        let file = File::create(&path).map_err(|e| OutputError::io(&path, "cannot create", e))?;
+        let file = SafeDir::open_case(case_dir)?
+            .create_dir_all(&["postProcessing", name, start_time_name])?
+            .create_file(format!("{name}.dat"))?;
         let mut out = BufWriter::new(file);
         writeln!(out, "# {}", columns.join("\t"))
             .and_then(|_| out.flush())
@@ -130,6 +134,7 @@ pub fn format_value(v: f64) -> String {
 mod tests {
     use super::*;
     use crate::output::test_support::ScratchDir;
+    use std::fs;
 
     #[test]
     fn header_and_rows_follow_the_function_object_layout() {

@@ -6,10 +6,9 @@
 
 use super::fluid_vtk::validate_name;
 use super::output_error::OutputError;
+use super::safe_dir::SafeDir;
 use crate::Vec3;
-use std::fs::File;
 use std::io::Write;
-use std::path::Path;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType,
     UnstructuredGridPiece, Version, VertexNumbers, Vtk,
@@ -58,10 +57,12 @@ pub struct ParticleFields<'a> {
 }
 
 impl ParticleFields<'_> {
-    /// Writes the particles with arrays named `id`, `d`, `U`, `omega`, `F_hydro`, `F_contact`.
-    pub fn write(&self, path: &Path) -> Result<(), OutputError> {
+    /// Writes the particles with arrays named `id`, `d`, `U`, `omega`, `F_hydro`, `F_contact`
+    /// to file `name` of `dir`.
+    pub fn write(&self, dir: &SafeDir, name: &str) -> Result<(), OutputError> {
         write_particles_vtu(
-            path,
+            dir,
+            name,
             self.positions,
             &[
                 PointData::Int("id", self.id),
@@ -75,13 +76,15 @@ impl ParticleFields<'_> {
     }
 }
 
-/// Writes particles at `positions` with `data` (each array one value per particle) to `path`,
-/// conventionally `<time>/particles.vtu`.
+/// Writes particles at `positions` with `data` (each array one value per particle) to file
+/// `name` of `dir`, conventionally `<time>/particles.vtu`.
 pub fn write_particles_vtu(
-    path: &Path,
+    dir: &SafeDir,
+    name: &str,
     positions: &[Vec3],
     data: &[PointData],
 ) -> Result<(), OutputError> {
+    let path = &dir.join(name);
     let count = positions.len();
     for array in data {
         validate_name(path, array.name())?;
@@ -160,7 +163,7 @@ pub fn write_particles_vtu(
         xml = declare_empty_piece(xml);
     }
     let io_err = |e| OutputError::io(path, "cannot write particle file", e);
-    let mut file = File::create(path).map_err(io_err)?;
+    let mut file = dir.create_file(name)?;
     file.write_all(&xml).map_err(io_err)?;
     Ok(())
 }
@@ -181,6 +184,7 @@ fn declare_empty_piece(xml: Vec<u8>) -> Vec<u8> {
 mod tests {
     use super::*;
     use crate::output::test_support::ScratchDir;
+    use std::path::Path;
     use vtkio::model::IOBuffer;
 
     fn read_back(path: &Path) -> UnstructuredGridPiece {
@@ -224,7 +228,7 @@ mod tests {
             hydrodynamic_force: &hydro,
             contact_force: &contact,
         }
-        .write(&path)
+        .write(&SafeDir::open_case(dir.path()).unwrap(), "particles.vtu")
         .unwrap();
         let piece = read_back(&path);
         assert_eq!(piece.num_points(), 3);
@@ -266,7 +270,7 @@ mod tests {
             hydrodynamic_force: &[],
             contact_force: &[],
         }
-        .write(&path)
+        .write(&SafeDir::open_case(dir.path()).unwrap(), "particles.vtu")
         .unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         assert!(
@@ -281,9 +285,9 @@ mod tests {
     #[test]
     fn mismatched_lengths_are_refused() {
         let dir = ScratchDir::new("particles-bad");
-        let path = dir.path().join("particles.vtu");
         let err = write_particles_vtu(
-            &path,
+            &SafeDir::open_case(dir.path()).unwrap(),
+            "particles.vtu",
             &[Vec3::zeros(); 2],
             &[PointData::Scalar("d", &[1.0])],
         )

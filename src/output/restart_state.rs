@@ -15,9 +15,9 @@
 //! truncated file before the checksum is computed, so the error says which of the two happened.
 
 use super::output_error::OutputError;
+use super::safe_dir::SafeDir;
 use flate2::Crc;
 use std::collections::BTreeMap;
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -57,9 +57,15 @@ impl RestartHeader {
         }
     }
 
-    /// Writes this header and the borrowed `arrays` to `path` (conventionally
+    /// Writes this header and the borrowed `arrays` to file `name` of `dir` (conventionally
     /// `<time>/restart.bin`). Array names must be distinct.
-    pub fn write(&self, path: &Path, arrays: &[(&str, &[f64])]) -> Result<(), OutputError> {
+    pub fn write(
+        &self,
+        dir: &SafeDir,
+        name: &str,
+        arrays: &[(&str, &[f64])],
+    ) -> Result<(), OutputError> {
+        let path = &dir.join(name);
         for (i, (name, _)) in arrays.iter().enumerate() {
             if arrays[..i].iter().any(|(other, _)| other == name) {
                 return Err(OutputError::invalid(
@@ -85,7 +91,7 @@ impl RestartHeader {
                 .sum::<usize>();
 
         let io_err = |e| OutputError::io(path, "cannot write restart file", e);
-        let file = File::create(path).map_err(io_err)?;
+        let file = dir.create_file(name)?;
         let mut out = ChecksumWriter {
             inner: BufWriter::with_capacity(1 << 20, file),
             crc: Crc::new(),
@@ -310,7 +316,11 @@ mod tests {
         let u = random_bits(20261123, 10_007);
         let p = random_bits(7, 4096);
         header
-            .write(&path, &[("U", &u), ("p", &p), ("empty", &[])])
+            .write(
+                &SafeDir::open_case(dir.path()).unwrap(),
+                "restart.bin",
+                &[("U", &u), ("p", &p), ("empty", &[])],
+            )
             .unwrap();
         (path, header, u, p)
     }
@@ -381,10 +391,10 @@ mod tests {
     #[test]
     fn duplicate_array_names_are_refused() {
         let dir = ScratchDir::new("restart-dup");
-        let path = dir.path().join("restart.bin");
         let header = RestartHeader::new(0.0, 0, 1.0);
+        let out = SafeDir::open_case(dir.path()).unwrap();
         assert!(header
-            .write(&path, &[("U", &[1.0]), ("U", &[2.0])])
+            .write(&out, "restart.bin", &[("U", &[1.0]), ("U", &[2.0])])
             .is_err());
     }
 }

@@ -7,10 +7,18 @@
 //! is not a number) and which [`remove_partial_time_directories`] deletes at the next start.
 //!
 //! When `<case>/<timeName>/` already exists (the `0/` directory of initial conditions, or a run
-//! restarted from an earlier time that writes the same time again), its other files are kept
-//! and each new file replaces its namesake by a rename, which is atomic per file.
+//! restarted from an earlier time that writes the same time again), its other files are first
+//! hard-linked into the partial directory, which then takes the old one's place in one step
+//! (`renameat2(RENAME_EXCHANGE)`), and the old one, now hidden, is deleted: a reader sees the
+//! old directory or the new one, whole, and a crash leaves one of them under the time's name.
+//! Where the file system cannot exchange, the old directory is renamed aside to
+//! `.<timeName>.old` first, and a crash between the two renames is undone at the next start.
+//!
+//! Everything is done relative to the case directory's descriptor without following a link
+//! ([`SafeDir`]); a time directory that is a link is refused.
 
 use super::output_error::OutputError;
+use super::safe_dir::{symlink_refused, EntryKind, SafeDir};
 use std::collections::VecDeque;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -19,21 +27,26 @@ use std::path::{Path, PathBuf};
 const PARTIAL_SUFFIX: &str = ".partial";
 /// Suffix of a time directory being deleted by [`purge_write`].
 const PURGE_SUFFIX: &str = ".purge";
+/// Suffix of an existing time directory set aside while its replacement is renamed in (only
+/// where the file system cannot exchange two directories in one step).
+const OLD_SUFFIX: &str = ".old";
 
-/// A time directory under construction. Files go into [`TimeDirectory::path`]; nothing is
+/// A time directory under construction. Files go into [`TimeDirectory::dir`]; nothing is
 /// visible under the final name before [`TimeDirectory::commit`]. Dropped without commit, it
 /// removes its partial directory.
 #[derive(Debug)]
 pub struct TimeDirectory {
-    case_dir: PathBuf,
+    case: SafeDir,
     name: String,
-    partial: PathBuf,
+    partial_name: String,
+    partial: SafeDir,
     committed: bool,
 }
 
 impl TimeDirectory {
     /// Starts writing time `time_name` of the case: creates the empty hidden directory
-    /// `<case>/.<time_name>.partial/`, removing a stale one left by a crash.
+    /// `<case>/.<time_name>.partial/`, removing a stale one left by a crash. A link under the
+    /// time's name is refused now, before anything is written.
     pub fn begin(case_dir: &Path, time_name: &str) -> Result<Self, OutputError> {
         let is_time =
             looks_numeric(time_name) && time_name.parse::<f64>().is_ok_and(f64::is_finite);
@@ -43,28 +56,34 @@ impl TimeDirectory {
                 "a time directory name must be a finite number",
             ));
         }
-        let partial = case_dir.join(format!(".{time_name}{PARTIAL_SUFFIX}"));
-        if partial.exists() {
-            fs::remove_dir_all(&partial).map_err(|e| {
-                OutputError::io(&partial, "cannot remove stale partial time directory", e)
-            })?;
-        }
-        fs::create_dir_all(&partial)
-            .map_err(|e| OutputError::io(&partial, "cannot create time directory", e))?;
+        let case = SafeDir::open_case(case_dir)?;
+        check_time_target(&case, time_name)?;
+        let partial_name = format!(".{time_name}{PARTIAL_SUFFIX}");
+        // A stale one (or anything under our hidden name, a link included) is ours to remove.
+        case.remove_all(&partial_name)?;
+        let partial = case.create_dir(&partial_name)?;
         Ok(TimeDirectory {
-            case_dir: case_dir.to_path_buf(),
+            case,
             name: time_name.to_string(),
+            partial_name,
             partial,
             committed: false,
         })
     }
 
-    /// The directory to write files into now (the hidden partial one).
-    pub fn path(&self) -> &Path {
+    /// The directory to write files into now (the hidden partial one), opened without
+    /// following links: write with [`SafeDir::create_file`].
+    pub fn dir(&self) -> &SafeDir {
         &self.partial
     }
 
-    /// Where file `file_name` is written now.
+    /// The path of the directory files are written into now (the hidden partial one).
+    pub fn path(&self) -> &Path {
+        self.partial.path()
+    }
+
+    /// Where file `file_name` is written now (for messages and tests; fsim itself writes
+    /// through [`TimeDirectory::dir`]).
     pub fn file(&self, file_name: &str) -> PathBuf {
         self.partial.join(file_name)
     }
@@ -76,39 +95,69 @@ impl TimeDirectory {
 
     /// The directory's name once committed: `<case>/<timeName>`.
     pub fn final_path(&self) -> PathBuf {
-        self.case_dir.join(&self.name)
+        self.case.join(&self.name)
     }
 
     /// Makes the time directory visible: flushes every file to disk, then renames the partial
-    /// directory to its final name (or moves its files into an existing directory of that name).
+    /// directory to its final name in one step, or, if a directory of that name exists, adds
+    /// the old one's other files to it and swaps the two in one step (module documentation).
     pub fn commit(mut self) -> Result<PathBuf, OutputError> {
         let final_path = self.final_path();
-        let entries = read_dir_paths(&self.partial)?;
-        for file in &entries {
-            sync_file(file)?;
-        }
-        sync_dir(&self.partial)?;
-        if final_path.exists() {
-            for file in &entries {
-                let target = final_path.join(file.file_name().expect("entry has a name"));
-                if target.is_dir() {
-                    fs::remove_dir_all(&target)
-                        .map_err(|e| OutputError::io(&target, "cannot replace directory", e))?;
-                }
-                fs::rename(file, &target)
-                    .map_err(|e| OutputError::io(&target, "cannot move file into place", e))?;
+        match check_time_target(&self.case, &self.name)? {
+            None => {
+                self.partial.sync_all()?;
+                self.case.rename(&self.partial_name, &self.name)?;
             }
-            sync_dir(&final_path)?;
-            fs::remove_dir(&self.partial).map_err(|e| {
-                OutputError::io(&self.partial, "cannot remove emptied partial directory", e)
-            })?;
-        } else {
-            fs::rename(&self.partial, &final_path)
-                .map_err(|e| OutputError::io(&final_path, "cannot rename time directory", e))?;
+            Some(_) => {
+                let old = self.case.open_dir(&self.name)?;
+                for (entry, _) in old.entries()? {
+                    if self.partial.kind(&entry)?.is_none() {
+                        old.link_into(&entry, &self.partial)?;
+                    }
+                }
+                self.partial.sync_all()?;
+                if self.case.exchange(&self.partial_name, &self.name)? {
+                    // the old directory is now the hidden one
+                    self.case.sync()?;
+                    self.case.remove_all(&self.partial_name)?;
+                } else {
+                    replace_by_two_renames(&self.case, &self.partial_name, &self.name)?;
+                }
+            }
         }
-        sync_dir(&self.case_dir)?;
+        self.case.sync()?;
         self.committed = true;
         Ok(final_path)
+    }
+}
+
+/// Replaces directory `name` by directory `partial_name` where the file system cannot swap
+/// them in one step: the old one is renamed aside to `.<name>.old`, the new one renamed in,
+/// the old one deleted; [`remove_partial_time_directories`] undoes a crash in between.
+fn replace_by_two_renames(
+    case: &SafeDir,
+    partial_name: &str,
+    name: &str,
+) -> Result<(), OutputError> {
+    let aside = format!(".{name}{OLD_SUFFIX}");
+    case.remove_all(&aside)?;
+    case.rename(name, &aside)?;
+    case.rename(partial_name, name)?;
+    case.sync()?;
+    case.remove_all(&aside)
+}
+
+/// What is under the time's name now: nothing, or a directory (to be replaced whole); a link
+/// or anything else is refused.
+fn check_time_target(case: &SafeDir, name: &str) -> Result<Option<EntryKind>, OutputError> {
+    match case.kind(name)? {
+        None => Ok(None),
+        Some(EntryKind::Dir) => Ok(Some(EntryKind::Dir)),
+        Some(EntryKind::Symlink) => Err(symlink_refused(&case.join(name))),
+        Some(_) => Err(OutputError::invalid(
+            &case.join(name),
+            "exists and is not a directory, where fsim writes this time's directory",
+        )),
     }
 }
 
@@ -116,7 +165,7 @@ impl Drop for TimeDirectory {
     fn drop(&mut self) {
         if !self.committed {
             // Best effort: a leftover is also removed at the next start.
-            let _ = fs::remove_dir_all(&self.partial);
+            let _ = self.case.remove_all(&self.partial_name);
         }
     }
 }
@@ -129,7 +178,8 @@ pub struct TimeEntry {
 }
 
 /// The case's time directories (names that parse as finite numbers), sorted by time.
-/// `constant`, `system`, `postProcessing` and hidden partial directories are not times.
+/// `constant`, `system`, `postProcessing` and hidden partial directories are not times, nor
+/// is a link.
 pub fn list_time_directories(case_dir: &Path) -> Result<Vec<TimeEntry>, OutputError> {
     let mut times = Vec::new();
     let entries =
@@ -140,17 +190,23 @@ pub fn list_time_directories(case_dir: &Path) -> Result<Vec<TimeEntry>, OutputEr
             continue;
         };
         let is_dir = entry.file_type().map(|t| t.is_dir()).unwrap_or(false);
-        if !is_dir || !looks_numeric(&name) {
+        if !is_dir {
             continue;
         }
-        if let Ok(value) = name.parse::<f64>() {
-            if value.is_finite() {
-                times.push(TimeEntry { name, value });
-            }
+        if let Some(value) = time_value(&name) {
+            times.push(TimeEntry { name, value });
         }
     }
     times.sort_by(|a, b| a.value.total_cmp(&b.value));
     Ok(times)
+}
+
+/// The time a directory name stands for, if it is a time name: a finite number.
+pub fn time_value(name: &str) -> Option<f64> {
+    if !looks_numeric(name) {
+        return None;
+    }
+    name.parse::<f64>().ok().filter(|v| v.is_finite())
 }
 
 /// Rust's `f64::from_str` also accepts `inf`, `NaN` and `infinity`; a time name starts with a
@@ -164,26 +220,44 @@ pub fn latest_time(case_dir: &Path) -> Result<Option<TimeEntry>, OutputError> {
     Ok(list_time_directories(case_dir)?.pop())
 }
 
-/// Removes hidden directories left by an interrupted write or purge (`.<time>.partial`,
-/// `.<time>.purge`). Call once at start, before listing times. Returns what was removed.
+/// Cleans up after an interrupted write or purge. Call once at start, before listing times.
+/// Removes `.<time>.partial` and `.<time>.purge`; a `.<time>.old` (a replaced directory set
+/// aside) is renamed back when `<time>` is missing (the crash came between the two renames),
+/// else removed. Links under these hidden names are removed, never followed. Returns what was
+/// removed.
 pub fn remove_partial_time_directories(case_dir: &Path) -> Result<Vec<PathBuf>, OutputError> {
+    let case = SafeDir::open_case(case_dir)?;
     let mut removed = Vec::new();
-    for path in read_dir_paths(case_dir)? {
-        let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+    for (name, kind) in case.entries()? {
+        let Some(name) = name.to_str() else {
             continue;
         };
         let Some(inner) = name.strip_prefix('.') else {
             continue;
         };
+        if !matches!(kind, EntryKind::Dir | EntryKind::Symlink) {
+            continue;
+        }
+        if let Some(stem) = inner.strip_suffix(OLD_SUFFIX) {
+            if time_value(stem).is_some() {
+                if kind == EntryKind::Dir && case.kind(stem)?.is_none() {
+                    case.rename(name, stem)?;
+                } else {
+                    case.remove_all(name)?;
+                    removed.push(case.join(name));
+                }
+            }
+            continue;
+        }
         let stem = inner
             .strip_suffix(PARTIAL_SUFFIX)
             .or_else(|| inner.strip_suffix(PURGE_SUFFIX));
-        if stem.is_some_and(|s| s.parse::<f64>().is_ok()) && path.is_dir() {
-            fs::remove_dir_all(&path)
-                .map_err(|e| OutputError::io(&path, "cannot remove partial time directory", e))?;
-            removed.push(path);
+        if stem.is_some_and(|s| s.parse::<f64>().is_ok()) {
+            case.remove_all(name)?;
+            removed.push(case.join(name));
         }
     }
+    case.sync()?;
     Ok(removed)
 }
 
@@ -192,76 +266,41 @@ pub fn remove_partial_time_directories(case_dir: &Path) -> Result<Vec<PathBuf>, 
 /// remain; `keep == 0` disables purging. Directories the run did not write (the initial
 /// conditions, an earlier run's times) are never touched: the caller leaves them out of
 /// `written`. Each victim is first renamed to a hidden `.<time>.purge` so that a crash
-/// mid-delete cannot leave a half-empty directory that looks like a time. Returns the names
-/// deleted.
+/// mid-delete cannot leave a half-empty directory that looks like a time; nothing is followed
+/// if a link took a victim's place. Returns the names deleted.
 pub fn purge_write(
     case_dir: &Path,
     written: &mut VecDeque<String>,
     keep: usize,
 ) -> Result<Vec<String>, OutputError> {
     let mut deleted = Vec::new();
-    if keep == 0 {
+    if keep == 0 || written.len() <= keep {
         return Ok(deleted);
     }
+    let case = SafeDir::open_case(case_dir)?;
     while written.len() > keep {
         let victim = written.pop_front().expect("more than keep >= 1");
-        let path = case_dir.join(&victim);
-        if !path.is_dir() {
+        if case.kind(&victim)? != Some(EntryKind::Dir) {
             continue;
         }
-        let doomed = case_dir.join(format!(".{victim}{PURGE_SUFFIX}"));
-        fs::rename(&path, &doomed)
-            .map_err(|e| OutputError::io(&path, "cannot purge time directory", e))?;
-        fs::remove_dir_all(&doomed)
-            .map_err(|e| OutputError::io(&doomed, "cannot purge time directory", e))?;
+        let doomed = format!(".{victim}{PURGE_SUFFIX}");
+        case.remove_all(&doomed)?;
+        case.rename(&victim, &doomed)?;
+        case.remove_all(&doomed)?;
         deleted.push(victim);
     }
     Ok(deleted)
-}
-
-fn read_dir_paths(dir: &Path) -> Result<Vec<PathBuf>, OutputError> {
-    let entries = fs::read_dir(dir).map_err(|e| OutputError::io(dir, "cannot list", e))?;
-    let mut paths = Vec::new();
-    for entry in entries {
-        paths.push(
-            entry
-                .map_err(|e| OutputError::io(dir, "cannot list", e))?
-                .path(),
-        );
-    }
-    Ok(paths)
-}
-
-fn sync_file(path: &Path) -> Result<(), OutputError> {
-    if path.is_dir() {
-        for inner in read_dir_paths(path)? {
-            sync_file(&inner)?;
-        }
-        return sync_dir(path);
-    }
-    fs::File::open(path)
-        .and_then(|f| f.sync_all())
-        .map_err(|e| OutputError::io(path, "cannot flush file to disk", e))
-}
-
-/// Makes a directory's entries (creations, renames) durable. Only meaningful on Unix, where a
-/// directory can be opened and synced; elsewhere it is a no-op.
-pub(crate) fn sync_dir(dir: &Path) -> Result<(), OutputError> {
-    #[cfg(unix)]
-    {
-        fs::File::open(dir)
-            .and_then(|f| f.sync_all())
-            .map_err(|e| OutputError::io(dir, "cannot flush directory to disk", e))?;
-    }
-    #[cfg(not(unix))]
-    let _ = dir;
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::output::test_support::ScratchDir;
+    use std::os::unix::fs::{symlink, MetadataExt};
+
+    fn read_dir_paths(dir: &Path) -> Result<Vec<PathBuf>, std::io::Error> {
+        fs::read_dir(dir)?.map(|e| e.map(|e| e.path())).collect()
+    }
 
     fn write_time(case: &Path, name: &str, content: &str) -> PathBuf {
         let dir = TimeDirectory::begin(case, name).unwrap();
@@ -354,6 +393,99 @@ mod tests {
         );
         assert_eq!(fs::read_to_string(zero.join("data.txt")).unwrap(), "new");
         assert!(!case.path().join(".0.partial").exists());
+    }
+
+    #[test]
+    fn an_existing_directory_is_replaced_whole_and_keeps_its_links_as_links() {
+        let case = ScratchDir::new("existing-swap");
+        let outside = ScratchDir::new("existing-swap-outside");
+        fs::write(outside.path().join("U.air"), "shared").unwrap();
+        let zero = case.path().join("0");
+        fs::create_dir_all(zero.join("uniform")).unwrap();
+        fs::write(zero.join("uniform/time"), "t").unwrap();
+        symlink(outside.path().join("U.air"), zero.join("U.air")).unwrap();
+        // a link where fsim writes is replaced by the new file, its target untouched
+        symlink(outside.path().join("U.air"), zero.join("data.txt")).unwrap();
+        // a reader holding the old directory open keeps seeing the old one whole
+        let old = fs::File::open(&zero).unwrap();
+        let old_inode = old.metadata().unwrap().ino();
+        write_time(case.path(), "0", "new");
+        // one directory took the old one's place, rather than files renamed into it
+        assert_ne!(fs::metadata(&zero).unwrap().ino(), old_inode);
+        assert_eq!(old.metadata().unwrap().nlink(), 0, "the old one is deleted");
+        assert_eq!(fs::read_to_string(zero.join("data.txt")).unwrap(), "new");
+        assert!(fs::symlink_metadata(zero.join("U.air"))
+            .unwrap()
+            .is_symlink());
+        assert_eq!(fs::read_to_string(zero.join("uniform/time")).unwrap(), "t");
+        assert_eq!(
+            fs::read_to_string(outside.path().join("U.air")).unwrap(),
+            "shared"
+        );
+        let hidden: Vec<_> = read_dir_paths(case.path())
+            .unwrap()
+            .into_iter()
+            .filter(|p| p.file_name().unwrap().to_str().unwrap().starts_with('.'))
+            .collect();
+        assert!(hidden.is_empty(), "left behind: {hidden:?}");
+        drop(old);
+    }
+
+    #[test]
+    fn a_link_under_a_time_name_is_refused_before_anything_is_written() {
+        let case = ScratchDir::new("time-link");
+        let outside = ScratchDir::new("time-link-outside");
+        symlink(outside.path(), case.path().join("0.05")).unwrap();
+        let err = TimeDirectory::begin(case.path(), "0.05")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("0.05: is a symbolic link"), "{err}");
+        // a link planted after begin is refused at commit
+        let dir = TimeDirectory::begin(case.path(), "0.1").unwrap();
+        fs::write(dir.file("a"), "x").unwrap();
+        symlink(outside.path(), case.path().join("0.1")).unwrap();
+        let err = dir.commit().unwrap_err().to_string();
+        assert!(err.contains("0.1: is a symbolic link"), "{err}");
+        assert_eq!(fs::read_dir(outside.path()).unwrap().count(), 0);
+        assert!(!case.path().join(".0.1.partial").exists());
+    }
+
+    #[test]
+    fn the_fallback_replaces_by_two_renames_and_leaves_nothing_hidden() {
+        let case = ScratchDir::new("two-renames");
+        fs::create_dir_all(case.path().join("0")).unwrap();
+        fs::write(case.path().join("0/U"), "old").unwrap();
+        fs::create_dir_all(case.path().join(".0.partial")).unwrap();
+        fs::write(case.path().join(".0.partial/U"), "new").unwrap();
+        let dir = SafeDir::open_case(case.path()).unwrap();
+        replace_by_two_renames(&dir, ".0.partial", "0").unwrap();
+        assert_eq!(fs::read_to_string(case.path().join("0/U")).unwrap(), "new");
+        assert_eq!(read_dir_paths(case.path()).unwrap().len(), 1);
+    }
+
+    #[test]
+    fn a_crash_between_the_two_renames_of_the_fallback_is_undone_at_start() {
+        let case = ScratchDir::new("old-aside");
+        // set aside, the new one not yet renamed in: the old one comes back
+        fs::create_dir_all(case.path().join(".0.old")).unwrap();
+        fs::write(case.path().join(".0.old/U"), "initial").unwrap();
+        fs::create_dir_all(case.path().join(".0.partial")).unwrap();
+        // renamed in, the old one not yet deleted: the old one goes
+        fs::create_dir_all(case.path().join(".0.5.old")).unwrap();
+        fs::create_dir_all(case.path().join("0.5")).unwrap();
+        let removed = remove_partial_time_directories(case.path()).unwrap();
+        assert_eq!(removed.len(), 2, "{removed:?}");
+        assert_eq!(
+            fs::read_to_string(case.path().join("0/U")).unwrap(),
+            "initial"
+        );
+        let mut names: Vec<_> = read_dir_paths(case.path())
+            .unwrap()
+            .into_iter()
+            .map(|p| p.file_name().unwrap().to_str().unwrap().to_string())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["0", "0.5"]);
     }
 
     #[test]

@@ -83,8 +83,8 @@ impl Particles {
         })
     }
 
-    /// Writes the particles (id, d, U, omega, F_hydro, F_contact) to `path`.
-    pub fn write(&self, path: &std::path::Path) -> Result<(), FsimError> {
+    /// Writes the particles (id, d, U, omega, F_hydro, F_contact) to file `name` of `dir`.
+    pub fn write(&self, dir: &crate::output::SafeDir, name: &str) -> Result<(), FsimError> {
         let p = self.dem.particles();
         let id: Vec<i64> = p.id.iter().map(|&i| i as i64).collect();
         ParticleFields {
@@ -96,7 +96,7 @@ impl Particles {
             hydrodynamic_force: &p.external_force,
             contact_force: &p.contact_force,
         }
-        .write(path)
+        .write(dir, name)
         .map_err(|e| FsimError::run(e.to_string()))
     }
 }

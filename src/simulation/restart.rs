@@ -35,8 +35,13 @@ impl Simulation {
         Ok(state)
     }
 
-    /// Writes the restart state (every array a bit-identical continuation needs).
-    pub fn write_restart(&mut self, path: &std::path::Path) -> Result<(), FsimError> {
+    /// Writes the restart state (every array a bit-identical continuation needs) to file
+    /// `name` of `dir`.
+    pub fn write_restart(
+        &mut self,
+        dir: &crate::output::SafeDir,
+        name: &str,
+    ) -> Result<(), FsimError> {
         let header = RestartHeader::new(self.time.time, self.time.step, self.dt);
         let cloud = self
             .coupling
@@ -51,7 +56,7 @@ impl Simulation {
         arrays.extend(cloud.iter().map(|(name, v)| (*name, v.as_slice())));
         arrays.extend(model.iter().map(|(name, v)| (*name, v.as_slice())));
         header
-            .write(path, &arrays)
+            .write(dir, name, &arrays)
             .map_err(|e| FsimError::run(e.to_string()))
     }
 }
