@@ -26,6 +26,7 @@ mod packed;
 pub mod parser;
 pub mod particle_forces;
 pub mod pressure_solver;
+pub mod quote;
 pub mod source;
 pub mod transport;
 pub mod turbulence;

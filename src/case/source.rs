@@ -22,6 +22,10 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// Path as shown to the user: relative to the case directory when inside it.
     pub display: String,
+    /// Whether the file lies inside the case directory (or was not read from disk): the
+    /// text of a file outside it is never quoted in a message, so that a case cannot make
+    /// fsim print a file it points at (`#include "/etc/…"`).
+    pub inside_case: bool,
     /// The whole text (decompressed); `None` once released.
     text: Mutex<Option<Arc<String>>>,
     /// Byte offset of the start of every line, found on first need.
@@ -34,6 +38,7 @@ impl SourceFile {
         SourceFile {
             path,
             display,
+            inside_case: true,
             text: Mutex::new(Some(Arc::new(text))),
             line_starts: OnceLock::new(),
         }
@@ -77,10 +82,15 @@ impl SourceFile {
             }
         }
         let display = display_path(&path, case_dir);
+        let inside_case = case_dir.is_none_or(|dir| inside(&path, dir));
+        let source = |path, display, text| SourceFile {
+            inside_case,
+            ..SourceFile::from_text(path, display, text)
+        };
         match read_text(&path, &display)? {
-            (text, None) => Ok(SourceFile::from_text(path, display, text)),
+            (text, None) => Ok(source(path, display, text)),
             (text, Some(valid)) => {
-                let file = Arc::new(SourceFile::from_text(path, display, text));
+                let file = Arc::new(source(path, display, text));
                 // The lossy text keeps every byte before the first invalid one in place.
                 Err(CaseError::at(
                     &Location::new(&file, valid),
@@ -231,6 +241,15 @@ impl Location {
     pub fn describe(&self) -> String {
         let (line, col) = self.line_col();
         format!("{}:{line}:{col}", self.file.display)
+    }
+}
+
+/// Whether `path` lies inside `case_dir`, symlinks resolved (a symlink inside the case to a
+/// file outside it is outside).
+fn inside(path: &Path, case_dir: &Path) -> bool {
+    match (path.canonicalize(), case_dir.canonicalize()) {
+        (Ok(p), Ok(d)) => p.starts_with(d),
+        _ => false,
     }
 }
 
