@@ -9,6 +9,7 @@
 //! are checked by [`Case::load`].
 
 pub mod block_mesh;
+pub mod bounded_read;
 #[allow(clippy::module_inception)]
 pub mod case;
 pub mod cloud_properties;

@@ -6,10 +6,12 @@
 //! 90 MB field does not stay in memory beside its numbers; a message that needs it reads the
 //! file again.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use super::bounded_read::{
+    gunzip_bounded, read_regular_file, ReadError, MAX_GZIP_EXPANDED_BYTES, MAX_TEXT_BYTES,
+};
 use super::error::CaseError;
 
 /// The two bytes every gzip stream starts with (RFC 1952, §2.3.1).
@@ -143,23 +145,21 @@ impl SourceFile {
 
 /// A file's text, decompressed when gzipped, and the offset of the first byte that is not
 /// UTF-8 (the text is then lossy).
+///
+/// Read through [`read_regular_file`] and [`gunzip_bounded`]: only a regular file of at most
+/// [`MAX_TEXT_BYTES`], expanding to at most [`MAX_GZIP_EXPANDED_BYTES`] when gzipped, since
+/// a case may come from anyone.
 fn read_text(path: &Path, display: &str) -> Result<(String, Option<usize>), CaseError> {
-    let bytes = std::fs::read(path).map_err(|e| {
-        let reason = match e.kind() {
-            std::io::ErrorKind::NotFound => "file not found".to_string(),
-            _ => format!("cannot read the file: {e}"),
-        };
-        CaseError::in_file(display, reason)
-    })?;
+    let bytes = read_regular_file(path, MAX_TEXT_BYTES)
+        .map_err(|e| CaseError::in_file(display, e.to_string()))?;
     let gzipped = path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&GZIP_MAGIC);
     let bytes = if gzipped {
-        let mut out = Vec::new();
-        flate2::read::MultiGzDecoder::new(&bytes[..])
-            .read_to_end(&mut out)
-            .map_err(|e| {
+        gunzip_bounded(&bytes, MAX_GZIP_EXPANDED_BYTES).map_err(|e| match e {
+            ReadError::Io(e) => {
                 CaseError::in_file(display, format!("cannot decompress gzip data: {e}"))
-            })?;
-        out
+            }
+            e => CaseError::in_file(display, e.to_string()),
+        })?
     } else {
         bytes
     };
