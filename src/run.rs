@@ -24,6 +24,7 @@ use std::time::Instant;
 
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
+    crate::case::control_dict::set_plan_limits(options.plan_limits());
     // From before the case is read, so that no change made while the run starts is missed.
     let watch = ControlDictWatch::new(&options.case);
     let mut case = load_case(options)?;
