@@ -7,8 +7,13 @@ use std::borrow::Cow;
 pub const QUOTE_CHARS: usize = 80;
 
 /// Most characters of a whole message: a backstop for messages that echo several values
-/// or a list, beyond what [`quote`] bounds.
-pub const MESSAGE_CHARS: usize = 1000;
+/// or a list, beyond what [`quote`] bounds (room for a path of [`PATH_CHARS`] and the
+/// message about it).
+pub const MESSAGE_CHARS: usize = 6000;
+
+/// Longest run holding a `/` that [`bound_message`] leaves whole: a file's path, up to
+/// Linux's PATH_MAX, is named in full.
+const PATH_CHARS: usize = 4096;
 
 /// Longest run of non-blank characters [`bound_message`] leaves whole: a quoted value with
 /// its `…(N` marker (N up to 20 digits) and the punctuation around it.
@@ -30,13 +35,21 @@ fn shorten(text: &str, max: usize) -> Cow<'_, str> {
 }
 
 /// A whole message bounded: every run of non-blank characters longer than [`RUN_CHARS`]
-/// (a word no message of fsim's own holds) is quoted as [`quote`] does, then the whole is
+/// (a word no message of fsim's own holds; [`PATH_CHARS`] for one holding a `/`, a path)
+/// is quoted as [`quote`] does, then the whole is
 /// cut at [`MESSAGE_CHARS`]. Applied to every message printed, so that one that forgot to
 /// quote a value is bounded all the same.
 pub fn bound_message(message: &str) -> Cow<'_, str> {
     // (a run that `quote` already cut, with its `…(N` and some punctuation, stays under
     // RUN_CHARS: bounding is idempotent)
-    let long = |run: &str| run.len() > RUN_CHARS && run.chars().nth(RUN_CHARS).is_some();
+    let long = |run: &str| {
+        let max = if run.contains('/') {
+            PATH_CHARS
+        } else {
+            RUN_CHARS
+        };
+        run.len() > max && run.chars().nth(max).is_some()
+    };
     let long_run = message.split(char::is_whitespace).any(long);
     let shortened: Cow<str> = if long_run {
         let mut out = String::with_capacity(MESSAGE_CHARS);
@@ -101,5 +114,10 @@ mod tests {
         let m = bound_message(&many);
         assert!(m.chars().count() < MESSAGE_CHARS + 30, "{}", m.len());
         assert!(m.ends_with("…(30000 bytes)"));
+        // a long path is named whole, a longer run with a slash is cut
+        let path = format!("/{}/constant/positions: not found", "deep/".repeat(100));
+        assert_eq!(bound_message(&path), path);
+        let slashes = "/".repeat(5000);
+        assert!(bound_message(&slashes).ends_with("…(5000 bytes)"));
     }
 }
