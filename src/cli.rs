@@ -24,10 +24,45 @@ pub struct Options {
     /// Number of threads (default: all cores)
     #[arg(long = "threads", value_name = "N")]
     pub threads: Option<usize>,
+
+    /// Most time steps controlDict may plan (default 1e9; docs/security.md)
+    #[arg(long = "maxSteps", value_name = "N", value_parser = positive_count)]
+    pub max_steps: Option<f64>,
+
+    /// Most time directories controlDict may plan (default 1e6; docs/security.md)
+    #[arg(long = "maxWrites", value_name = "N", value_parser = positive_count)]
+    pub max_writes: Option<f64>,
+}
+
+/// A limit given on the command line: a finite number of at least 1 (`1e12` allowed).
+fn positive_count(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(n) if n.is_finite() && n >= 1.0 => Ok(n),
+        _ => Err("expected a finite number of at least 1".to_string()),
+    }
+}
+
+impl Options {
+    /// The plan limits the options give, the defaults for those not given.
+    pub fn plan_limits(&self) -> crate::case::control_dict::PlanLimits {
+        let default = crate::case::control_dict::PlanLimits::default();
+        crate::case::control_dict::PlanLimits {
+            steps: self.max_steps.unwrap_or(default.steps),
+            writes: self.max_writes.unwrap_or(default.writes),
+        }
+    }
 }
 
 /// Long options that OpenFOAM users type with a single dash.
-const LONG_OPTIONS: [&str; 5] = ["case", "dry-run", "threads", "help", "version"];
+const LONG_OPTIONS: [&str; 7] = [
+    "case",
+    "dry-run",
+    "threads",
+    "maxSteps",
+    "maxWrites",
+    "help",
+    "version",
+];
 
 /// Turn `-case` into `--case` (and `-case=DIR` into `--case=DIR`) for fsim's long options.
 pub fn normalise_args<I: IntoIterator<Item = String>>(args: I) -> Vec<String> {
@@ -71,6 +106,13 @@ mod tests {
         assert_eq!(two.threads, Some(2));
         assert!(parse(&["fsimFoam", "-dry-run"]).unwrap().dry_run);
         assert_eq!(parse(&["fsimFoam"]).unwrap().case, PathBuf::from("."));
+        let limits = parse(&["fsimFoam", "-maxSteps", "2e9", "--maxWrites=10"]).unwrap();
+        assert_eq!(
+            (limits.max_steps, limits.max_writes),
+            (Some(2e9), Some(10.0))
+        );
+        assert!(parse(&["fsimFoam", "-maxSteps", "inf"]).is_err());
+        assert!(parse(&["fsimFoam", "-maxWrites", "0"]).is_err());
     }
 
     #[test]

@@ -6,6 +6,8 @@
 
 use std::fmt;
 
+use crate::case::quote::bound_message;
+
 /// An error that ends `fsimFoam`.
 #[derive(Debug)]
 pub enum FsimError {
@@ -45,8 +47,10 @@ impl FsimError {
 impl fmt::Display for FsimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            FsimError::Input { reason, .. } => write!(f, "{reason}"),
-            FsimError::Run { reason } => write!(f, "{reason}"),
+            // bounded: a reason may echo case text (docs/security.md, "Numbers and messages")
+            FsimError::Input { reason, .. } | FsimError::Run { reason } => {
+                write!(f, "{}", bound_message(reason))
+            }
         }
     }
 }

@@ -10,6 +10,7 @@
 //!     write the time directory when due       (whole or not at all)
 //! ```
 
+use crate::case::quote::bound_message;
 use crate::case::{Case, ControlChange, ControlDict, ControlDictWatch, InternalField, StopAt};
 use crate::cli::Options;
 use crate::error::FsimError;
@@ -24,6 +25,7 @@ use std::time::Instant;
 
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
+    crate::case::control_dict::set_plan_limits(options.plan_limits());
     // From before the case is read, so that no change made while the run starts is missed.
     let watch = ControlDictWatch::new(&options.case);
     let mut case = load_case(options)?;
@@ -47,13 +49,13 @@ pub fn run(options: &Options) -> Result<(), FsimError> {
 fn load_case(options: &Options) -> Result<Case, FsimError> {
     let mut case = Case::load(&options.case)?;
     for warning in &case.warnings {
-        eprintln!("fsimFoam: note: {warning}");
+        eprintln!("fsimFoam: note: {}", bound_message(warning));
     }
     if case.coupling.auto_tolerance.is_some() {
         let choice = crate::auto::choose(&mut case)?;
         print!("{}", choice.report);
         for change in &choice.changes {
-            eprintln!("fsimFoam: note: model auto: {change}");
+            eprintln!("fsimFoam: note: model auto: {}", bound_message(change));
         }
     }
     Ok(case)
@@ -78,7 +80,7 @@ fn run_case(
     case.fields.u = InternalField::Uniform([0.0; 3]);
     let case = &*case;
     for note in sim.particles().iter().flat_map(|p| &p.notes) {
-        eprintln!("fsimFoam: note: {note}");
+        eprintln!("fsimFoam: note: {}", bound_message(note));
     }
     // the drag-law model's notes on what its grid lets happen (a cell that a few particles
     // can over-fill)
@@ -88,7 +90,7 @@ fn run_case(
         .iter()
         .chain(drag_law_warnings.into_iter().flatten())
     {
-        eprintln!("fsimFoam: warning: {warning}");
+        eprintln!("fsimFoam: warning: {}", bound_message(warning));
     }
     check_first_step(&mut sim)?;
     if options.dry_run {
@@ -184,7 +186,7 @@ fn take_new_controls(
         ),
         Ok((new, notes)) => {
             for note in notes {
-                eprintln!("fsimFoam: note: {note}");
+                eprintln!("fsimFoam: note: {}", bound_message(&note));
                 reporter.log.line(&format!("note: {note}"))?;
             }
             let changes = new.changes_from(control);
@@ -203,7 +205,7 @@ fn take_new_controls(
         }
     };
     let message = format!("{refused}; the run goes on with the settings it had (t = {now})");
-    eprintln!("fsimFoam: warning: {message}");
+    eprintln!("fsimFoam: warning: {}", bound_message(&message));
     reporter.log.line(&format!("warning: {message}\n"))?;
     Ok(())
 }

@@ -176,6 +176,125 @@ fn signal_switch(switches: &Dict, keyword: &str) -> Result<Option<i32>, CaseErro
     }
 }
 
+/// Most time steps a run may plan without `-maxSteps`: 10⁹, some days of the cheapest
+/// steps fsim takes; a plan beyond is almost always a mistyped `deltaT` or `endTime`.
+pub const DEFAULT_MAX_STEPS: f64 = 1e9;
+
+/// Most time directories a run may plan without `-maxWrites`: 10⁶, the most a directory
+/// listing and a disk hold with comfort; beyond is almost always a mistyped
+/// `writeInterval`.
+pub const DEFAULT_MAX_WRITES: f64 = 1e6;
+
+/// The most steps and writes a controlDict may plan ([`check_plan`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanLimits {
+    pub steps: f64,
+    pub writes: f64,
+}
+
+impl Default for PlanLimits {
+    fn default() -> Self {
+        PlanLimits {
+            steps: DEFAULT_MAX_STEPS,
+            writes: DEFAULT_MAX_WRITES,
+        }
+    }
+}
+
+static PLAN_LIMITS: std::sync::OnceLock<PlanLimits> = std::sync::OnceLock::new();
+
+/// Sets the limits every controlDict read by this process is held to (the command line's
+/// `-maxSteps` and `-maxWrites`), before the case is read; only the first call counts, so
+/// that a run's limits cannot change under it.
+pub fn set_plan_limits(limits: PlanLimits) {
+    let _ = PLAN_LIMITS.set(limits);
+}
+
+/// The limits set by [`set_plan_limits`], or the defaults.
+pub fn plan_limits() -> PlanLimits {
+    PLAN_LIMITS.get().copied().unwrap_or_default()
+}
+
+/// Refuses a controlDict that plans more time steps or writes than `limits` allow: a run
+/// that would never end, or fill the disk, is refused before it starts. The steps are
+/// `(endTime − startTime)/deltaT` (with `adjustTimeStep`, at least the span over
+/// `maxDeltaT`); the writes those steps over `writeInterval`, or the span over it for a
+/// write interval in simulated seconds (counted so for `runTime` too, though it writes at
+/// most once a step: an interval shorter than the step still costs a pass per interval).
+/// Clock- and CPU-time writes and runs with no `endTime` are not planned.
+fn check_plan(
+    d: &Dict,
+    c: &ControlDict,
+    interval_key: &str,
+    limits: PlanLimits,
+) -> Result<(), CaseError> {
+    if !c.end_time.is_finite() {
+        return Ok(());
+    }
+    let span = c.end_time - c.start_time;
+    let (step_key, step) = if c.adjust_time_step {
+        ("maxDeltaT", c.max_delta_t)
+    } else {
+        ("deltaT", c.delta_t)
+    };
+    // (`0/0` when endTime is startTime: nothing planned)
+    let steps = if span > 0.0 { span / step } else { 0.0 };
+    let too_many = |key: &str, what: String, count: f64, limit: f64, option: &str| {
+        at_value(
+            d,
+            key,
+            format!(
+                "{what} plans {count:.3e} {}, more than the limit of {limit:.0e}: check the \
+                 value, or raise the limit with -{option} N",
+                if option == "maxSteps" {
+                    "time steps"
+                } else {
+                    "writes"
+                }
+            ),
+        )
+    };
+    if steps > limits.steps {
+        return Err(too_many(
+            step_key,
+            format!(
+                "{step_key} {step:?} from startTime {:?} to endTime {:?}",
+                c.start_time, c.end_time
+            ),
+            steps,
+            limits.steps,
+            "maxSteps",
+        ));
+    }
+    let intervals = if span > 0.0 {
+        span / c.write_interval
+    } else {
+        0.0
+    };
+    let writes = match c.write_control {
+        WriteControl::TimeStep => steps / c.write_interval,
+        WriteControl::RunTime | WriteControl::AdjustableRunTime => intervals,
+        WriteControl::ClockTime | WriteControl::CpuTime => 0.0,
+    };
+    let what = format!(
+        "{interval_key} {:?} ({}) from startTime {:?} to endTime {:?}",
+        c.write_interval,
+        c.write_control.name(),
+        c.start_time,
+        c.end_time
+    );
+    if writes > limits.writes {
+        return Err(too_many(
+            interval_key,
+            what,
+            writes,
+            limits.writes,
+            "maxWrites",
+        ));
+    }
+    Ok(())
+}
+
 impl ControlDict {
     /// Reads and validates the dictionary; `notes` receives what fsim ignores on purpose.
     pub fn from_dict(d: &Dict, notes: &mut Vec<String>) -> Result<ControlDict, CaseError> {
@@ -325,7 +444,7 @@ impl ControlDict {
         }
         // Every controlDict names its OpenFOAM solver; fsim is the solver here.
         d.lookup("application");
-        Ok(ControlDict {
+        let control = ControlDict {
             start_from,
             start_time,
             stop_at,
@@ -341,7 +460,9 @@ impl ControlDict {
             run_time_modifiable,
             write_now_signal,
             stop_at_write_now_signal,
-        })
+        };
+        check_plan(d, &control, interval_key, plan_limits())?;
+        Ok(control)
     }
 
     /// What a run takes from `self` in place of `before` when the file changes during it
@@ -413,6 +534,42 @@ mod tests {
         assert_eq!(time_name(1234567.0, 6), "1.23457e+06");
         assert_eq!(time_name(100.0, 6), "100");
         assert_eq!(time_name(0.123456789, 6), "0.123457");
+    }
+
+    /// A plan of more steps or writes than the limits allow is refused at the entry that
+    /// makes it, naming the count and the option that raises the limit; within them, or
+    /// with no end, it passes.
+    #[test]
+    fn plans_beyond_the_step_and_write_limits_are_refused() {
+        let limits = PlanLimits {
+            steps: 1000.0,
+            writes: 10.0,
+        };
+        let plan = |text: &str| {
+            let d = parse_dict(text, "system/controlDict").unwrap();
+            let c = ControlDict::from_dict(&d, &mut Vec::new()).unwrap();
+            check_plan(&d, &c, "writeInterval", limits)
+        };
+        plan("endTime 1; deltaT 0.001; writeControl timeStep; writeInterval 100;").unwrap();
+        let e = plan("endTime 1; deltaT 0.0001; writeInterval 1000;").unwrap_err();
+        assert_eq!((e.line, e.col), (1, 19), "{e}");
+        assert!(e.message.contains("plans 1.000e4 time steps"), "{e}");
+        assert!(e.message.contains("-maxSteps N"), "{e}");
+        let e =
+            plan("endTime 1; deltaT 0.01; writeControl runTime; writeInterval 0.01;").unwrap_err();
+        assert!(e.message.starts_with("writeInterval 0.01 (runTime)"), "{e}");
+        assert!(e.message.contains("plans 1.000e2 writes"), "{e}");
+        assert!(e.message.contains("-maxWrites N"), "{e}");
+        // with adjustTimeStep the steps are bounded below by maxDeltaT, if any
+        plan("endTime 1; deltaT 1e-300; adjustTimeStep yes; writeInterval 100;").unwrap();
+        let e = plan("endTime 1; deltaT 1; adjustTimeStep yes; maxDeltaT 1e-6; writeInterval 1e6;")
+            .unwrap_err();
+        assert!(e.message.starts_with("maxDeltaT 1e-6"), "{e}");
+        // no end planned: nothing to count
+        plan("stopAt nextWrite; deltaT 1e-9; writeInterval 1;").unwrap();
+        // the defaults: 10⁹ steps and 10⁶ writes
+        let e = read("endTime 1; deltaT 1e-300; writeInterval 1;").unwrap_err();
+        assert!(e.message.contains("more than the limit of 1e9"), "{e}");
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! `runTimeModifiable`: `system/controlDict` read again when it changes during a run.
 
+use super::bounded_read::{read_regular_file, ReadError, MAX_TEXT_BYTES};
 use super::control_dict::ControlDict;
 use super::error::CaseError;
 use super::parser::read_dict_file_with_includes;
@@ -47,7 +48,7 @@ impl WatchedFile {
     fn new(path: PathBuf) -> Self {
         WatchedFile {
             seen: modified(&path),
-            text: std::fs::read(&path).unwrap_or_default(),
+            text: read_watched(&path).unwrap_or_default(),
             path,
         }
     }
@@ -62,7 +63,7 @@ impl WatchedFile {
         if self.seen == Some(stamp) && age(stamp) >= RECENT {
             return false;
         }
-        let Ok(text) = std::fs::read(&self.path) else {
+        let Ok(text) = read_watched(&self.path) else {
             return false;
         };
         self.seen = Some(stamp);
@@ -72,6 +73,12 @@ impl WatchedFile {
         self.text = text;
         true
     }
+}
+
+/// A watched file's bytes, read as the case's files are ([`read_regular_file`]): a device,
+/// FIFO or oversized file is not read, and counts as unreadable.
+fn read_watched(path: &Path) -> Result<Vec<u8>, ReadError> {
+    read_regular_file(path, MAX_TEXT_BYTES)
 }
 
 impl ControlDictWatch {

@@ -6,6 +6,7 @@
 
 use std::fmt;
 
+use super::quote::bound_message;
 use super::source::Location;
 
 /// An error in a case: where it is (when known) and what was expected there.
@@ -25,8 +26,24 @@ pub struct CaseError {
 
 impl CaseError {
     /// An error at a position in a source file.
+    ///
+    /// In a file outside the case directory the message names the place only: its text
+    /// (values quoted, the source line) is not shown, so that a case cannot make fsim print
+    /// a file it points at.
     pub fn at(loc: &Location, message: impl Into<String>) -> Self {
         let (line, col) = loc.line_col();
+        if !loc.file.inside_case {
+            return CaseError {
+                file: Some(loc.file.display.clone()),
+                line,
+                col,
+                message: "this file, outside the case directory, does not read as fsim \
+                          expects here (its text is not shown: copy it into the case for the \
+                          full message)"
+                    .to_string(),
+                source_line: None,
+            };
+        }
         CaseError {
             file: Some(loc.file.display.clone()),
             line,
@@ -39,7 +56,7 @@ impl CaseError {
     /// An error about a whole file (missing, unreadable).
     pub fn in_file(file: impl Into<String>, message: impl Into<String>) -> Self {
         CaseError {
-            file: Some(file.into()),
+            file: Some(super::quote::quote(&file.into()).into_owned()),
             line: 0,
             col: 0,
             message: one_line(message.into()),
@@ -72,16 +89,30 @@ impl CaseError {
         let file = self.file.as_deref().unwrap_or("<input>");
         let number = self.line.to_string();
         let pad = " ".repeat(number.len());
+        // A long line is shown as a window of EXCERPT_CHARS characters around the column
+        // (a case may hold a line of megabytes), marked with … where cut.
+        let col = self.col.max(1) - 1;
+        let first = col.saturating_sub(EXCERPT_CHARS / 2);
+        let total = text.chars().count();
+        let (before, after) = (first > 0, first + EXCERPT_CHARS < total);
         // Tabs are shown as one space so that the caret stays under the column it names.
-        let shown: String = text
+        let window: String = text
             .chars()
+            .skip(first)
+            .take(EXCERPT_CHARS)
             .map(|c| if c == '\t' { ' ' } else { c })
             .collect();
+        let shown = format!(
+            "{}{window}{}",
+            if before { "…" } else { "" },
+            if after { "…" } else { "" }
+        );
         Some(format!(
             "{pad}--> {file}:{line}:{col}\n{pad} |\n{number} | {shown}\n{pad} | {caret}^",
+            file = crate::case::quote::quote(file),
             line = self.line,
             col = self.col,
-            caret = " ".repeat(self.col.saturating_sub(1)),
+            caret = " ".repeat(col - first + usize::from(before)),
         ))
     }
 
@@ -94,12 +125,20 @@ impl CaseError {
     }
 }
 
-/// Messages quote user text (a string with a line break, say); Display must stay one line.
+/// Most characters of a source line an excerpt shows, centred on the column.
+const EXCERPT_CHARS: usize = 100;
+
+/// Messages quote user text (a string with a line break, say); Display must stay one line,
+/// and short whatever the text quoted ([`bound_message`]).
 fn one_line(message: String) -> String {
-    if message.contains(['\n', '\r']) {
+    let message = if message.contains(['\n', '\r']) {
         message.replace('\n', "\\n").replace('\r', "\\r")
     } else {
         message
+    };
+    match bound_message(&message) {
+        std::borrow::Cow::Borrowed(_) => message,
+        std::borrow::Cow::Owned(bounded) => bounded,
     }
 }
 

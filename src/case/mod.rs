@@ -9,6 +9,7 @@
 //! are checked by [`Case::load`].
 
 pub mod block_mesh;
+pub mod bounded_read;
 #[allow(clippy::module_inception)]
 pub mod case;
 pub mod cloud_properties;
@@ -26,6 +27,7 @@ mod packed;
 pub mod parser;
 pub mod particle_forces;
 pub mod pressure_solver;
+pub mod quote;
 pub mod source;
 pub mod transport;
 pub mod turbulence;

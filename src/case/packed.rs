@@ -281,7 +281,8 @@ fn number_at(text: &str, pos: usize) -> Option<(f64, bool, usize)> {
         }
         n as f64
     } else {
-        word.parse().ok()?
+        // beyond a double's range: left to the general parser, which refuses it in place
+        word.parse().ok().filter(|x: &f64| x.is_finite())?
     };
     Some((value, label, q))
 }

@@ -34,6 +34,7 @@ use nom::IResult;
 use super::dictionary::{Dict, Entry, EntryBody, Key};
 use super::error::CaseError;
 use super::packed;
+use super::quote::quote;
 use super::source::{Location, SourceFile};
 use super::value::{Dimensions, Item, Value};
 
@@ -242,6 +243,22 @@ fn number(i: &str) -> Nom<'_, Value> {
             nom::error::ErrorKind::Float,
         ))),
     }
+}
+
+/// A number beyond a double's range (`1e400`, a 400-digit integer) is refused where it is
+/// written, as the words `inf` and `nan` are wherever a number is read: it would otherwise
+/// be infinity, and an infinite end time or field value has no meaning.
+fn out_of_range(src: &Src, at: &str, rest: &str) -> CaseError {
+    let text = &at[..at.len() - rest.len()];
+    src.err(
+        at,
+        format!(
+            "the number {} is out of range: expected a finite number, at most {:e} in \
+             magnitude",
+            quote(text),
+            f64::MAX
+        ),
+    )
 }
 
 fn directive_name(i: &str) -> Nom<'_, &str> {
@@ -501,6 +518,11 @@ impl Ctx {
             ']' => Err(src.err(i, "expected a value, found ']' with no dimension set open")),
             _ => {
                 if let Ok((rest, value)) = number(i) {
+                    if let Value::Scalar(x) = value {
+                        if !x.is_finite() {
+                            return Err(out_of_range(src, i, rest));
+                        }
+                    }
                     if let Value::Label(count) = value {
                         if let Some(r) = self.counted(src, rest, count, &loc)? {
                             return Ok(r);
@@ -639,7 +661,11 @@ impl Ctx {
         }
         let rest = &body_start[1..];
         let parts: Vec<&str> = body.split_whitespace().collect();
-        let numbers: Option<Vec<f64>> = parts.iter().map(|p| p.parse::<f64>().ok()).collect();
+        // (`inf` and `nan` parse as f64 but are no exponents: they make the unit a name)
+        let numbers: Option<Vec<f64>> = parts
+            .iter()
+            .map(|p| p.parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect();
         let dims = match numbers {
             Some(e) if e.len() == 5 || e.len() == 7 => Dimensions::Exponents(e),
             Some(e) if !e.is_empty() => {
@@ -896,6 +922,56 @@ mod tests {
         assert_eq!(sub.get_dict("inner").unwrap().get_scalar("x").unwrap(), 1.5);
         assert_eq!(sub.get_scalar("y").unwrap(), -2.0);
         assert_eq!(sub.get_dict("inner").unwrap().name, "sub.inner");
+    }
+
+    /// A number beyond a double's range is refused where it is written, as `inf` is where
+    /// a number is read: in an entry, in a packed list, as a long integer, from `#calc`.
+    #[test]
+    fn numbers_beyond_a_double_are_refused_in_place() {
+        for (text, col, shown) in [
+            ("endTime 1e400;", 9, "1e400"),
+            ("x -1.5E+999;", 3, "-1.5E+999"),
+            ("l (1 2 1e309);", 8, "1e309"),
+            ("v ((0 0 0) (1 1e999 1));", 15, "1e999"),
+        ] {
+            let e = err(text);
+            assert_eq!((e.line, e.col), (1, col), "{text}: {e}");
+            assert!(
+                e.message
+                    .contains(&format!("the number {shown} is out of range")),
+                "{e}"
+            );
+        }
+        let digits = format!("n {};", "9".repeat(400));
+        let e = err(&digits);
+        assert!(e.message.contains("…(400 bytes) is out of range"), "{e}");
+        // (#calc and #eval leave an infinite result unevaluated, which no accessor takes)
+        assert!(parse("a 1e300; b #calc \"$a*$a\";")
+            .get_scalar("b")
+            .is_err());
+        // underflow is zero, as OpenFOAM reads it; inf in a dimension set is no exponent
+        assert_eq!(parse("x 1e-400;").get_scalar("x").unwrap(), 0.0);
+        assert!(matches!(
+            parse("d [inf 0 0 0 0 0 0];")
+                .peek("d")
+                .unwrap()
+                .as_tokens()
+                .unwrap()[0]
+                .value,
+            Value::Dimensions(Dimensions::Named(_))
+        ));
+    }
+
+    /// An excerpt shows a window of a long line around the column, the caret under it.
+    #[test]
+    fn excerpts_of_long_lines_are_windows() {
+        let text = format!("a {} );", "y".repeat(1_000_000));
+        let e = err(&text);
+        let excerpt = e.excerpt().unwrap();
+        assert!(excerpt.len() < 500, "{} bytes", excerpt.len());
+        let lines: Vec<&str> = excerpt.lines().collect();
+        let caret = lines[3].chars().position(|c| c == '^').unwrap();
+        assert_eq!(lines[2].chars().nth(caret), Some(')'), "{excerpt}");
     }
 
     #[test]

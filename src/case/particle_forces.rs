@@ -6,6 +6,7 @@ use super::control_dict::at_value;
 use super::dictionary::{Dict, Entry};
 use super::drag_law_options::{fraction_name, velocity_name};
 use super::error::CaseError;
+use super::quote::quote;
 use crate::coupling::drag::DragClosure;
 
 /// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
@@ -93,7 +94,10 @@ impl ParticleForces {
             } else {
                 let others = ["gravity", "pressureGradient"];
                 let known = DragClosure::NAMES.iter().chain(&others);
+                // (no hint for a name far longer than any known one: the distance would
+                // cost its length times theirs)
                 let nearest = known
+                    .filter(|_| name.len() <= 64)
                     .map(|k| {
                         (
                             edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
@@ -114,8 +118,9 @@ impl ParticleForces {
                 return Err(CaseError::at(
                     &e.key_loc,
                     format!(
-                        "{what} '{name}' in particleForces{hint}: expected a drag model ({}), \
+                        "{what} '{}' in particleForces{hint}: expected a drag model ({}), \
                          gravity or pressureGradient",
+                        quote(name),
                         DragClosure::NAMES.join(", ")
                     ),
                 ));

@@ -6,10 +6,12 @@
 //! 90 MB field does not stay in memory beside its numbers; a message that needs it reads the
 //! file again.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use super::bounded_read::{
+    gunzip_bounded, read_regular_file, ReadError, MAX_GZIP_EXPANDED_BYTES, MAX_TEXT_BYTES,
+};
 use super::error::CaseError;
 
 /// The two bytes every gzip stream starts with (RFC 1952, §2.3.1).
@@ -22,6 +24,10 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// Path as shown to the user: relative to the case directory when inside it.
     pub display: String,
+    /// Whether the file lies inside the case directory (or was not read from disk): the
+    /// text of a file outside it is never quoted in a message, so that a case cannot make
+    /// fsim print a file it points at (`#include "/etc/…"`).
+    pub inside_case: bool,
     /// The whole text (decompressed); `None` once released.
     text: Mutex<Option<Arc<String>>>,
     /// Byte offset of the start of every line, found on first need.
@@ -34,6 +40,7 @@ impl SourceFile {
         SourceFile {
             path,
             display,
+            inside_case: true,
             text: Mutex::new(Some(Arc::new(text))),
             line_starts: OnceLock::new(),
         }
@@ -77,10 +84,15 @@ impl SourceFile {
             }
         }
         let display = display_path(&path, case_dir);
+        let inside_case = case_dir.is_none_or(|dir| inside(&path, dir));
+        let source = |path, display, text| SourceFile {
+            inside_case,
+            ..SourceFile::from_text(path, display, text)
+        };
         match read_text(&path, &display)? {
-            (text, None) => Ok(SourceFile::from_text(path, display, text)),
+            (text, None) => Ok(source(path, display, text)),
             (text, Some(valid)) => {
-                let file = Arc::new(SourceFile::from_text(path, display, text));
+                let file = Arc::new(source(path, display, text));
                 // The lossy text keeps every byte before the first invalid one in place.
                 Err(CaseError::at(
                     &Location::new(&file, valid),
@@ -133,23 +145,21 @@ impl SourceFile {
 
 /// A file's text, decompressed when gzipped, and the offset of the first byte that is not
 /// UTF-8 (the text is then lossy).
+///
+/// Read through [`read_regular_file`] and [`gunzip_bounded`]: only a regular file of at most
+/// [`MAX_TEXT_BYTES`], expanding to at most [`MAX_GZIP_EXPANDED_BYTES`] when gzipped, since
+/// a case may come from anyone.
 fn read_text(path: &Path, display: &str) -> Result<(String, Option<usize>), CaseError> {
-    let bytes = std::fs::read(path).map_err(|e| {
-        let reason = match e.kind() {
-            std::io::ErrorKind::NotFound => "file not found".to_string(),
-            _ => format!("cannot read the file: {e}"),
-        };
-        CaseError::in_file(display, reason)
-    })?;
+    let bytes = read_regular_file(path, MAX_TEXT_BYTES)
+        .map_err(|e| CaseError::in_file(display, e.to_string()))?;
     let gzipped = path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&GZIP_MAGIC);
     let bytes = if gzipped {
-        let mut out = Vec::new();
-        flate2::read::MultiGzDecoder::new(&bytes[..])
-            .read_to_end(&mut out)
-            .map_err(|e| {
+        gunzip_bounded(&bytes, MAX_GZIP_EXPANDED_BYTES).map_err(|e| match e {
+            ReadError::Io(e) => {
                 CaseError::in_file(display, format!("cannot decompress gzip data: {e}"))
-            })?;
-        out
+            }
+            e => CaseError::in_file(display, e.to_string()),
+        })?
     } else {
         bytes
     };
@@ -231,6 +241,15 @@ impl Location {
     pub fn describe(&self) -> String {
         let (line, col) = self.line_col();
         format!("{}:{line}:{col}", self.file.display)
+    }
+}
+
+/// Whether `path` lies inside `case_dir`, symlinks resolved (a symlink inside the case to a
+/// file outside it is outside).
+fn inside(path: &Path, case_dir: &Path) -> bool {
+    match (path.canonicalize(), case_dir.canonicalize()) {
+        (Ok(p), Ok(d)) => p.starts_with(d),
+        _ => false,
     }
 }
 

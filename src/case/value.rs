@@ -11,6 +11,7 @@ use std::borrow::Cow;
 use std::fmt;
 
 use super::dictionary::Dict;
+use super::quote::quote;
 use super::source::Location;
 
 /// One token of a value, with where it was read.
@@ -260,8 +261,8 @@ impl Item {
     /// A short description of the token for "found …" in messages.
     pub fn describe(&self) -> String {
         match &self.value {
-            Value::Word(w) => format!("the word '{w}'"),
-            Value::Str(s) => format!("the string \"{s}\""),
+            Value::Word(w) => format!("the word '{}'", quote(w)),
+            Value::Str(s) => format!("the string \"{}\"", quote(s)),
             Value::Label(n) => format!("the integer {n}"),
             Value::Scalar(x) => format!("the number {x}"),
             Value::List(items) => format!("a list of {} elements", items.len()),
@@ -272,7 +273,9 @@ impl Item {
             Value::Dimensions(_) => "a dimension set".to_string(),
             Value::Dict(_) => "a dictionary".to_string(),
             Value::Code(_) => "a code block #{ … #}".to_string(),
-            Value::Directive(d) => format!("the directive '#{d}' (fsim does not evaluate it)"),
+            Value::Directive(d) => {
+                format!("the directive '#{}' (fsim does not evaluate it)", quote(d))
+            }
         }
     }
 }

@@ -16,6 +16,7 @@
 
 use super::output_error::OutputError;
 use super::safe_dir::SafeDir;
+use crate::case::bounded_read::{read_regular_file, MAX_RESTART_BYTES};
 use flate2::Crc;
 use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
@@ -126,8 +127,9 @@ impl RestartState {
     /// Reads a restart file; a wrong magic, a truncated file or a checksum mismatch is an error
     /// naming the file.
     pub fn read(path: &Path) -> Result<Self, OutputError> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| OutputError::io(path, "cannot read restart file", e))?;
+        // as every file a case holds: a regular file only, of bounded size
+        let bytes = read_regular_file(path, MAX_RESTART_BYTES)
+            .map_err(|e| OutputError::invalid(path, format!("cannot read restart file: {e}")))?;
         Self::from_bytes(path, &bytes)
     }
 

@@ -3,18 +3,15 @@
 //! link (exit 2 when found before the run, 1 when it appears during it), and nothing outside
 //! the case changes.
 //!
-//! `cargo test --release --test hostile_writes`
+//! `cargo test --release --test hostile writes::`
 
-#[path = "../support/mod.rs"]
-mod support;
-
+use crate::support::*;
 use std::collections::BTreeMap;
 use std::fs;
 use std::os::unix::fs::symlink;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
-use support::*;
 
 /// Every file and directory below `dir` (links as their targets' text), with its bytes: what
 /// must not change outside the case.

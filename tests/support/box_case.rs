@@ -48,6 +48,12 @@ impl BoxCase {
         ));
         let _ = fs::remove_dir_all(&dir);
         self.write(&dir);
+        // The caller sets the steps: the run's own end (10¹⁸ steps of 1 ns) is planned past
+        // fsimFoam's default limits on purpose, which this test process lifts.
+        fsim::case::control_dict::set_plan_limits(fsim::case::control_dict::PlanLimits {
+            steps: f64::INFINITY,
+            writes: f64::INFINITY,
+        });
         let case = Case::load(&dir).unwrap_or_else(|e| panic!("the test's case: {e}"));
         let sim = Simulation::new(&case, None).unwrap_or_else(|e| panic!("{e}"));
         // The simulation holds everything it read; it writes nothing unless asked.

@@ -2,8 +2,10 @@
 //! the directives fsim keeps without acting on them.
 
 use super::{directive_name, quoted, release_if_large, word, Ctx, Src, MAX_INCLUDE_DEPTH};
+use crate::case::bounded_read::not_regular;
 use crate::case::dictionary::Directive;
 use crate::case::error::CaseError;
+use crate::case::quote::quote;
 use crate::case::source::{Location, SourceFile};
 use crate::case::value::{Item, Value};
 use nom::character::complete::not_line_ending;
@@ -117,7 +119,10 @@ impl Ctx {
         if src.file.path.as_os_str().is_empty() {
             return Err(CaseError::at(
                 loc,
-                format!("cannot include \"{arg}\": the text was not read from a file"),
+                format!(
+                    "cannot include \"{}\": the text was not read from a file",
+                    quote(arg)
+                ),
             ));
         }
         let path = Path::new(&expanded);
@@ -131,7 +136,20 @@ impl Ctx {
                 .join(path)
         };
         let gz = PathBuf::from(format!("{}.gz", path.display()));
-        // Only regular files: a device such as /dev/zero would never end.
+        // Only regular files: a device such as /dev/zero would never end, a FIFO would
+        // block. Something else at the path is refused by its kind and never opened, nor
+        // watched (docs/security.md, "Reads").
+        for candidate in [&path, &gz] {
+            if let Some(kind) = not_regular(candidate) {
+                return Err(CaseError::at(
+                    loc,
+                    format!(
+                        "cannot include \"{}\": expected a regular file, found {kind} (not read)",
+                        quote_path(candidate)
+                    ),
+                ));
+            }
+        }
         if !path.is_file() && !gz.is_file() {
             if optional {
                 return Ok(());
@@ -140,7 +158,7 @@ impl Ctx {
             self.included.push(path.clone());
             return Err(CaseError::at(
                 loc,
-                format!("cannot include \"{arg}\": file not found"),
+                format!("cannot include \"{}\": file not found", quote(arg)),
             ));
         }
         if self.include_depth >= MAX_INCLUDE_DEPTH {
@@ -170,4 +188,9 @@ impl Ctx {
         }
         result.map(|_| ())
     }
+}
+
+/// A path quoted for a message, bounded as every user value is.
+fn quote_path(path: &Path) -> String {
+    quote(&path.to_string_lossy()).into_owned()
 }
