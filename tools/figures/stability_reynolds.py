@@ -53,6 +53,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Patch, Rectangle  # noqa: E402
 from figure import ROOT, arguments, run_study, save, study_tool  # noqa: E402
+from stability_direct import COLOURS, classify  # noqa: E402
 
 FIGURES = ROOT / "tools" / "figures"
 DIRECT_SPEC = FIGURES / "stability_reynolds_direct.toml"
@@ -67,22 +68,6 @@ D_DIRECT, D_DRAG = 2e-3, 1e-3
 SCHEMES = ("Euler", "RK3", "EulerRKC")
 DRAG_STEPS = (2e-4, 1e-3)          # the tutorial's step, 5 times it
 DRAG_REFERENCE = 2.5e-5            # 1/8 of the tutorial's step
-
-COLOURS = {"stable": "#4daf4a", "inaccurate": "#ffbf00", "unstable": "#e41a1c",
-           "refused": "#9e9e9e"}
-
-
-def classify(status, exit_code, error, threshold=THRESHOLD):
-    """A run's outcome: 'refused' (exit 2: refused at start), 'unstable' (it failed while
-    running, or its error is not finite), 'inaccurate' (error > threshold), 'stable'; None
-    for a point that has not run."""
-    if status == "failed":
-        return "refused" if exit_code == 2 else "unstable"
-    if status != "done":
-        return None
-    if error is None or not math.isfinite(error):
-        return "unstable"
-    return "inaccurate" if error > threshold else "stable"
 
 
 def monitor(point, name, column):
@@ -290,7 +275,8 @@ def main(argv=None):
     direct = direct_cells(args.study, reference_study)
     drag = drag_cells(args.drag_study)
     for c in direct + drag:
-        c["outcome"] = classify(c["row"]["status"], c["row"].get("exit_code"), c["error"])
+        c["outcome"] = classify(c["row"]["status"], c["row"].get("exit_code"), c["error"],
+                                THRESHOLD)
     direct.sort(key=lambda c: (SCHEMES.index(c["scheme"]), -c["nu"]))
     drag.sort(key=lambda c: (c["scheme"], -c["nu"]))
     print_cells("direct model (settlingSphere, r/h = 4, adjustTimeStep yes, maxCo 0.5)",

@@ -184,32 +184,26 @@ impl Dem {
     }
 
     /// One kick–drift–kick step of `dt` under the constant loads alone (no contact acts: see
-    /// [`Dem::contact_free`]); rebuilds the lists when a particle has moved more than half the
-    /// skin.
+    /// [`Dem::contact_free`], which also found every contact load zero, so the engine's
+    /// kick–drift pass takes it); rebuilds the lists when a particle has moved more than half
+    /// the skin.
     pub(super) fn free_flight(&mut self, dt: f64) {
-        let (motion, _, p) = self.motion_parts(dt);
-        let zero = Vec3::zeros();
-        let moved =
-            p.x.par_chunks_mut(CHUNK)
-                .zip(p.v.par_chunks_mut(CHUNK))
-                .zip(p.w.par_chunks_mut(CHUNK))
-                .enumerate()
-                .map(|(c, ((x, v), w))| {
-                    let base = c * CHUNK;
-                    let mut moved = false;
-                    for k in 0..x.len() {
-                        let i = base + k;
-                        moved |= motion.kick_drift(i, zero, zero, &mut x[k], &mut v[k], &mut w[k]);
-                        if motion.inv_m[i] != 0.0 {
-                            motion.half_kick(i, zero, zero, &mut v[k], &mut w[k]);
-                        }
-                    }
-                    moved
-                })
-                .reduce(|| false, |a, b| a | b);
-        if moved {
+        if self.kick_drift(dt) {
             self.rebuild();
         }
+        let (motion, _, p) = self.motion_parts(dt);
+        let zero = Vec3::zeros();
+        p.v.par_chunks_mut(CHUNK)
+            .zip(p.w.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (v, w))| {
+                for k in 0..v.len() {
+                    let i = c * CHUNK + k;
+                    if motion.inv_m[i] != 0.0 {
+                        motion.half_kick(i, zero, zero, &mut v[k], &mut w[k]);
+                    }
+                }
+            });
         self.time += dt;
         self.steps += 1;
         self.contact_free_steps += 1;
