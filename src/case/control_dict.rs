@@ -185,7 +185,7 @@ pub const DEFAULT_MAX_STEPS: f64 = 1e9;
 /// `writeInterval`.
 pub const DEFAULT_MAX_WRITES: f64 = 1e6;
 
-/// The most steps and writes a controlDict may plan ([`check_plan`]).
+/// The most steps and writes a controlDict may plan (`check_plan`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanLimits {
     pub steps: f64,

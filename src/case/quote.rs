@@ -7,7 +7,7 @@ use std::borrow::Cow;
 pub const QUOTE_CHARS: usize = 80;
 
 /// Most characters of a whole message: a backstop for messages that echo several values
-/// or a list, beyond what [`quote`] bounds (room for a path of [`PATH_CHARS`] and the
+/// or a list, beyond what [`quote`] bounds (room for a path of `PATH_CHARS` and the
 /// message about it).
 pub const MESSAGE_CHARS: usize = 6000;
 
@@ -34,8 +34,8 @@ fn shorten(text: &str, max: usize) -> Cow<'_, str> {
     }
 }
 
-/// A whole message bounded: every run of non-blank characters longer than [`RUN_CHARS`]
-/// (a word no message of fsim's own holds; [`PATH_CHARS`] for one holding a `/`, a path)
+/// A whole message bounded: every run of non-blank characters longer than `RUN_CHARS`
+/// (a word no message of fsim's own holds; `PATH_CHARS` for one holding a `/`, a path)
 /// is quoted as [`quote`] does, then the whole is
 /// cut at [`MESSAGE_CHARS`]. Applied to every message printed, so that one that forgot to
 /// quote a value is bounded all the same.

@@ -10,7 +10,7 @@
 //! ```
 //!
 //! The grid resolves this film while it is a few cells wide; below about one cell the
-//! resolved force falls short. As in Ladd & Verberg (2001, the paper's ref. [16]), Breugem
+//! resolved force falls short. As in Ladd & Verberg (2001, the paper's ref. \[16\]), Breugem
 //! (2010) and Kempe & Fröhlich (2012, J. Fluid Mech. 709), only the part the grid misses is
 //! added, with a cut-off `ζ_c` (`h`) where the correction vanishes continuously and a
 //! saturation gap `ζ_min` (`10⁻³ R_eff`, Breugem's surface roughness) below which the
