@@ -8,8 +8,9 @@
 //! (`ulimit -v`) — and a run that would not fit is refused with exit 2. Found later, an
 //! allocation that fails would abort the process with no message.
 //!
-//! The estimate counts the arrays every run of the model holds (a lower bound: solver lists
-//! and output buffers come on top), so a refusal is never a false alarm.
+//! The estimate counts the arrays every run of the model holds, meant as a lower bound (the
+//! Poisson solver's scratch, solver lists and output buffers come on top), so that a refused
+//! run would not have fit.
 
 use crate::case::{Case, CouplingModel};
 use crate::error::FsimError;
