@@ -21,9 +21,14 @@ pub struct Options {
     #[arg(long = "dry-run")]
     pub dry_run: bool,
 
-    /// Number of threads (default: all cores)
+    /// Number of threads (default: all cores; at most 4 per core, docs/security.md)
     #[arg(long = "threads", value_name = "N")]
     pub threads: Option<usize>,
+
+    /// Most memory the run may need, as 4G, 512M or bytes (default: the memory available;
+    /// docs/security.md)
+    #[arg(long = "memory", value_name = "SIZE", value_parser = crate::memory::parse_size)]
+    pub memory: Option<u64>,
 
     /// Most time steps controlDict may plan (default 1e9; docs/security.md)
     #[arg(long = "maxSteps", value_name = "N", value_parser = positive_count)]
@@ -54,10 +59,11 @@ impl Options {
 }
 
 /// Long options that OpenFOAM users type with a single dash.
-const LONG_OPTIONS: [&str; 7] = [
+const LONG_OPTIONS: [&str; 8] = [
     "case",
     "dry-run",
     "threads",
+    "memory",
     "maxSteps",
     "maxWrites",
     "help",
@@ -113,6 +119,11 @@ mod tests {
         );
         assert!(parse(&["fsimFoam", "-maxSteps", "inf"]).is_err());
         assert!(parse(&["fsimFoam", "-maxWrites", "0"]).is_err());
+        assert_eq!(
+            parse(&["fsimFoam", "-memory", "4G"]).unwrap().memory,
+            Some(4 << 30)
+        );
+        assert!(parse(&["fsimFoam", "-memory", "lots"]).is_err());
     }
 
     #[test]

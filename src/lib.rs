@@ -10,6 +10,7 @@ pub mod coupling;
 pub mod error;
 pub mod fluid;
 pub mod grid;
+pub mod memory;
 pub mod output;
 pub mod particles;
 pub mod run;

@@ -26,22 +26,48 @@ use std::time::Instant;
 /// Runs `fsimFoam` with the given options.
 pub fn run(options: &Options) -> Result<(), FsimError> {
     crate::case::control_dict::set_plan_limits(options.plan_limits());
+    crate::memory::set_user_limit(options.memory);
+    let cores = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    let threads = options.threads.unwrap_or(cores);
+    check_threads(threads, cores)?;
     // From before the case is read, so that no change made while the run starts is missed.
     let watch = ControlDictWatch::new(&options.case);
     let mut case = load_case(options)?;
-    let threads = options.threads.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
-    if threads == 0 {
-        return Err(FsimError::input("-threads must be at least 1"));
-    }
+    let cells = case.mesh.grid.n;
+    crate::memory::check(
+        crate::memory::grid_bytes(&case),
+        &format!(
+            "system/blockMeshDict: the grid of {} x {} x {} cells",
+            cells[0], cells[1], cells[2]
+        ),
+    )?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| FsimError::run(format!("cannot start {threads} threads: {e}")))?;
     pool.install(|| run_case(&mut case, options, threads, watch))
+}
+
+/// Most threads per core `-threads` may ask for: a thread pool is started before the case
+/// runs, and thousands of threads only take memory and start-up time on cores that they share.
+pub const THREADS_PER_CORE: usize = 4;
+
+/// Refuses `-threads 0` and more than [`THREADS_PER_CORE`] threads per core (at least 8 in
+/// all), before the case is read.
+fn check_threads(threads: usize, cores: usize) -> Result<(), FsimError> {
+    let most = (THREADS_PER_CORE * cores).max(8);
+    if threads == 0 {
+        return Err(FsimError::input("-threads must be at least 1"));
+    }
+    if threads > most {
+        return Err(FsimError::input(format!(
+            "-threads {threads}: more than {THREADS_PER_CORE} per core of the {cores} this \
+             machine has (at most {most}); more threads than cores only share them"
+        )));
+    }
+    Ok(())
 }
 
 /// Reads and validates every file of the case, listing the keywords fsim ignores; with

@@ -553,6 +553,7 @@ fn read_block(d: &Dict, vertex_count: usize) -> Result<Block, CaseError> {
             }
         };
     }
+    check_cell_count(cells, &cells_item.loc)?;
     k += 1;
     let grading_word = next(k, "simpleGrading (1 1 1)")?;
     let expected_len = match grading_word.as_word() {
@@ -608,6 +609,37 @@ fn read_block(d: &Dict, vertex_count: usize) -> Result<Block, CaseError> {
         loc: first.loc.clone(),
         labels_loc: labels_item.loc.clone(),
     })
+}
+
+/// Most cells a block may have, ghost layers included (10¹²).
+///
+/// The product of the counts, and every array index the solvers derive from it (ghost
+/// layers, faces), is then computed without overflow; the memory such a grid needs is checked
+/// against what the machine has later (src/memory.rs), with the whole model known.
+pub const MAX_CELLS: u128 = 1_000_000_000_000;
+
+/// Refuses cell counts whose product, with a ghost layer on each side, exceeds
+/// [`MAX_CELLS`]: an overflowing product would otherwise make a small or absurd grid.
+fn check_cell_count(cells: [usize; 3], loc: &Location) -> Result<(), CaseError> {
+    let padded = cells
+        .iter()
+        .map(|&n| n as u128 + 2)
+        .fold(1u128, u128::saturating_mul);
+    if padded > MAX_CELLS {
+        let product = cells
+            .iter()
+            .map(|&n| n as u128)
+            .fold(1u128, u128::saturating_mul);
+        return Err(CaseError::at(
+            loc,
+            format!(
+                "cell counts ({} {} {}) make {:.3e} cells, more than fsim's limit of \
+                 {:.0e} (with ghost layers): use fewer cells",
+                cells[0], cells[1], cells[2], product as f64, MAX_CELLS as f64
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Checks that the block's corners form an axis-aligned box in OpenFOAM's vertex order and

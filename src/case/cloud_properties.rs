@@ -454,6 +454,7 @@ impl Cloud {
                 let sizes = SizeDistribution::read(m)?;
                 let mut rng = SplitMix64::new(seed);
                 let volume = (0..3).map(|a| hi[a] - lo[a]).product::<f64>();
+                check_packing(m, &domain, lo, hi, phi, volume, &sizes, &rng)?;
                 let mut diameters = Vec::new();
                 let mut filled = 0.0;
                 loop {
@@ -555,6 +556,64 @@ impl Cloud {
 }
 
 /// One note per keyword of the cloud file that fsim did not read.
+/// Most spheres one `randomPacking` may place (10⁷): about 4 GB of particle state and
+/// hours of packing; a larger bed is a sign of a wrong box or diameter, refused before any
+/// sphere is drawn.
+pub const MAX_PACKED_SPHERES: f64 = 1e7;
+
+/// Checks a random packing before it is drawn: its box lies inside the domain, and the number
+/// of spheres its volume fraction implies (from the mean volume of 1000 diameters drawn from
+/// the size distribution) is at most [`MAX_PACKED_SPHERES`]. Packing first would take
+/// minutes, and the memory of every sphere, to find either.
+#[allow(clippy::too_many_arguments)]
+fn check_packing(
+    m: &Dict,
+    domain: &crate::particles::DomainBox,
+    lo: [f64; 3],
+    hi: [f64; 3],
+    phi: f64,
+    volume: f64,
+    sizes: &SizeDistribution,
+    rng: &SplitMix64,
+) -> Result<(), CaseError> {
+    for a in 0..3 {
+        let tol = 1e-9 * (domain.hi[a] - domain.lo[a]);
+        if lo[a] < domain.lo[a] - tol || hi[a] > domain.hi[a] + tol {
+            return Err(at_value(
+                m,
+                "box",
+                format!(
+                    "the box reaches outside the domain along {}: [{}, {}] against the \
+                     mesh's [{}, {}]",
+                    ["x", "y", "z"][a],
+                    lo[a],
+                    hi[a],
+                    domain.lo[a],
+                    domain.hi[a]
+                ),
+            ));
+        }
+    }
+    let mut rng = rng.clone();
+    let draws = 1000;
+    let mean = (0..draws)
+        .map(|_| sphere_volume(sizes.sample(&mut rng)))
+        .sum::<f64>()
+        / draws as f64;
+    let count = phi * volume / mean;
+    if count.is_nan() || count > MAX_PACKED_SPHERES {
+        return Err(at_value(
+            m,
+            "volumeFraction",
+            format!(
+                "volumeFraction {phi} of the box makes about {count:.3e} spheres, more than \
+                 fsim packs ({MAX_PACKED_SPHERES:.0e}): check the box and the diameters"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn ignored_keywords(d: &Dict) -> Vec<String> {
     let mut seen = std::collections::BTreeSet::new();
     let mut notes = Vec::new();

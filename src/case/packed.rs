@@ -58,11 +58,13 @@ pub(crate) fn scan(text: &str, expected: Option<usize>) -> Option<Packed> {
         } = event
         {
             if !reserved {
-                // Sized from the count, guessing vectors for tuples (the walk finds the width).
+                // Sized from the count, guessing vectors for tuples (the walk finds the width),
+                // but never past the numbers the text can hold (each takes 2 bytes or more):
+                // a count line of 10⁹ must not reserve gigabytes before the list is read.
                 reserved = true;
                 if let Some(n) = expected {
                     let guess = if component.is_some() { 3 } else { 1 };
-                    data.reserve_exact(n.saturating_mul(guess).min(1 << 28));
+                    data.reserve_exact(n.saturating_mul(guess).min(text.len() / 2));
                 }
             }
             let k = data.len();

@@ -154,17 +154,22 @@ impl FluidSolver {
             return Err(format!("viscosity must be positive, got {}", settings.nu));
         }
         let layout = PaddedLayout::new(grid.n);
+        // The grid's main arrays first, each reserved so that a failure is a message (the
+        // memory check before this can be beaten by other processes).
+        let zeros = || crate::memory::zeros(layout.len, "the fluid's velocity arrays");
+        let u = [zeros()?, zeros()?, zeros()?];
+        let q = [zeros()?, zeros()?, zeros()?];
+        let p = crate::memory::zeros(grid.cell_count(), "the fluid's pressure")?;
         let axes = std::array::from_fn(|d| bc.pressure_axis(d));
         let poisson = SpectralPoisson::new(grid.n, grid.h, axes);
-        let zeros = || vec![0.0; layout.len];
         let momentum_ranges =
             std::array::from_fn(|c| std::array::from_fn(|d| bc.momentum_range(grid.n, c, d)));
         let corrected_ranges =
             std::array::from_fn(|c| std::array::from_fn(|d| bc.corrected_range(grid.n, c, d)));
         let mut s = FluidSolver {
-            u: [zeros(), zeros(), zeros()],
-            q: [zeros(), zeros(), zeros()],
-            p: vec![0.0; grid.cell_count()],
+            u,
+            q,
+            p,
             source: None,
             mass_source: None,
             poisson,

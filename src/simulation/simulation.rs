@@ -78,7 +78,13 @@ impl Simulation {
         };
         let mut fluid =
             FluidSolver::new(case.mesh.grid.clone(), boundary_conditions(case)?, settings)
-                .map_err(|e| FsimError::input(format!("case: {e}")))?;
+                .map_err(|e| {
+                    if crate::memory::is_allocation_failure(&e) {
+                        FsimError::run(e)
+                    } else {
+                        FsimError::input(format!("case: {e}"))
+                    }
+                })?;
         fluid
             .set_mean_velocity_force(mean_velocity_force(case)?)
             .map_err(|e| FsimError::input(format!("fvOptions: {e}")))?;
@@ -96,6 +102,14 @@ impl Simulation {
         };
         let model = case.coupling.model;
         let cloud = Cloud::from_case(case)?;
+        if let Some(cloud) = &cloud {
+            // before the DEM's arrays: the grid's are in place, the particles' are not
+            let n = cloud.particles.len();
+            crate::memory::check(
+                crate::memory::grid_bytes(case) + n as f64 * crate::memory::BYTES_PER_PARTICLE,
+                &format!("constant/kinematicCloudProperties: {n} particles with the grid"),
+            )?;
+        }
         if let (CouplingModel::Direct, Some(cloud)) = (model, &cloud) {
             sim.warnings = check_direct_resolution(&sim.fluid, cloud, &case.coupling.direct);
         }

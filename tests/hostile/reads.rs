@@ -25,15 +25,15 @@ const REFUSED_WITHIN: Duration = Duration::from_secs(10);
 const STDERR_BYTES: usize = 4096;
 
 /// What a run gave: exit code (`None` when killed), stderr, time taken.
-struct Run {
-    code: Option<i32>,
-    stderr: String,
-    elapsed: Duration,
+pub(crate) struct Run {
+    pub(crate) code: Option<i32>,
+    pub(crate) stderr: String,
+    pub(crate) elapsed: Duration,
 }
 
 impl Run {
     /// The `fsimFoam: error:` lines.
-    fn errors(&self) -> Vec<&str> {
+    pub(crate) fn errors(&self) -> Vec<&str> {
         self.stderr
             .lines()
             .filter(|l| l.starts_with("fsimFoam: error:"))
@@ -43,7 +43,7 @@ impl Run {
 
 /// Runs fsimFoam on `case` under [`MEMORY_LIMIT`], killed after [`KILL_AFTER`]; stdout and
 /// stderr go to files beside the case, so that a flood of output cannot block the child.
-fn run_limited(case: &Path, args: &[&str]) -> Run {
+pub(crate) fn run_limited(case: &Path, args: &[&str]) -> Run {
     let dir = case.parent().unwrap();
     let err_path = dir.join("stderr.txt");
     let mut command = Command::new(env!("CARGO_BIN_EXE_fsimFoam"));
@@ -91,7 +91,7 @@ fn run_limited(case: &Path, args: &[&str]) -> Run {
 
 /// Runs `case` and checks the refusal: exit code 2, one short error line holding every one
 /// of `expected`, a bounded stderr, within [`REFUSED_WITHIN`], the case unchanged.
-fn assert_refused(case: &Path, args: &[&str], expected: &[&str]) -> Run {
+pub(crate) fn assert_refused(case: &Path, args: &[&str], expected: &[&str]) -> Run {
     let before = listing(case);
     let run = run_limited(case, args);
     let shown = &run.stderr[..run.stderr.len().min(2000)];
@@ -117,13 +117,13 @@ fn assert_refused(case: &Path, args: &[&str], expected: &[&str]) -> Run {
 }
 
 /// A copy of `tutorial` in a scratch directory.
-fn case_of(tutorial: &str, tag: &str) -> (Scratch, PathBuf) {
+pub(crate) fn case_of(tutorial: &str, tag: &str) -> (Scratch, PathBuf) {
     let scratch = Scratch::new(&format!("hostile-{tag}"));
     let case = copy_tutorial(tutorial, &scratch.0, "case");
     (scratch, case)
 }
 
-fn replace(file: &Path, from: &str, to: &str) {
+pub(crate) fn replace(file: &Path, from: &str, to: &str) {
     let text = fs::read_to_string(file).unwrap();
     assert!(text.contains(from), "{} lacks {from}", file.display());
     fs::write(file, text.replacen(from, to, 1)).unwrap();

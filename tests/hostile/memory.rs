@@ -1,0 +1,124 @@
+//! Memory and work estimated before they are committed (docs/security.md, "Memory and
+//! work"): each test gives a copied tutorial a grid, cloud or option that would need more
+//! memory or work than the machine has and checks that fsimFoam refuses it with exit code 2
+//! and one short error line naming the entry, within seconds, under the 1 GiB address-space
+//! limit of [`run_limited`](crate::reads), before writing anything.
+
+use crate::reads::{assert_refused, case_of, replace};
+
+/// The cavity tutorial with `cells` in place of its `(64 64 1)`.
+fn cavity_with_cells(cells: &str, tag: &str) -> (crate::support::Scratch, std::path::PathBuf) {
+    let (scratch, case) = case_of("cavity", tag);
+    replace(
+        &case.join("system/blockMeshDict"),
+        "(64 64 1)",
+        &format!("({cells})"),
+    );
+    (scratch, case)
+}
+
+#[test]
+fn cell_counts_whose_product_overflows_are_refused() {
+    let (_s, case) = cavity_with_cells("4294967296 4294967296 1", "cells-overflow");
+    assert_refused(
+        &case,
+        &[],
+        &["system/blockMeshDict:", "4294967296 4294967296 1", "limit"],
+    );
+}
+
+#[test]
+fn a_billion_cells_in_a_row_are_refused_before_allocating() {
+    let (_s, case) = cavity_with_cells("1000000000 1 1", "cells-row");
+    assert_refused(
+        &case,
+        &[],
+        &[
+            "system/blockMeshDict",
+            "1000000000 x 1 x 1",
+            "needs at least",
+        ],
+    );
+}
+
+#[test]
+fn a_grid_larger_than_memory_is_refused_before_allocating() {
+    let (_s, case) = cavity_with_cells("25000 25000 1", "cells-square");
+    assert_refused(
+        &case,
+        &[],
+        &[
+            "system/blockMeshDict",
+            "25000 x 25000 x 1",
+            "needs at least",
+        ],
+    );
+}
+
+#[test]
+fn a_memory_limit_below_the_need_is_refused_with_both() {
+    let (_s, case) = case_of("cavity", "memory-limit");
+    assert_refused(
+        &case,
+        &["-memory", "100K"],
+        &["64 x 64 x 1", "needs at least", "-memory limit of 102.4 kB"],
+    );
+}
+
+#[test]
+fn a_positions_count_beyond_the_list_fails_fast() {
+    let (_s, case) = case_of("settlingInLiquid", "positions-count");
+    replace(
+        &case.join("constant/kinematicCloudPositions"),
+        "1\n(",
+        "1000000000\n(",
+    );
+    assert_refused(
+        &case,
+        &[],
+        &["constant/kinematicCloudPositions:", "1000000000 elements"],
+    );
+}
+
+#[test]
+fn a_packing_box_outside_the_domain_is_refused_before_packing() {
+    let (_s, case) = case_of("particleSettling", "packing-outside");
+    replace(
+        &case.join("constant/kinematicCloudProperties"),
+        "(0.0235 0.0235 0.0475)",
+        "(0.0235 0.0235 4.75)",
+    );
+    assert_refused(
+        &case,
+        &[],
+        &["constant/kinematicCloudProperties:", "outside the domain"],
+    );
+}
+
+#[test]
+fn a_packing_of_a_billion_spheres_is_refused_before_packing() {
+    let (_s, case) = case_of("particleSettling", "packing-count");
+    let file = case.join("constant/kinematicCloudProperties");
+    replace(&file, "expectation 0.002;", "expectation 0.00002;");
+    replace(&file, "minValue    0.0018;", "minValue    0.000018;");
+    replace(&file, "maxValue    0.0022;", "maxValue    0.000022;");
+    assert_refused(
+        &case,
+        &[],
+        &[
+            "constant/kinematicCloudProperties:",
+            "volumeFraction",
+            "spheres",
+        ],
+    );
+}
+
+#[test]
+fn a_hundred_thousand_threads_are_refused() {
+    let (_s, case) = case_of("cavity", "threads");
+    assert_refused(
+        &case,
+        &["-threads", "100000"],
+        &["-threads 100000", "per core"],
+    );
+}
