@@ -298,6 +298,16 @@ mod tests {
     use crate::output::test_support::ScratchDir;
     use std::os::unix::fs::{symlink, MetadataExt};
 
+    /// No hidden entry (partial, purge or swapped-out directory) is left in `case`.
+    fn assert_nothing_hidden(case: &Path) {
+        let hidden: Vec<_> = read_dir_paths(case)
+            .unwrap()
+            .into_iter()
+            .filter(|p| p.file_name().unwrap().to_str().unwrap().starts_with('.'))
+            .collect();
+        assert!(hidden.is_empty(), "left behind: {hidden:?}");
+    }
+
     fn read_dir_paths(dir: &Path) -> Result<Vec<PathBuf>, std::io::Error> {
         fs::read_dir(dir)?.map(|e| e.map(|e| e.path())).collect()
     }
@@ -316,12 +326,7 @@ mod tests {
         assert!(!case.path().join("0.5").exists(), "visible before commit");
         let final_path = dir.commit().unwrap();
         assert_eq!(fs::read_to_string(final_path.join("a")).unwrap(), "x");
-        let hidden: Vec<_> = read_dir_paths(case.path())
-            .unwrap()
-            .into_iter()
-            .filter(|p| p.file_name().unwrap().to_str().unwrap().starts_with('.'))
-            .collect();
-        assert!(hidden.is_empty(), "left behind: {hidden:?}");
+        assert_nothing_hidden(case.path());
     }
 
     #[test]
@@ -422,12 +427,7 @@ mod tests {
             fs::read_to_string(outside.path().join("U.air")).unwrap(),
             "shared"
         );
-        let hidden: Vec<_> = read_dir_paths(case.path())
-            .unwrap()
-            .into_iter()
-            .filter(|p| p.file_name().unwrap().to_str().unwrap().starts_with('.'))
-            .collect();
-        assert!(hidden.is_empty(), "left behind: {hidden:?}");
+        assert_nothing_hidden(case.path());
         drop(old);
     }
 
