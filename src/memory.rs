@@ -118,14 +118,19 @@ fn limit() -> Option<(f64, String)> {
 
 /// Refuses (exit 2) a run whose `what` needs `bytes`, more than the limit (module docs).
 pub fn check(bytes: f64, what: &str) -> Result<(), FsimError> {
+    shortfall(bytes, what).map_or(Ok(()), |m| Err(FsimError::input(m)))
+}
+
+/// The refusal of [`check`] as a message, `None` when `bytes` fit.
+pub fn shortfall(bytes: f64, what: &str) -> Option<String> {
     match limit() {
-        Some((limit, name)) if bytes.is_nan() || bytes > limit => Err(FsimError::input(format!(
+        Some((limit, name)) if bytes.is_nan() || bytes > limit => Some(format!(
             "{what} needs at least {} of memory, more than {name}: use a coarser grid or \
              fewer particles, or run where more memory is free (docs/security.md, \"Memory \
              and work\")",
             show(bytes)
-        ))),
-        _ => Ok(()),
+        )),
+        _ => None,
     }
 }
 

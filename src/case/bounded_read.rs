@@ -140,6 +140,25 @@ pub fn read_regular_file(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> 
     read_limited(file, size, limit)
 }
 
+/// The first `max` bytes of the regular file at `path` and its size, for a look at a
+/// header before the whole is read; `None` for anything [`read_regular_file`] would refuse
+/// (it then says why).
+pub fn read_head(path: &Path, max: u64) -> Option<(Vec<u8>, u64)> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
+        .open(path)
+        .ok()?;
+    let meta = file.metadata().ok()?;
+    if !meta.is_file() {
+        return None;
+    }
+    let mut head = Vec::new();
+    file.take(max).read_to_end(&mut head).ok()?;
+    Some((head, meta.len()))
+}
+
 /// At most `limit` bytes of `file`, `size` of them expected.
 fn read_limited(file: File, size: u64, limit: u64) -> Result<Vec<u8>, ReadError> {
     let mut bytes = Vec::new();

@@ -47,6 +47,11 @@ impl CellGrid {
         }
     }
 
+    /// The edges of a cell.
+    pub(crate) fn cell_size(&self) -> Vec3 {
+        Vec3::from_fn(|a, _| 1.0 / self.inv_size[a])
+    }
+
     pub(crate) fn cell_count(&self) -> usize {
         self.n[0] * self.n[1] * self.n[2]
     }

@@ -102,6 +102,7 @@ impl Dem {
                 .sort(&dem.domain, dem.cell_size, &dem.particles.position);
             dem.lists.order.clone()
         };
+        dem.check_crowding()?;
         dem.apply_order();
         dem.build_lists();
         dem.check_overlaps(&input_index)?;
@@ -261,6 +262,52 @@ impl Dem {
         self.apply_order();
         self.build_lists();
         self.lists.restore_saved_history();
+    }
+
+    /// Before the first lists: refuses a contact cell whose particles' volume exceeds the box
+    /// their spheres can reach (the cell grown by the largest diameter), `Σ V_p > Π (h_a +
+    /// d_max)`. Such spheres overlap for certain; listing their pairs would cost up to the
+    /// square of their count (10⁶ particles at one point: 5·10¹¹ pairs) before the overlap
+    /// check could name them.
+    /// Runs before [`Dem::apply_order`]: the particles are still in input order, which the
+    /// sort's `order` indexes.
+    fn check_crowding(&self) -> Result<(), DemError> {
+        let lists = &self.lists;
+        let (size, d_max) = (
+            lists.grid.cell_size(),
+            self.particles.diameter.iter().cloned().fold(0.0, f64::max),
+        );
+        let room: f64 = (0..3).map(|a| size[a] + d_max).product();
+        let p = &self.particles;
+        for c in 0..lists.grid.cell_count() {
+            let (s, e) = (
+                lists.cell_start[c] as usize,
+                lists.cell_start[c + 1] as usize,
+            );
+            if e - s < 2 {
+                continue;
+            }
+            let members = &lists.order[s..e];
+            let solid: f64 = members
+                .iter()
+                .map(|&o| {
+                    let d = p.diameter[o as usize];
+                    std::f64::consts::PI / 6.0 * d * d * d
+                })
+                .sum();
+            if solid > room {
+                let (a, b) = (members[0] as usize, members[1] as usize);
+                return Err(DemError::Crowded {
+                    count: e - s,
+                    index_a: a,
+                    index_b: b,
+                    centre: p.position[a],
+                    solid,
+                    room,
+                });
+            }
+        }
+        Ok(())
     }
 
     fn check_overlaps(&self, input_index: &[u32]) -> Result<(), DemError> {

@@ -57,6 +57,16 @@ pub enum DemError {
     },
     /// A face is a `Wall` but no wall model is configured: nothing would stop particles.
     WallWithoutModel { face: usize },
+    /// More particle volume has its centres in one contact cell than fits in the box those
+    /// spheres can reach: they overlap, and listing their pairs would take without bound.
+    Crowded {
+        count: usize,
+        index_a: usize,
+        index_b: usize,
+        centre: Vec3,
+        solid: f64,
+        room: f64,
+    },
     /// Particle arrays of different lengths.
     InconsistentArrays,
     /// The box is empty or inverted.
@@ -110,6 +120,13 @@ impl fmt::Display for DemError {
                 f,
                 "the {} face is a wall but no wall model is set (choose a wallModel or a rebound patch)",
                 FACE_NAMES[*face]
+            ),
+            Crowded { count, index_a, index_b, centre, solid, room } => write!(
+                f,
+                "{count} particles (among them {index_a} and {index_b}) have their centres in \
+                 the contact cell around ({:.4e} {:.4e} {:.4e}): their volume {solid:.3e} m³ \
+                 exceeds the {room:.3e} m³ those spheres can occupy, so they overlap",
+                centre[0], centre[1], centre[2]
             ),
             InconsistentArrays => write!(f, "particle arrays have different lengths"),
             BadDomain { lo, hi } => write!(f, "domain box lo {lo:?} hi {hi:?} is empty"),

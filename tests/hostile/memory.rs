@@ -122,3 +122,66 @@ fn a_hundred_thousand_threads_are_refused() {
         &["-threads 100000", "per core"],
     );
 }
+
+/// settlingColumn with a positions file of `n` particles, each line written by `line(i)`.
+fn column_with_positions(
+    n: usize,
+    tag: &str,
+    line: impl Fn(usize) -> String,
+) -> (crate::support::Scratch, std::path::PathBuf) {
+    use std::io::Write;
+    let (scratch, case) = case_of("settlingColumn", tag);
+    let file = std::fs::File::create(case.join("constant/kinematicCloudPositions")).unwrap();
+    let mut out = std::io::BufWriter::new(file);
+    write!(
+        out,
+        "FoamFile\n{{\n    format ascii;\n    class vectorField;\n}}\n{n}\n(\n"
+    )
+    .unwrap();
+    for i in 0..n {
+        out.write_all(line(i).as_bytes()).unwrap();
+    }
+    out.write_all(b")\n").unwrap();
+    out.flush().unwrap();
+    (scratch, case)
+}
+
+#[test]
+fn ten_million_particles_are_refused_before_their_file_is_read() {
+    // a real 10⁷-line file (300 MB): reading it whole took 0.9 GB and aborted under the limit
+    let (_s, case) = column_with_positions(10_000_000, "positions-1e7", |i| {
+        let (a, b, c) = (i % 215, (i / 215) % 215, i / (215 * 215));
+        format!(
+            "({:.6} {:.6} {:.6})\n",
+            1e-4 * a as f64,
+            1e-4 * b as f64,
+            1e-4 * c as f64
+        )
+    });
+    assert_refused(
+        &case,
+        &[],
+        &[
+            "constant/kinematicCloudPositions:",
+            "10000000 particles",
+            "needs at least",
+        ],
+    );
+}
+
+#[test]
+fn particles_piled_at_one_point_are_refused_before_their_pairs_are_listed() {
+    // 10⁵ particles at one point would list 5·10⁹ pairs before the overlap check names two
+    let (_s, case) = column_with_positions(100_000, "positions-pile", |_| {
+        "(0.00334184 0.00327871 0.00406729)\n".to_string()
+    });
+    assert_refused(
+        &case,
+        &[],
+        &[
+            "constant/kinematicCloudPositions:",
+            "100000 particles (among them 0 and 1)",
+            "so they overlap",
+        ],
+    );
+}

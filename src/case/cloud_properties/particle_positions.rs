@@ -34,12 +34,75 @@ pub(super) fn read_box(m: &Dict) -> Result<([f64; 3], [f64; 3]), CaseError> {
     Ok((lo, hi))
 }
 
+/// Bytes reading takes per particle: the packed numbers and the positions (24 bytes each),
+/// and a source location kept twice (48 bytes each), for the errors that name a particle.
+const READ_BYTES_PER_PARTICLE: f64 = 144.0;
+
+/// Refuses (exit 2) a positions file whose declared particle count (OpenFOAM's count line
+/// before the list) would not fit in memory, before its text is read: the text, what reading
+/// keeps per particle and the DEM's arrays ([`crate::memory::BYTES_PER_PARTICLE`]). A file of
+/// 10⁷ particles is then refused in milliseconds under a 1 GB limit, not aborted half-read.
+fn check_declared_size(path: &Path, case_dir: &Path) -> Result<(), CaseError> {
+    let Some((head, size)) = crate::case::bounded_read::read_head(path, 1 << 16) else {
+        return Ok(());
+    };
+    // A count the text cannot hold (each `(x y z)` takes 7 bytes at least) is the parser's
+    // to report as a count that does not match its list.
+    let Some(count) = declared_count(&head).filter(|&n| n.saturating_mul(7) <= size) else {
+        return Ok(());
+    };
+    let bytes =
+        size as f64 + count as f64 * (READ_BYTES_PER_PARTICLE + crate::memory::BYTES_PER_PARTICLE);
+    let shown = path
+        .strip_prefix(case_dir)
+        .unwrap_or(path)
+        .display()
+        .to_string();
+    crate::memory::shortfall(bytes, &format!("{count} particles"))
+        .map_or(Ok(()), |message| Err(CaseError::in_file(shown, message)))
+}
+
+/// The count line of an OpenFOAM list file: the first token after the `FoamFile` header
+/// (comments skipped) when it is an integer followed by `(`.
+fn declared_count(head: &[u8]) -> Option<u64> {
+    let text = String::from_utf8_lossy(head);
+    let mut rest: &str = &text;
+    let mut depth = 0usize;
+    loop {
+        rest = rest.trim_start();
+        if rest.is_empty() {
+            return None;
+        } else if let Some(r) = rest.strip_prefix("//") {
+            rest = r.split_once('\n')?.1;
+        } else if let Some(r) = rest.strip_prefix("/*") {
+            rest = r.split_once("*/")?.1;
+        } else if let Some(r) = rest.strip_prefix('{') {
+            depth += 1;
+            rest = r;
+        } else if let Some(r) = rest.strip_prefix('}') {
+            depth = depth.checked_sub(1)?;
+            rest = r;
+        } else if depth > 0 || rest.starts_with("FoamFile") {
+            let end = rest.find(|c: char| c.is_whitespace() || "{}/".contains(c));
+            rest = &rest[end.unwrap_or(rest.len()).max(1)..];
+        } else {
+            let digits = rest.find(|c: char| !c.is_ascii_digit())?;
+            let count = rest[..digits].parse().ok()?;
+            return rest[digits..]
+                .trim_start()
+                .starts_with('(')
+                .then_some(count);
+        }
+    }
+}
+
 /// The centres of a positions file, `(x y z)` per particle, each optionally followed by the
 /// `cellI tetFace tetPt` labels of some OpenFOAM versions; with the location of each.
 pub fn read_positions(
     path: &Path,
     case_dir: &Path,
 ) -> Result<(Vec<[f64; 3]>, Vec<Location>), CaseError> {
+    check_declared_size(path, case_dir)?;
     let d = Dict::read(path, Some(case_dir))?;
     let list = match d.values.as_slice() {
         [item] => item,
@@ -86,4 +149,22 @@ pub fn read_positions(
         }
     }
     Ok((positions, locs))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::declared_count;
+
+    #[test]
+    fn the_count_line_is_found_after_header_and_comments() {
+        let text = "/* banner */\nFoamFile\n{\n    version 2.0; // v\n    object positions;\n}\n\
+                    // a comment\n10000000\n(\n(0 0 0)\n";
+        assert_eq!(declared_count(text.as_bytes()), Some(10_000_000));
+        assert_eq!(declared_count(b"FoamFile { a b; }\n3 ( (0 0 0)"), Some(3));
+        // no count, or a count not followed by a list: none
+        assert_eq!(declared_count(b"FoamFile { a b; }\n( (0 0 0) )"), None);
+        assert_eq!(declared_count(b"FoamFile { a b; }\n12 13"), None);
+        // a header cut off by the window: none
+        assert_eq!(declared_count(b"FoamFile { a b;"), None);
+    }
 }
