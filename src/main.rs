@@ -5,6 +5,10 @@
 use fsim::cli::Options;
 use fsim::error::FsimError;
 
+/// A failed allocation ends the run with a message and exit 1, not an abort.
+#[global_allocator]
+static ALLOCATOR: fsim::memory::ExitOnFailure = fsim::memory::ExitOnFailure;
+
 fn main() {
     let options = Options::from_env();
     if let Err(error) = fsim::run::run(&options) {

@@ -185,7 +185,7 @@ pub fn is_allocation_failure(message: &str) -> bool {
 /// instead of aborting.
 pub fn zeros(len: usize, what: &str) -> Result<Vec<f64>, String> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len).map_err(|_| {
+    returning_failure(|| v.try_reserve_exact(len)).map_err(|_| {
         format!(
             "{ALLOCATION_FAILED} {} for {what} ({len} values): not enough memory",
             show(len as f64 * 8.0)
@@ -193,6 +193,94 @@ pub fn zeros(len: usize, what: &str) -> Result<Vec<f64>, String> {
     })?;
     v.resize(len, 0.0);
     Ok(v)
+}
+
+thread_local! {
+    /// Set while a caller that handles a failed allocation itself is allocating.
+    static RETURN_FAILURE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `reserve` (a `try_reserve`) with a failed allocation returned to it as an error,
+/// where [`ExitOnFailure`] would end the process: the caller's message names the array.
+pub fn returning_failure<T>(reserve: impl FnOnce() -> T) -> T {
+    let was = RETURN_FAILURE.with(|f| f.replace(true));
+    let result = reserve();
+    RETURN_FAILURE.with(|f| f.set(was));
+    result
+}
+
+/// The global allocator of `fsimFoam`: the system's, except that an allocation that fails
+/// ends the process with one line on stderr and exit code 1 (a failed run: time directories
+/// appear whole or not at all, so none is half-written) instead of Rust's abort with
+/// `SIGABRT`. An allocation inside [`returning_failure`] gets its failure returned instead.
+pub struct ExitOnFailure;
+
+impl ExitOnFailure {
+    #[cold]
+    fn failed(size: usize) -> ! {
+        // No allocation here: the line is assembled on the stack.
+        let mut line = [0u8; 256];
+        let mut n = 0;
+        let mut put = |bytes: &[u8]| {
+            let k = bytes.len().min(line.len() - n);
+            line[n..n + k].copy_from_slice(&bytes[..k]);
+            n += k;
+        };
+        put(b"fsimFoam: error: out of memory: an allocation of ");
+        let mut digits = [0u8; 20];
+        let (mut i, mut v) = (digits.len(), size);
+        loop {
+            i -= 1;
+            digits[i] = b'0' + (v % 10) as u8;
+            v /= 10;
+            if v == 0 {
+                break;
+            }
+        }
+        put(&digits[i..]);
+        put(
+            b" bytes failed (more than the estimate checked before the run): use a coarser \
+              grid or fewer particles, or run where more memory is free (docs/security.md, \
+              \"Memory and work\")\n",
+        );
+        // SAFETY: write(2) and _exit(2) are async-signal-safe and take a valid buffer.
+        unsafe {
+            libc::write(2, line.as_ptr().cast(), n);
+            libc::_exit(1)
+        }
+    }
+
+    fn checked(&self, p: *mut u8, size: usize) -> *mut u8 {
+        if p.is_null() && !RETURN_FAILURE.try_with(|f| f.get()).unwrap_or(false) {
+            Self::failed(size)
+        }
+        p
+    }
+}
+
+// SAFETY: every call is forwarded to the system allocator with its arguments unchanged.
+unsafe impl std::alloc::GlobalAlloc for ExitOnFailure {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        self.checked(unsafe { std::alloc::System.alloc(layout) }, layout.size())
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
+        self.checked(
+            unsafe { std::alloc::System.alloc_zeroed(layout) },
+            layout.size(),
+        )
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
+        self.checked(
+            unsafe { std::alloc::System.realloc(ptr, layout, new_size) },
+            new_size,
+        )
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        unsafe { std::alloc::System.dealloc(ptr, layout) }
+    }
 }
 
 #[cfg(test)]

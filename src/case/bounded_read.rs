@@ -162,8 +162,7 @@ pub fn read_head(path: &Path, max: u64) -> Option<(Vec<u8>, u64)> {
 /// At most `limit` bytes of `file`, `size` of them expected.
 fn read_limited(file: File, size: u64, limit: u64) -> Result<Vec<u8>, ReadError> {
     let mut bytes = Vec::new();
-    bytes
-        .try_reserve_exact(size as usize)
+    crate::memory::returning_failure(|| bytes.try_reserve_exact(size as usize))
         .map_err(|_| ReadError::NoMemory { bytes: size })?;
     file.take(limit + 1)
         .read_to_end(&mut bytes)
@@ -185,7 +184,7 @@ pub fn gunzip_bounded(data: &[u8], limit: u64) -> Result<Vec<u8>, ReadError> {
         return Err(ReadError::ExpandsTooFar { limit });
     }
     let mut out = Vec::new();
-    out.try_reserve_exact(expanded as usize)
+    crate::memory::returning_failure(|| out.try_reserve_exact(expanded as usize))
         .map_err(|_| ReadError::NoMemory { bytes: expanded })?;
     decoder().read_to_end(&mut out).map_err(ReadError::Io)?;
     Ok(out)

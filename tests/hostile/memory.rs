@@ -185,3 +185,26 @@ fn particles_piled_at_one_point_are_refused_before_their_pairs_are_listed() {
         ],
     );
 }
+
+#[test]
+fn an_allocation_beyond_the_estimate_ends_the_run_with_a_message() {
+    // 2400 x 2400 cells: the estimate (a lower bound, 0.86 GB) fits under the 1 GiB limit,
+    // the solver's scratch then does not; Rust's own handler aborted (SIGABRT, exit 134)
+    let (_s, case) = cavity_with_cells("2400 2400 1", "allocation");
+    let before = std::fs::read_dir(&case).unwrap().count();
+    let run = crate::reads::run_limited(&case, &[]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    let errors = run.errors();
+    assert_eq!(errors.len(), 1, "{}", run.stderr);
+    assert!(
+        errors[0].contains("out of memory: an allocation of"),
+        "{}",
+        errors[0]
+    );
+    assert!(!run.stderr.contains("backtrace"), "{}", run.stderr);
+    assert_eq!(
+        std::fs::read_dir(&case).unwrap().count(),
+        before,
+        "a directory was left"
+    );
+}
