@@ -159,6 +159,10 @@ fn run_case(
     let mut watch = control.run_time_modifiable.then_some(watch);
     let signals = RunSignals::install(control.write_now_signal, control.stop_at_write_now_signal)
         .map_err(FsimError::run)?;
+    // The plan's limits hold while running too: clock- and CPU-time writes, and steps that
+    // an adjustable time step shrank, could not be counted before the start.
+    let limits = crate::case::control_dict::plan_limits();
+    let (mut steps, mut writes) = (0.0, 0.0);
     while sim.time.running() {
         take_signals(&signals, &mut sim, &mut reporter)?;
         // As OpenFOAM's Time::run: read a changed controlDict only while running (a stop
@@ -172,11 +176,19 @@ fn run_case(
                 break;
             }
         }
+        steps += 1.0;
+        if steps > limits.steps {
+            return Err(beyond_limit(steps - 1.0, "time steps", "maxSteps", written));
+        }
         let clock = Instant::now();
         let step = sim.step()?;
         let name = output.time_name(sim.time.time);
         reporter.step(&name, &sim, &step, clock.elapsed())?;
         if step.write_due {
+            writes += 1.0;
+            if writes > limits.writes {
+                return Err(beyond_limit(writes - 1.0, "writes", "maxWrites", written));
+            }
             write_time(&mut output, &mut sim)?;
             written = sim.time.time;
         }
@@ -188,6 +200,14 @@ fn run_case(
         write_time(&mut output, &mut sim)?;
     }
     reporter.finish()
+}
+
+/// A run stopped at `-maxSteps` or `-maxWrites` (exit 1): its last written time is kept.
+fn beyond_limit(count: f64, what: &str, option: &str, written: f64) -> FsimError {
+    FsimError::run(format!(
+        "the run has made {count:.0} {what}, the limit: stopped with time {written:?} the \
+         last written (raise the limit with -{option} N; docs/security.md, \"Memory and work\")"
+    ))
 }
 
 /// Takes a `system/controlDict` changed during the run (`runTimeModifiable`), or says why

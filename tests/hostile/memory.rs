@@ -208,3 +208,30 @@ fn an_allocation_beyond_the_estimate_ends_the_run_with_a_message() {
         "a directory was left"
     );
 }
+
+#[test]
+fn clock_time_writes_stop_at_the_write_limit() {
+    // a write every nanosecond of wall clock is one every step: not countable before the run
+    let (_s, case) = case_of("cavity", "clock-writes");
+    let control = case.join("system/controlDict");
+    replace(
+        &control,
+        "writeControl    runTime;",
+        "writeControl    clockTime;",
+    );
+    replace(&control, "writeInterval   5;", "writeInterval   1e-9;");
+    let run = crate::reads::run_limited(&case, &["-maxWrites", "5"]);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    let errors = run.errors();
+    assert_eq!(errors.len(), 1, "{}", run.stderr);
+    assert!(errors[0].contains("5 writes, the limit"), "{}", errors[0]);
+    assert!(errors[0].contains("-maxWrites"), "{}", errors[0]);
+    let times = std::fs::read_dir(&case)
+        .unwrap()
+        .filter(|e| {
+            let name = e.as_ref().unwrap().file_name();
+            name.to_str().unwrap().parse::<f64>().is_ok()
+        })
+        .count();
+    assert_eq!(times, 6, "the start and five writes");
+}
