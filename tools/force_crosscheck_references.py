@@ -119,17 +119,32 @@ def garside_al_dibouni_n(re_t):
     return (5.1 + 2.7 * x) / (1 + x)
 
 
+def wen_yu_porosity(u, d, rho_p, rho_f, nu):
+    """The porosity of a uniform bed whose beads float under DPMFoam's WenYuDrag at the
+    superficial velocity u: Sp = (m/rho_p) 0.75 Cd Re(alpha Re) mu alpha^-3.65 / d^2 on the
+    interstitial slip u/alpha balances the buoyant weight, so
+    0.75 mu Cd Re(u d/nu) u alpha^-4.65 / d^2 = (rho_p - rho_f) g."""
+    lhs = 0.75 * rho_f * nu * schiller_naumann_cdre(u * d / nu) * u / d ** 2
+    return (lhs / ((rho_p - rho_f) * G)) ** (1 / 4.65)
+
+
 def liquid_fluidized_bed(u, d=2e-3, rho_p=2500.0, rho_f=1000.0, nu=1e-6, D=16e-3,
-                         n_beads=None, area=None, solids=None):
+                         n_beads=None, area=None, walls=True):
+    """walls=False: the sides are symmetry planes, no wall term (d/D = 0)."""
+    D = D if walls else math.inf
     vt = terminal(d, rho_p, rho_f, nu)
     re_t = vt * d / nu
     ui = vt * 10 ** (-d / D)
     print(f"liquidFluidizedBed: d = {d} m, U = {u} m/s, U_t = {vt:.5f} m/s (Re_t = {re_t:.1f}), "
-          f"d/D = {d / D:.3f}, U_i = U_t 10^(-d/D) = {ui:.5f} m/s")
+          f"d/D = {d / D:.3f}, U_i = U_t 10^(-d/D) = {ui:.5f} m/s "
+          f"({'no-slip walls' if walls else 'symmetry sides: no wall term'})")
     out = {}
-    for name, n, u0 in (("Richardson-Zaki (wall term), U_i", richardson_zaki_n(re_t, d / D), ui),
-                        ("Richardson-Zaki (wall term), U_t", richardson_zaki_n(re_t, d / D), vt),
-                        ("Garside-Al-Dibouni, U_t", garside_al_dibouni_n(re_t), vt)):
+    n_rz = richardson_zaki_n(re_t, d / D)
+    fits = [("Richardson-Zaki", n_rz, ui)]
+    if walls:
+        fits.append(("Richardson-Zaki without the wall's U_i", n_rz, vt))
+    fits.append(("Garside-Al-Dibouni", garside_al_dibouni_n(re_t), vt))
+    for name, n, u0 in fits:
         eps = (u / u0) ** (1 / n)
         line = f"  {name}: n = {n:.3f}, porosity {eps:.4f}, solid fraction {1 - eps:.4f}"
         if n_beads and area:
@@ -137,6 +152,13 @@ def liquid_fluidized_bed(u, d=2e-3, rho_p=2500.0, rho_f=1000.0, nu=1e-6, D=16e-3
             line += f", bed height {1000 * h:.2f} mm, mean bead height {500 * h:.2f} mm"
         print(line)
         out[name] = eps
+    eps = wen_yu_porosity(u, d, rho_p, rho_f, nu)
+    line = f"  WenYuDrag's own uniform bed: porosity {eps:.4f}, solid fraction {1 - eps:.4f}"
+    if n_beads and area:
+        h = n_beads * math.pi * d ** 3 / 6 / ((1 - eps) * area)
+        line += f", bed height {1000 * h:.2f} mm, mean bead height {500 * h:.2f} mm"
+    print(line)
+    out["WenYuDrag"] = eps
     return out
 
 
@@ -207,7 +229,9 @@ def non_sphere_settling(phi, d=1e-3, rho_p=2500.0, rho_f=1000.0, nu=1e-6):
 
 CASES = {
     "settlingAddedMass": lambda: settling_added_mass(),
-    "liquidFluidizedBed": lambda: liquid_fluidized_bed(0.06, n_beads=600, area=16e-3 ** 2),
+    "liquidFluidizedBed": lambda: (
+        liquid_fluidized_bed(0.06, n_beads=588, area=16e-3 ** 2, walls=False),
+        liquid_fluidized_bed(0.06, n_beads=588, area=16e-3 ** 2, walls=True)),
     "shearLift": lambda: (shear_lift(10.0), shear_lift(10.0, lift="Tomiyama")),
     "nonSphereSettling": lambda: non_sphere_settling(0.7),
 }
