@@ -10,7 +10,8 @@ hand references.
 settlingAddedMass: one bead (d = 1 mm, rho_p = 1500) from rest in water, sphereDrag,
   pressureGradient, virtualMass (Cvm 0.5) and gravity, in settlingInLiquid's box.
 liquidFluidizedBed: 588 glass beads (d = 2 mm, rho_p = 2500) fluidized by water at 0.06 m/s
-  in a 16 x 16 mm walled column: WenYuDrag, pressureGradient, virtualMass, gravity, contacts.
+  in a 16 x 16 mm column with symmetry-plane sides: WenYuDrag, pressureGradient,
+  virtualMass, gravity, contacts.
 shearLift: one bead (d = 1 mm, rho_p = 1100) settling in a vertical linear shear flow between
   two walls sliding in opposite directions (gamma = 10 1/s): sphereDrag, SaffmanMeiLiftForce,
   gravity; the lateral drift.
@@ -132,7 +133,7 @@ def liquid_fluidized_bed(repo, u=0.06, d=0.002, youngs="5e3", end=0.8, dt=5e-4, 
         "through the floor of\n// a 16 x 16 x 64 mm column of 4 mm cells with symmetry-plane "
         "sides: WenYuDrag, "
         "pressureGradient, virtualMass (Cvm 0.5), gravity,\n// Hertzian contacts. The bed "
-        "expands from a solid fraction of 0.45 to about 0.41 (Richardson-Zaki).\n// Runs "
+        "settles from a loose lattice (solid fraction 0.38) to about 0.41.\n// Runs "
         "under DPMFoam and fsimFoam alike (tools/crosscheck)."))
     write(root, "system/blockMeshDict", "dictionary",
           block_mesh((16, 16, 64), (4, 4, 16), bed_patches(sides)))
@@ -147,7 +148,8 @@ def liquid_fluidized_bed(repo, u=0.06, d=0.002, youngs="5e3", end=0.8, dt=5e-4, 
         spring_slider_dashpot(d, youngs, "water", (0.3, 0.3), (0.3, 0.3)))
     write(root, "constant/kinematicCloudProperties", "dictionary",
           with_interpolation(cloud, [("DUcDt", "cellPoint")]))
-    # 12 layers of 7 x 7 at a pitch of 2.1 mm: solid fraction 0.45 over the lattice
+    # 12 layers of 7 x 7 at a pitch of 2.1 mm: solid fraction 0.45 within the lattice, 0.38
+    # over the column's section
     pts = bed_positions(d, 7, 12, 0.0021, 0.0018, 0.0016, 0.00002, seed, 0.016, 0.004)
     write(root, "constant/kinematicCloudPositions", "vectorField", positions(pts))
 
