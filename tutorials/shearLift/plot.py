@@ -2,14 +2,14 @@
 """One bead settling in a vertical linear shear flow with SaffmanMeiLiftForce, a DPMFoam
 cross-check case of issue 42.
 
-The water moves along z at u_z = gamma (x - 12 mm) between two walls sliding in opposite
+The water moves along z at u_z = gamma (x - width/2) between two walls sliding in opposite
 directions; the bead settles through it with the slip s_z and the lift
 m rho_f/rho_p Cl (s x curl u) drives it across the stream lines at the speed where drag
 balances it (tools/force_crosscheck_references.py shearLift solves that balance: Saffman 1965
 and Mei 1992 as DPMFoam v1912 writes them). Draws shearLift.png: the bead's x and U_x, fsim's
 and DPMFoam's (crosscheck_reference.csv), against that drift.
 """
-import math
+import re
 import sys
 from pathlib import Path
 
@@ -26,12 +26,15 @@ from plotting import (dpmfoam_reference, finish, keyword, particle_history,  # n
 rho_f, nu, rho_p, g = properties(case)
 d = keyword(case, "constant/kinematicCloudProperties", "value")
 wall = vector(case, "0/U.water", r"right\s*\{[^}]*value\s+uniform")[2]
-gamma = wall / 0.012
+mesh = (case / "system" / "blockMeshDict").read_text()
+scale = float(re.search(r"^scale\s+([0-9.eE+-]+);", mesh, re.M).group(1))
+width = scale * float(re.search(r"\(0 0 0\)\s*\(([0-9.]+) 0 0\)", mesh).group(1))
+gamma = wall / (width / 2)
 drift, slip, cl = shear_lift(gamma, d, rho_p, rho_f, nu)
 x0 = vector(case, "constant/kinematicCloudPositions", r"^")[0]
 
 fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6), constrained_layout=True)
-t_line = np.linspace(0, 1.2, 50)
+t_line = np.linspace(0, 1.2, 50)  # the drift from the start
 a.plot(t_line, 1e3 * (x0 + drift * t_line), "k--", label=f"Saffman-Mei by hand, {1e3 * drift:.3f} mm/s")
 b.axhline(1e3 * drift, color="k", ls="--", label="Saffman-Mei by hand")
 dx = dpmfoam_reference(case, "particles.position.x.mean")
