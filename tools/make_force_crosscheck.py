@@ -14,7 +14,8 @@ liquidFluidizedBed: 588 glass beads (d = 2 mm, rho_p = 2500) fluidized by water 
   virtualMass, gravity, contacts.
 shearLift: one bead (d = 1 mm, rho_p = 1100) settling in a vertical linear shear flow between
   two walls 16 mm apart sliding in opposite directions (gamma = 10 1/s): sphereDrag,
-  SaffmanMeiLiftForce, gravity; the lateral drift.
+  SaffmanMeiLiftForce, gravity; the lateral drift. shearLiftTomiyama: the same with
+  TomiyamaLift { sigma 0.07; }.
 nonSphereSettling: settlingInLiquid with nonSphereDrag { phi 0.7; } for sphereDrag.
 
 What each force needs in the case (found by running DPMFoam v1912): pressureGradient and
@@ -161,7 +162,11 @@ SHEAR_PATCHES = [("top", "wall", ["z+"], ""), ("bottom", "wall", ["z-"], ""),
                  ("frontAndBack", "symmetry", ["y-", "y+"], "")]
 
 
-def shear_lift(repo, name="shearLift", gamma=10.0, lift="SaffmanMeiLiftForce\n{\n    U   U.water;\n}",
+SAFFMAN_MEI = "SaffmanMeiLiftForce\n{\n    U   U.water;\n}"
+TOMIYAMA = "TomiyamaLift\n{\n    U     U.water;\n    sigma 0.07;\n}"
+
+
+def shear_lift(repo, name="shearLift", gamma=10.0, lift=SAFFMAN_MEI,
                start=(0.006, 0.010, 0.150), end=1.2, dt=5e-4, width=16):
     """A bead settling in u_z = gamma (x - width/2) between the walls x = 0 and width (mm),
     which slide at -/+ gamma width/2; closed above and below (192 mm), symmetry planes in y.
@@ -177,10 +182,10 @@ def shear_lift(repo, name="shearLift", gamma=10.0, lift="SaffmanMeiLiftForce\n{\
     write(root, "system/controlDict", "dictionary", control(
         end, dt, 0.02,
         f"One bead (d = 1 mm, rho_p = 1100) settling in water in a vertical linear shear flow, "
-        f"u_z = {gamma:g} (x - {width / 2:g} mm) 1/s,\n// between two walls sliding at -/+{uw:g} m/s "
-        f"({width} x 16 x 192 mm, 4 mm cells): sphereDrag, lift and gravity.\n// The lift drives "
-        "it across the stream lines (+x). Runs under DPMFoam and fsimFoam alike\n// "
-        "(tools/crosscheck)."))
+        f"u_z = {gamma:g} (x - {width / 2:g} mm) 1/s,\n// between two walls sliding at "
+        f"-/+{uw:g} m/s ({width} x 16 x 192 mm, 4 mm cells): sphereDrag, lift and "
+        "gravity.\n// The lift drives it across the stream lines (+x). Runs under DPMFoam and "
+        "fsimFoam alike\n// (tools/crosscheck)."))
     write(root, "system/blockMeshDict", "dictionary", block_mesh(size, cells, SHEAR_PATCHES))
     fields(root, "water", [("top", NO_SLIP), ("bottom", NO_SLIP),
                            ("left", (f"type            fixedValue;\nvalue           uniform "
@@ -219,5 +224,7 @@ if __name__ == "__main__":
     settling_added_mass(repo)
     liquid_fluidized_bed(repo)
     shear_lift(repo)
+    shear_lift(repo, "shearLiftTomiyama", lift=TOMIYAMA)
     non_sphere_settling(repo)
-    print("wrote tutorials/settlingAddedMass, liquidFluidizedBed, shearLift, nonSphereSettling")
+    print("wrote tutorials/settlingAddedMass, liquidFluidizedBed, shearLift, shearLiftTomiyama, "
+          "nonSphereSettling")

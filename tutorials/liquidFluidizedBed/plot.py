@@ -29,8 +29,8 @@ d = keyword(case, "constant/kinematicCloudProperties", "value")
 u = inlet_velocity(case)[2]
 mesh = (case / "system" / "blockMeshDict").read_text()
 scale = float(re.search(r"^scale\s+([0-9.eE+-]+);", mesh, re.M).group(1))
-corner = [float(x) * scale for x in re.search(r"\(0 0 0\)\s*\(([0-9.]+) 0 0\)\s*\(\S+ ([0-9.]+) 0\)",
-                                              mesh).groups()]
+side = r"\(0 0 0\)\s*\(([0-9.]+) 0 0\)\s*\(\S+ ([0-9.]+) 0\)"
+corner = [float(x) * scale for x in re.search(side, mesh).groups()]
 area = corner[0] * corner[1]
 positions = (case / "constant" / "kinematicCloudPositions").read_text()
 beads = int(re.search(r"^(\d+)\s*$", positions, re.M).group(1))
