@@ -30,7 +30,8 @@ def test_the_tutorials_are_the_documented_ones():
         "impactsDamped", "packedBed", "particleSettling", "porousMedia", "sedimentation",
         "settlingColumn", "settlingInLiquid", "settlingSphere", "taylorGreen",
         # issue 42's DPMFoam cross-checks (pending in their crosscheck.toml)
-        "settlingAddedMass", "liquidFluidizedBed", "shearLift", "nonSphereSettling"])
+        "settlingAddedMass", "liquidFluidizedBed", "shearLift", "shearLiftTomiyama",
+        "nonSphereSettling"])
 
 
 @pytest.mark.parametrize("name", TUTORIALS)
