@@ -338,3 +338,34 @@ def save(fig, path, dpi):
     """Writes the figure to `path` and says so."""
     fig.savefig(path, dpi=dpi)
     print(f"wrote {Path(path).name}")
+
+
+# --- the cross-check cases of issue 42 -------------------------------------------------------
+
+def particle_history(case, field, component, how="mean"):
+    """fsim's history of a particle field (`U` or `position`, component x, y or z; `how` mean
+    or max over the particles) from the particles.vtu of each time directory: (t, values)."""
+    k = "xyz".index(component)
+    times, values = [], []
+    for t, folder in time_directories(case):
+        path = folder / "particles.vtu"
+        if not path.is_file():
+            continue
+        cloud = pv.read(path)
+        data = np.asarray(cloud.points if field == "position" else cloud.point_data[field])
+        if len(data):
+            times.append(t)
+            values.append(getattr(np, how)(data[:, k]))
+    return np.array(times), np.array(values)
+
+
+def dpmfoam_reference(case, series):
+    """DPMFoam's history of `series` (a tools/crosscheck series name) from the case's
+    crosscheck_reference.csv, DPMFoam's times as it wrote them: (t, values), or None."""
+    path = Path(case) / "crosscheck_reference.csv"
+    if not path.is_file():
+        return None
+    lines = [line for line in path.read_text().splitlines() if not line.startswith("#")]
+    header = lines[0].split(",")
+    data = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    return data[:, 0], data[:, header.index(series)]

@@ -8,6 +8,7 @@ afterwards.
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -31,6 +32,9 @@ def test_the_issue_cases_are_there():
 
 @pytest.mark.parametrize("name", CASES)
 def test_case_agrees_with_dpmfoams_reference(fsim, name, tmp_path):
+    pending = tomllib.loads((TUTORIALS / name / "crosscheck.toml").read_text()).get("pending")
+    if pending:
+        pytest.skip(f"{name}: {pending}")
     out = crosscheck(fsim, TUTORIALS / name, out=tmp_path)
     print(out.stdout)
     assert out.returncode == 0, out.stdout + out.stderr
