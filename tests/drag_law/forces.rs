@@ -126,12 +126,13 @@ fn added_mass_slows_the_start_from_rest_to_g_times_the_density_difference_over_t
 
 #[test]
 fn a_light_particle_rises_with_virtual_mass_to_its_terminal_velocity_without_blowing_up() {
-    // d = 0.5 mm, ρ_p = 100 in water, Cvm 0.5: the added mass is 5 times the particle's own,
-    // the relaxation time (m + m_add)/β about 3 ms; steps of 0.5 ms. It must rise, stay
+    // d = 0.2 mm, ρ_p = 100 in water, Cvm 0.5: the added mass is 5 times the particle's own,
+    // the relaxation time (m + m_add)/β about 1 ms, steps of 1 ms (Δt β/m ≈ 6: the particle
+    // alone, without its added mass, would be relaxed 6-fold in a step). It must rise, stay
     // bounded and settle where sphereDrag balances the buoyant weight. Its slip, not its
     // velocity: it drags the water of its cell up (by 10 % of its velocity after 60 ms), and
     // that water, still speeding up, keeps it 1.5 % short of the balance.
-    let (h, d, rho_p, dt) = (1e-3, 5e-4, 100.0, 5e-4);
+    let (h, d, rho_p, dt) = (1e-3, 2e-4, 100.0, 1e-3);
     let mut fluid = water([8, 8, 40], h);
     let cloud = one_particle(
         [4.5e-3, 4.5e-3, 4.5e-3],
@@ -167,6 +168,13 @@ fn a_light_particle_rises_with_virtual_mass_to_its_terminal_velocity_without_blo
     for step in 0..120 {
         model.step(&mut fluid, dt).unwrap();
         let v = model.particles.dem.particles().velocity[0];
+        if step == 0 {
+            // implicit Euler from rest in still water: v = Δt W/(m + m_add + Δt β(0))
+            let mass_eff = (rho_p + 0.5 * RHO) * volume;
+            let beta = 3.0 * PI * RHO * NU * d;
+            let want = dt * weight / (mass_eff + dt * beta);
+            assert!((v[2] - want).abs() < 1e-9 * want, "{} against {want}", v[2]);
+        }
         history.push(v[2]);
         assert!(
             v[2].is_finite() && v[2] > 0.0 && v[2] < 1.2 * terminal,
@@ -228,4 +236,43 @@ fn saffman_mei_lift_of_a_held_particle_in_a_linear_shear() {
     for a in 0..3 {
         assert!((e.drag_on_particles[a] + e.drag_on_fluid[a]).abs() < 1e-12 * f[0]);
     }
+}
+
+#[test]
+fn pressure_gradient_and_virtual_mass_read_the_convective_acceleration() {
+    // u = (a, 0, S x): (u·∇)u = (0, 0, a S), uniform; a held particle feels
+    // (1 + Cvm) m (ρ/ρ_p) a S along z besides its drag, DPMFoam's explicit coupled force.
+    let (h, d, rho_p, a, s_rate) = (1e-3, 5e-4, 2500.0, 0.05, 20.0);
+    let n = [6, 6, 12];
+    let mut fluid = water(n, h);
+    let l = PaddedLayout::new(n);
+    {
+        let u = fluid.velocity_mut();
+        for k in 0..l.dims[2] {
+            for j in 0..l.dims[1] {
+                for i in 0..l.dims[0] {
+                    u[0][l.index(i, j, k)] = a;
+                    u[2][l.index(i, j, k)] = s_rate * (i as f64 - 0.5) * h;
+                }
+            }
+        }
+    }
+    let mut cloud = one_particle(
+        [2.5e-3, 2.5e-3, 6.3e-3],
+        d,
+        rho_p,
+        [6e-3, 6e-3, 12e-3],
+        0.0,
+        true,
+    );
+    let mut coupling = DragLawCoupling::new(dpmfoam(virtual_mass(0.5)), &fluid, &cloud).unwrap();
+    coupling.particle_forces(&fluid, &mut cloud, 1e-4);
+    let m = rho_p * PI * d * d * d / 6.0;
+    let want = 1.5 * m * RHO / rho_p * a * s_rate;
+    let explicit = coupling.last.hydrodynamic_force - coupling.drag_forces()[0];
+    assert!(
+        (explicit[2] - want).abs() < 1e-9 * want,
+        "{explicit:?} against {want}"
+    );
+    assert!(explicit[0].abs() < 1e-12 * want && explicit[1].abs() < 1e-12 * want);
 }

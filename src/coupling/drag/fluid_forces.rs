@@ -235,8 +235,10 @@ mod tests {
         assert!(close(tomiyama_cl(40.0, 3.0), 0.233224, 2e-6));
         // Eo = 5: Eo_d = 6.700104 in (4, 10]: f = −0.060639.
         assert!(close(tomiyama_cl(10.0, 5.0), -0.060639, 2e-5));
-        // Eo = 12: Eo_d = 19.49 > 10: −0.27.
+        // Eo = 12: Eo_d = 19.49 > 10: −0.27; Eo = 7.3: Eo_d = 10.54, past OpenFOAM's bound 10
+        // (inside the paper's 10.7, where f would give −0.2779).
         assert_eq!(tomiyama_cl(10.0, 12.0), -0.27);
+        assert_eq!(tomiyama_cl(10.0, 7.3), -0.27);
         // Eo along the particle's velocity: g ⟂ v gives 0; g ∥ v gives g Δρ d²/σ
         let g = [0.0, 0.0, -9.81];
         assert_eq!(eotvos(g, 1.2, 1000.0, [1.0, 0.0, 0.0], 1e-3, 0.07), 0.0);
