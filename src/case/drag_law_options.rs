@@ -2,8 +2,8 @@
 //! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`); [`DragLawOptions::settings`]
 //! gives the coupling code's [`DragLawSettings`].
 //!
-//! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
-//! README, section "DPMFoam cases"):
+//! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in
+//! docs/user-guide/dpmfoam-compatibility.md):
 //!
 //! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
 //!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
