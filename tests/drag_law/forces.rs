@@ -1,10 +1,11 @@
 //! DPMFoam's forces besides drag through the drag-law model's step: the added mass in a
-//! particle's start from rest, a light particle rising with virtual mass, and the lift of a
-//! particle in a shear flow.
+//! particle's start from rest, a light particle rising with virtual mass, the lift of a
+//! particle in a shear flow, and the fluid acceleration the pressure-gradient and
+//! virtual-mass forces read.
 
 use fsim::coupling::drag::{
     saffman_mei_cl, sphere_drag, DragClosure, DragInput, DragLawCoupling, DragLawSettings,
-    FluidForces, LiftModel, Stencil,
+    FluidAcceleration, FluidForces, LiftModel, Stencil,
 };
 use fsim::fluid::{
     BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, PaddedLayout, VolumeAveragedForm,
@@ -275,4 +276,38 @@ fn pressure_gradient_and_virtual_mass_read_the_convective_acceleration() {
         "{explicit:?} against {want}"
     );
     assert!(explicit[0].abs() < 1e-12 * want && explicit[1].abs() < 1e-12 * want);
+}
+
+#[test]
+fn the_time_derivative_of_the_fluid_acceleration_is_dpmfoams_zero_unless_asked_for() {
+    // The water goes from rest to u = (0.1, 0, 0) between two force evaluations 10 ms apart:
+    // DPMFoam's DUcDt has no time derivative (its ddt is evaluated after Uc.oldTime() = Uc);
+    // `fluidAcceleration full` gives (uⁿ − uⁿ⁻¹)/Δt = 10 m/s².
+    let (h, d, rho_p, dt) = (1e-3, 5e-4, 2500.0, 1e-2);
+    let m = rho_p * PI * d * d * d / 6.0;
+    for (acceleration, want) in [
+        (FluidAcceleration::Convective, 0.0),
+        (FluidAcceleration::Full, 1.5 * m * RHO / rho_p * 10.0),
+    ] {
+        let mut fluid = water([6, 6, 12], h);
+        let mut cloud = one_particle(
+            [2.5e-3, 2.5e-3, 6.3e-3],
+            d,
+            rho_p,
+            [6e-3, 6e-3, 12e-3],
+            0.0,
+            true,
+        );
+        let mut forces = virtual_mass(0.5);
+        forces.acceleration = acceleration;
+        let mut coupling = DragLawCoupling::new(dpmfoam(forces), &fluid, &cloud).unwrap();
+        coupling.particle_forces(&fluid, &mut cloud, dt);
+        fluid.velocity_mut()[0].iter_mut().for_each(|u| *u = 0.1);
+        coupling.particle_forces(&fluid, &mut cloud, dt);
+        let explicit = coupling.last.hydrodynamic_force - coupling.drag_forces()[0];
+        assert!(
+            (explicit[0] - want).abs() <= 1e-9 * want,
+            "{acceleration:?}: {explicit:?} against {want}"
+        );
+    }
 }
