@@ -39,6 +39,14 @@
 //! part by about `x²` (README, drag-law model). The fluid gets exactly `−f_d` (momentum
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
+//!
+//! DPMFoam's explicit coupled forces `F_e` ([`super::FluidForces`]: pressure gradient,
+//! virtual mass, lift) join `F` in that balance and, negated, the fluid's source beside `−f_d`
+//! (DPMFoam's `dUTrans`). With `virtualMass` the fluid-step forces move the particle through
+//! `massEff = m (1 + Cvm ρ/ρ_p)`: `x = Δt β / massEff`, and the DEM gets the load
+//! `(f_d + F_e + m_b g)/(1 + r) − m_b g` (`m_b g` the buoyant weight it adds itself), while its
+//! contact forces still divide by `m`, as DPMFoam's `CollidingParcel` does; `F` carries the
+//! contact force times `1 + r` accordingly.
 
 use super::cell_point_interpolation::CellPointInterpolation;
 use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
