@@ -410,6 +410,9 @@ impl DragLawCoupling {
         let g_fluid = self.fluid.gravity();
         let mean_gradient = self.fluid.mean_pressure_gradient();
         let forces = s.forces;
+        // Tomiyama's Eötvös number reads the case's g (OpenFOAM's `owner().g()`), listed
+        // `gravity` or not
+        let g_case: [f64; 3] = s.gravity.into();
         let (acceleration, curl) = (&self.acceleration, &self.curl);
         let (acceleration_cp, curl_cp) = (
             self.acceleration_cell_point.as_ref(),
@@ -548,7 +551,7 @@ impl DragLawCoupling {
                                     u.into(),
                                     du_dt,
                                     w,
-                                    g_cloud.into(),
+                                    g_case,
                                 );
                             }
                             // massEff = m (1 + r), r = Cvm ρ/ρ_p: the fluid-step forces move the

@@ -111,7 +111,7 @@ impl FluidForces {
 
     /// The explicit force on one particle of mass `m`, density `rho_p`, diameter `d` and
     /// velocity `v`, in fluid of density `rho_c` and viscosity `mu` moving at `u` with
-    /// acceleration `du_dt` and vorticity `curl`, under the cloud's gravity `g` (for
+    /// acceleration `du_dt` and vorticity `curl`, under the case's gravity `g` (for
     /// Tomiyama's Eötvös number): `k m (ρ_c/ρ_p) DU_c/Dt + V ρ_c C_l ((u − v) × ω)`.
     #[allow(clippy::too_many_arguments)]
     pub fn explicit_force(
