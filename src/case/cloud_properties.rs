@@ -11,7 +11,8 @@
 //!   `isotropyModel` must be `none`; `radiation off`.
 //! * `constantProperties { rho0; youngsModulus; poissonsRatio; }`.
 //! * `subModels.particleForces`: `gravity` (with buoyancy `1 − ρ_f/ρ_p`, as OpenFOAM's
-//!   `gravity` force), one drag closure and `pressureGradient`, checked by
+//!   `gravity` force), one drag closure, `pressureGradient`, `virtualMass` and a lift force,
+//!   checked by
 //!   [`super::drag_law_options`] (an unknown or unsupported force is an error at its keyword)
 //!   and kept for the coupling models (no effect with `model none`). With `model dragLaw` the
 //!   drag-law options ([`DragLawOptions`]: solution schemes, `alphaMax`, forces) are read
@@ -199,6 +200,28 @@ impl Cloud {
                     .map(|s| s.as_str())
                     .collect::<Vec<_>>()
                     .join(", ")
+            ));
+        }
+
+        let modelled: Vec<&str> = forces
+            .iter()
+            .map(|f| f.as_str())
+            .filter(|f| {
+                [
+                    "pressureGradient",
+                    "virtualMass",
+                    "SaffmanMeiLiftForce",
+                    "TomiyamaLift",
+                ]
+                .contains(f)
+            })
+            .collect();
+        if !modelled.is_empty() && case.coupling.model == CouplingModel::Direct {
+            warnings.push(format!(
+                "{}: particleForces {}: not added by the direct model, whose resolved fluid \
+                 force already holds the pressure, added-mass and lift forces",
+                dict.file(),
+                modelled.join(", ")
             ));
         }
 

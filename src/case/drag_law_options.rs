@@ -2,8 +2,8 @@
 //! fsim's optional `dragLawCoeffs` in `constant/couplingProperties`); [`DragLawOptions::settings`]
 //! gives the coupling code's [`DragLawSettings`].
 //!
-//! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in the
-//! README, section "DPMFoam cases"):
+//! What each DPMFoam keyword becomes (the full list, with the keywords fsim refuses, is in
+//! docs/user-guide/dpmfoam-compatibility.md):
 //!
 //! * `solution.coupled` must be `true` (two-way coupling: the particles' reaction force and
 //!   volume enter the fluid); one-way coupling is refused. `cellValueSourceCorrection on` is
@@ -29,15 +29,22 @@
 //!   drops below `1 − alphaMax` (DPMFoam's `alphacMin`).
 //! * `subModels.particleForces` (read by [`super::particle_forces`]): exactly one drag
 //!   closure ([`DragClosure`], by the names of [`DragClosure::NAMES`]: OpenFOAM's four and
-//!   fsim's own), `gravity`, and `pressureGradient` with the paper's equations only. DPMFoam's `pressureGradient` force is
-//!   `m (ρ_c/ρ_p) DU_c/Dt`, the fluid's material acceleration at the particle, which fsim's
-//!   DPMFoam form does not compute. Other OpenFOAM forces are refused; an unknown name is an
-//!   error with a spelling hint.
+//!   fsim's own, or `nonSphereDrag { phi …; }`), `gravity`, `pressureGradient`,
+//!   `virtualMass { Cvm …; }` and one lift force (`SaffmanMeiLiftForce`,
+//!   `TomiyamaLift { sigma …; }`), computed as [`crate::coupling::drag::FluidForces`] says.
+//!   In DPMFoam's form `pressureGradient` is DPMFoam's `m (ρ_c/ρ_p) DU_c/Dt`; in the paper's
+//!   form every particle feels `−V ∇p` (paper eq. 10) instead. Other OpenFOAM forces are
+//!   refused; an unknown name is an error with a spelling hint.
+//! * `solution.interpolationSchemes.DUcDt` and `.curlUcDt` (DPMFoam's names of the fields
+//!   the pressure-gradient and virtual-mass forces and the lift forces read): `cell` or
+//!   `cellPoint`; absent (DPMFoam would stop): `cell`, noted.
 //!
 //! fsim's own `dragLawCoeffs { form DPMFoam|paper; velocityInterpolation
 //! cell|cellPoint|trilinear; voidFraction cell|trilinear; fixedParticles no|yes; }` in
 //! `constant/couplingProperties` chooses the equations and overrides the interpolation and the
 //! ε rule, so that the same case runs with DPMFoam's choices or with the paper's;
+//! `fluidAcceleration convective|full` chooses how `DU_c/Dt` is taken
+//! ([`FluidAcceleration`]: `convective`, DPMFoam's, by default);
 //! `fixedParticles yes` holds every particle in place (a fixed bed, porous media), as
 //! `direct { fixedParticles yes; }` does for the direct model. DPMFoam has no such switch, so
 //! it is fsim's own keyword, beside the model's other settings.
@@ -47,7 +54,9 @@ use super::dictionary::Dict;
 use super::error::CaseError;
 use super::particle_forces::ParticleForces;
 use super::transport::Transport;
-use crate::coupling::drag::{DragClosure, DragLawSettings, Stencil};
+use crate::coupling::drag::{
+    DragClosure, DragLawSettings, FluidAcceleration, FluidForces, Stencil,
+};
 use crate::fluid::VolumeAveragedForm;
 
 /// How the fluid velocity is taken at a particle.
@@ -127,6 +136,9 @@ pub struct DragLawOptions {
     pub gravity: bool,
     /// `pressureGradient` listed in `particleForces`.
     pub pressure_gradient: bool,
+    /// DPMFoam's pressure-gradient (in DPMFoam's form), virtual-mass and lift forces, with
+    /// the interpolation of the fields they read.
+    pub forces: FluidForces,
     /// `sourceTerms.schemes.U`.
     pub source: SourceTreatment,
     /// `constantProperties.alphaMax`: ε ≥ 1 − alphaMax.
@@ -170,6 +182,7 @@ impl DragLawOptions {
             rho: transport.rho,
             nu: transport.nu,
             gravity: gravity.into(),
+            forces: self.forces,
         }
     }
 
@@ -211,7 +224,8 @@ impl DragLawOptions {
             ));
         }
         let source = source_treatment(solution)?;
-        let mut velocity_interpolation = interpolation_schemes(solution, phase)?;
+        let schemes = interpolation_schemes(solution, phase)?;
+        let mut velocity_interpolation = schemes.velocity;
         let mut void_fraction = averaging_method(solution, notes)?;
         let integration = particle_integration(solution)?;
         if solution.peek("integrationSchemes").is_some() {
@@ -255,6 +269,7 @@ impl DragLawOptions {
 
         let mut form = VolumeAveragedForm::DpmFoam;
         let mut fixed_particles = false;
+        let mut acceleration = FluidAcceleration::Convective;
         if let Some(own) = coupling
             .map(|c| c.opt_dict("dragLawCoeffs"))
             .transpose()?
@@ -285,6 +300,13 @@ impl DragLawOptions {
                 };
             }
             fixed_particles = own.get_bool_or("fixedParticles", false)?;
+            if own.contains("fluidAcceleration") {
+                acceleration =
+                    match choice(own, "fluidAcceleration", &["convective", "full"], None)? {
+                        0 => FluidAcceleration::Convective,
+                        _ => FluidAcceleration::Full,
+                    };
+            }
             for (key, loc) in own.unused() {
                 let (line, col) = loc.line_col();
                 notes.push(format!(
@@ -294,27 +316,42 @@ impl DragLawOptions {
                 ));
             }
         }
-        match (form, forces.pressure_gradient) {
-            (VolumeAveragedForm::DpmFoam, true) => {
-                let at = list
-                    .and_then(|l| l.as_dict())
-                    .and_then(|d| d.peek("pressureGradient"))
-                    .map(|e| e.key_loc.clone())
-                    .unwrap_or_else(|| sub.loc.clone());
-                return Err(CaseError::at(
-                    &at,
-                    "pressureGradient (DPMFoam's force m (rho_c/rho_p) DU_c/Dt) is not \
-                     supported by fsim with DPMFoam's equations; fsim's paper form \
-                     (constant/couplingProperties: dragLawCoeffs { form paper; }) gives every \
-                     particle the pressure-gradient force -V grad p of paper eq. 10",
-                ));
-            }
-            (VolumeAveragedForm::Paper, false) => notes.push(format!(
+        if form == VolumeAveragedForm::Paper && !forces.pressure_gradient {
+            notes.push(format!(
                 "{}: the paper form gives every particle the pressure-gradient force -V grad p \
                  (paper eq. 10), whether or not particleForces lists pressureGradient",
                 cloud.file()
-            )),
-            _ => {}
+            ));
+        }
+        let fluid_forces = FluidForces {
+            pressure_gradient: forces.pressure_gradient && form == VolumeAveragedForm::DpmFoam,
+            virtual_mass: forces.virtual_mass,
+            lift: forces.lift,
+            acceleration,
+            acceleration_cell_point: schemes.acceleration == Some(Interpolation::CellPoint),
+            curl_cell_point: schemes.curl == Some(Interpolation::CellPoint),
+        };
+        for (needed, field, scheme, force) in [
+            (
+                fluid_forces.needs_acceleration(),
+                "DUcDt",
+                schemes.acceleration,
+                "pressureGradient and virtualMass read",
+            ),
+            (
+                fluid_forces.needs_curl(),
+                "curlUcDt",
+                schemes.curl,
+                "the lift forces read",
+            ),
+        ] {
+            if needed && scheme.is_none() {
+                notes.push(format!(
+                    "{}: no interpolationSchemes entry {field} (the field {force}; DPMFoam stops \
+                     without it): fsim takes the value of the particle's cell",
+                    place(solution, "interpolationSchemes")
+                ));
+            }
         }
 
         Ok(DragLawOptions {
@@ -323,6 +360,7 @@ impl DragLawOptions {
             form,
             gravity: forces.gravity,
             pressure_gradient: forces.pressure_gradient,
+            forces: fluid_forces,
             source,
             alpha_max,
             velocity_interpolation,
@@ -337,6 +375,12 @@ impl DragLawOptions {
         let mut forces = vec![self.drag.name()];
         if self.pressure_gradient {
             forces.push("pressureGradient");
+        }
+        if self.forces.virtual_mass.is_some() {
+            forces.push("virtualMass");
+        }
+        if let Some(lift) = self.forces.lift {
+            forces.push(lift.name());
         }
         if self.gravity {
             forces.push("gravity");
@@ -430,28 +474,62 @@ const OPENFOAM_INTERPOLATIONS: [&str; 7] = [
     "pointMVC",
 ];
 
+/// The schemes of `interpolationSchemes` fsim reads.
+struct Schemes {
+    velocity: Interpolation,
+    /// `DUcDt`'s and `curlUcDt`'s, when given.
+    acceleration: Option<Interpolation>,
+    curl: Option<Interpolation>,
+}
+
 /// `interpolationSchemes`: the velocity's scheme (`cell` when absent, OpenFOAM's default for
-/// a cloud); the density's and viscosity's are checked to be OpenFOAM's names only.
-fn interpolation_schemes(solution: &Dict, phase: &str) -> Result<Interpolation, CaseError> {
+/// a cloud), `DUcDt`'s and `curlUcDt`'s (`cell` or `cellPoint`); the density's and
+/// viscosity's are checked to be OpenFOAM's names only.
+fn interpolation_schemes(solution: &Dict, phase: &str) -> Result<Schemes, CaseError> {
+    let mut result = Schemes {
+        velocity: Interpolation::Cell,
+        acceleration: None,
+        curl: None,
+    };
     let Some(schemes) = solution.opt_dict("interpolationSchemes")? else {
-        return Ok(Interpolation::Cell);
+        return Ok(result);
     };
     let velocity = velocity_name(phase);
-    let mut result = Interpolation::Cell;
     for e in schemes.entries() {
         let field = e.keyword();
         let constant = field == format!("rho.{phase}")
             || field == format!("mu.{phase}")
             || field == format!("alpha.{phase}")
             || (phase.is_empty() && ["rho", "mu", "alpha"].contains(&field));
-        if field != velocity && !constant {
-            continue; // other fields (DUcDt, …): left to the ignored-keyword notes
+        let derived = field == "DUcDt" || field == "curlUcDt";
+        if field != velocity && !constant && !derived {
+            continue; // other fields: left to the ignored-keyword notes
         }
         e.mark_used();
         let item = super::dictionary::single_token(e, "an interpolation scheme")?;
         let word = item.as_word().unwrap_or("");
-        if field == velocity {
-            result = match word {
+        if derived {
+            let scheme = match word {
+                "cell" => Interpolation::Cell,
+                "cellPoint" => Interpolation::CellPoint,
+                _ => {
+                    return Err(CaseError::at(
+                        &item.loc,
+                        format!(
+                            "interpolation scheme {} for {field} is not supported by fsim: \
+                             expected cell or cellPoint",
+                            item.describe()
+                        ),
+                    ))
+                }
+            };
+            if field == "DUcDt" {
+                result.acceleration = Some(scheme);
+            } else {
+                result.curl = Some(scheme);
+            }
+        } else if field == velocity {
+            result.velocity = match word {
                 "cell" => Interpolation::Cell,
                 "cellPoint" => Interpolation::CellPoint,
                 _ => {
@@ -599,6 +677,7 @@ subModels
                 form: VolumeAveragedForm::DpmFoam,
                 gravity: true,
                 pressure_gradient: false,
+                forces: FluidForces::default(),
                 source: SourceTreatment::SemiImplicit,
                 alpha_max: 0.99,
                 velocity_interpolation: Interpolation::Cell,
@@ -634,6 +713,7 @@ subModels
                 rho: 1.2,
                 nu: 1e-5,
                 gravity: Vec3::new(0.0, 0.0, -9.81),
+                forces: FluidForces::default(),
             }
         );
         // cellPoint: the cell-point rule for the velocity, no note
@@ -693,9 +773,9 @@ subModels
 
     #[test]
     fn forces_fsim_cannot_compute_are_refused_at_their_keyword() {
-        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "virtualMass { Cvm 0.5; }"));
+        let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "SRF;"));
         assert_eq!((e.line, e.col), (13, 9), "{e}");
-        assert!(e.message.contains("added-mass"), "{e}");
+        assert!(e.message.contains("rotating frame"), "{e}");
         let e = err(&GOLDSCHMIDT_LIKE.replace("gravity;", "WenYuDrag { alphac alpha.air; }"));
         assert!(e.message.contains("a second drag model 'WenYuDrag'"), "{e}");
         assert!(e.message.contains("line 12"), "{e}");
@@ -705,23 +785,70 @@ subModels
             "{e}"
         );
         assert_eq!(e.line, 10, "{e}");
-        // DPMFoam's pressureGradient (DUc/Dt) only with the paper form
-        let text = GOLDSCHMIDT_LIKE.replace("gravity;", "gravity; pressureGradient { U U.air; }");
-        let e = err(&text);
-        assert!(
-            e.message.starts_with("pressureGradient (DPMFoam's force"),
-            "{e}"
-        );
-        assert_eq!((e.line, e.col), (13, 18), "{e}");
-        let (s, notes) = read_with(&text, Some("dragLawCoeffs { form paper; }")).unwrap();
-        assert!(s.pressure_gradient && s.form == VolumeAveragedForm::Paper);
-        assert!(notes.is_empty(), "{notes:?}");
-        let e = err(&text.replace("U U.air", "U U.water"));
+        let e =
+            err(&GOLDSCHMIDT_LIKE.replace("gravity;", "gravity; pressureGradient { U U.water; }"));
         assert!(
             e.message
                 .contains("expected the continuous phase's velocity U.air"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn dpmfoam_forces_become_the_coupling_s_fluid_forces() {
+        let text = GOLDSCHMIDT_LIKE
+            .replace(
+                "gravity;",
+                "gravity; pressureGradient { U U.air; } virtualMass { U U.air; Cvm 0.5; } \
+                 SaffmanMeiLiftForce { U U.air; }",
+            )
+            .replace("U.air cell;", "U.air cell; DUcDt cellPoint; curlUcDt cell;");
+        let (s, notes) = read(&text).unwrap();
+        assert!(notes.is_empty(), "{notes:?}");
+        assert!(s.pressure_gradient);
+        assert_eq!(
+            s.forces,
+            FluidForces {
+                pressure_gradient: true,
+                virtual_mass: Some(0.5),
+                lift: Some(crate::coupling::drag::LiftModel::SaffmanMei),
+                acceleration: FluidAcceleration::Convective,
+                acceleration_cell_point: true,
+                curl_cell_point: false,
+            }
+        );
+        assert!(s.summary().starts_with(
+            "forces ErgunWenYuDrag + pressureGradient + virtualMass + SaffmanMeiLiftForce + \
+             gravity;"
+        ));
+        let transport = Transport {
+            phase: "air".into(),
+            rho: 1.2,
+            nu: 1e-5,
+        };
+        assert_eq!(s.settings(&transport, [0.0; 3]).forces, s.forces);
+        // the paper form keeps its own −V ∇p: DPMFoam's pressureGradient is not added
+        let (s, _) = read_with(
+            &text,
+            Some("dragLawCoeffs { form paper; fluidAcceleration full; }"),
+        )
+        .unwrap();
+        assert!(s.pressure_gradient && !s.forces.pressure_gradient);
+        assert_eq!(s.forces.acceleration, FluidAcceleration::Full);
+        // missing DUcDt / curlUcDt entries (DPMFoam stops): the cell's value, noted
+        let (s, notes) = read(&text.replace(" DUcDt cellPoint; curlUcDt cell;", "")).unwrap();
+        assert!(!s.forces.acceleration_cell_point && !s.forces.curl_cell_point);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(
+            notes[0].contains("no interpolationSchemes entry DUcDt"),
+            "{notes:?}"
+        );
+        assert!(
+            notes[1].contains("no interpolationSchemes entry curlUcDt"),
+            "{notes:?}"
+        );
+        let e = err(&text.replace("DUcDt cellPoint", "DUcDt cellPointFace"));
+        assert!(e.message.contains("for DUcDt is not supported"), "{e}");
     }
 
     #[test]

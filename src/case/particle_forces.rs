@@ -1,24 +1,46 @@
 //! The cloud's `subModels.particleForces` (DPMFoam's list), read for either coupling model:
-//! one drag closure at most, `gravity`, `pressureGradient`; the forces fsim does not compute
-//! refused by name, an unknown name an error with a spelling hint.
+//! one drag closure at most (`nonSphereDrag { phi …; }` among them), `gravity`,
+//! `pressureGradient`, `virtualMass { Cvm …; }`, one lift force (`SaffmanMeiLiftForce`,
+//! `TomiyamaLift { sigma …; }`); the forces fsim does not compute refused by name, an
+//! unknown name an error with a spelling hint.
 
 use super::control_dict::at_value;
 use super::dictionary::{Dict, Entry};
 use super::drag_law_options::{fraction_name, velocity_name};
 use super::error::CaseError;
 use super::quote::quote;
-use crate::coupling::drag::DragClosure;
+use crate::coupling::drag::{DragClosure, LiftModel};
 
-/// Forces OpenFOAM v1912 offers that fsim does not compute, with what they are.
-const REFUSED_FORCES: [(&str, &str); 8] = [
-    ("nonSphereDrag", "the drag of non-spherical particles"),
-    ("distortedSphereDrag", "the drag of distorting droplets"),
-    ("virtualMass", "the added-mass force"),
-    ("SaffmanMeiLiftForce", "a lift force"),
-    ("TomiyamaLiftForce", "a lift force"),
-    ("paramagnetic", "a magnetic force"),
-    ("nonInertialFrame", "the forces of a non-inertial frame"),
-    ("SRF", "the forces of a rotating frame"),
+/// Force names fsim does not compute, with why: OpenFOAM v1912's forces of a kinematic cloud
+/// that fsim leaves out, and two names DPMFoam's kinematic cloud rejects (its error lists the
+/// 14 it offers: `ErgunWenYuDrag PlessisMasliyahDrag SRF SaffmanMeiLiftForce TomiyamaLift
+/// WenYuDrag gravity interface nonInertialFrame nonSphereDrag paramagnetic pressureGradient
+/// sphereDrag virtualMass`).
+const REFUSED_FORCES: [(&str, &str); 6] = [
+    (
+        "distortedSphereDrag",
+        "the drag of distorting spray droplets, Liu, Mather & Reitz 1993: DPMFoam's kinematic \
+         cloud does not offer it either (OpenFOAM v1912 builds it for spray parcels only, whose \
+         distortion it reads; DPMFoam stops with 'Unknown particle force type')",
+    ),
+    (
+        "TomiyamaLiftForce",
+        "DPMFoam v1912 names Tomiyama's lift 'TomiyamaLift' and stops on 'TomiyamaLiftForce'; \
+         write TomiyamaLift { U <velocity>; sigma <N/m>; }",
+    ),
+    ("paramagnetic", "a magnetic force, needing a magnetic field"),
+    (
+        "interface",
+        "the force of a fluid interface, needing its phase-fraction field",
+    ),
+    (
+        "nonInertialFrame",
+        "the forces of a non-inertial frame: fsim's fluid is solved in an inertial frame",
+    ),
+    (
+        "SRF",
+        "the forces of a rotating frame: fsim's fluid has no single rotating frame",
+    ),
 ];
 
 /// The forces of `particleForces`, checked.
@@ -26,9 +48,23 @@ pub struct ParticleForces {
     pub drag: Option<DragClosure>,
     pub gravity: bool,
     pub pressure_gradient: bool,
+    /// `virtualMass`'s `Cvm`.
+    pub virtual_mass: Option<f64>,
+    /// The lift force.
+    pub lift: Option<LiftModel>,
     /// Every force listed, in file order.
     pub names: Vec<String>,
 }
+
+/// The names besides the drag closures, for messages and spelling hints.
+const OTHER_FORCES: [&str; 6] = [
+    "gravity",
+    "pressureGradient",
+    "virtualMass",
+    "SaffmanMeiLiftForce",
+    "TomiyamaLift",
+    "nonSphereDrag",
+];
 
 impl ParticleForces {
     /// Reads and checks `subModels.particleForces`: an unknown force, a force fsim cannot
@@ -38,8 +74,11 @@ impl ParticleForces {
             drag: None,
             gravity: false,
             pressure_gradient: false,
+            virtual_mass: None,
+            lift: None,
             names: Vec::new(),
         };
+        let mut lift_at: Option<&Entry> = None;
         let Some(list) = sub.opt_dict("particleForces")? else {
             return Ok(forces);
         };
@@ -48,7 +87,12 @@ impl ParticleForces {
             let name = e.keyword();
             e.mark_used();
             forces.names.push(name.to_string());
-            if let Ok(model) = DragClosure::from_name(name, "particleForces") {
+            let closure = if name == "nonSphereDrag" {
+                Some(non_sphere(e)?)
+            } else {
+                DragClosure::from_name(name, "particleForces").ok()
+            };
+            if let Some(model) = closure {
                 if let Some(first) = drag_at {
                     let (line, _) = first.key_loc.line_col();
                     return Err(CaseError::at(
@@ -62,7 +106,10 @@ impl ParticleForces {
                 }
                 drag_at = Some(e);
                 if let Some(coeffs) = e.as_dict() {
-                    if model != DragClosure::SphereDrag {
+                    if !matches!(
+                        model,
+                        DragClosure::SphereDrag | DragClosure::NonSphere { .. }
+                    ) {
                         fraction_field(coeffs, "alphac", phase, is_openfoam(model))?;
                     }
                 }
@@ -70,29 +117,60 @@ impl ParticleForces {
             } else if name == "gravity" {
                 forces.gravity = true;
             } else if name == "pressureGradient" {
-                if let Some(coeffs) = e.as_dict() {
-                    let velocity = velocity_name(phase);
-                    if let Some(u) = coeffs.opt_word("U")? {
-                        if u != velocity {
-                            return Err(at_value(
-                                coeffs,
-                                "U",
-                                format!(
-                                    "pressureGradient U '{u}': expected the continuous phase's \
-                                     velocity {velocity}"
-                                ),
-                            ));
-                        }
-                    }
-                }
+                fluid_velocity(e, phase)?;
                 forces.pressure_gradient = true;
+            } else if name == "virtualMass" {
+                fluid_velocity(e, phase)?;
+                let cvm = coefficient(e, "Cvm", "virtualMass { U <velocity>; Cvm 0.5; }")?;
+                if !(cvm.is_finite() && cvm >= 0.0) {
+                    return Err(at_value(
+                        e.as_dict().expect("a coefficient was read"),
+                        "Cvm",
+                        format!(
+                            "virtualMass Cvm {cvm}: expected a finite added-mass coefficient \
+                             ≥ 0 (0.5 for a sphere)"
+                        ),
+                    ));
+                }
+                forces.virtual_mass = Some(cvm);
+            } else if name == "SaffmanMeiLiftForce" || name == "TomiyamaLift" {
+                if let Some(first) = lift_at {
+                    let (line, _) = first.key_loc.line_col();
+                    return Err(CaseError::at(
+                        &e.key_loc,
+                        format!(
+                            "a second lift force '{name}' (the first, '{}', is on line {line}): \
+                             DPMFoam would add both; fsim takes one lift force",
+                            first.keyword()
+                        ),
+                    ));
+                }
+                lift_at = Some(e);
+                fluid_velocity(e, phase)?;
+                forces.lift = Some(if name == "TomiyamaLift" {
+                    let sigma =
+                        coefficient(e, "sigma", "TomiyamaLift { U <velocity>; sigma 0.07; }")?;
+                    if !(sigma.is_finite() && sigma > 0.0) {
+                        return Err(at_value(
+                            e.as_dict().expect("a coefficient was read"),
+                            "sigma",
+                            format!(
+                                "TomiyamaLift sigma {sigma}: expected a surface tension > 0 \
+                                 (N/m)"
+                            ),
+                        ));
+                    }
+                    LiftModel::Tomiyama { sigma }
+                } else {
+                    LiftModel::SaffmanMei
+                });
             } else if let Some((_, why)) = REFUSED_FORCES.iter().find(|(n, _)| *n == name) {
                 return Err(CaseError::at(
                     &e.key_loc,
                     format!("particle force '{name}' is not supported by fsim ({why})"),
                 ));
             } else {
-                let others = ["gravity", "pressureGradient"];
+                let others = OTHER_FORCES;
                 let known = DragClosure::NAMES.iter().chain(&others);
                 // (no hint for a name far longer than any known one: the distance would
                 // cost its length times theirs)
@@ -118,8 +196,9 @@ impl ParticleForces {
                 return Err(CaseError::at(
                     &e.key_loc,
                     format!(
-                        "{what} '{}' in particleForces{hint}: expected a drag model ({}), \
-                         gravity or pressureGradient",
+                        "{what} '{}' in particleForces{hint}: expected a drag model ({}, \
+                         nonSphereDrag), gravity, pressureGradient, virtualMass, \
+                         SaffmanMeiLiftForce or TomiyamaLift",
                         quote(name),
                         DragClosure::NAMES.join(", ")
                     ),
@@ -128,6 +207,60 @@ impl ParticleForces {
         }
         Ok(forces)
     }
+}
+
+/// A force's `U` (the fluid velocity it reads, OpenFOAM's default `U`): when given, the
+/// continuous phase's velocity.
+fn fluid_velocity(e: &Entry, phase: &str) -> Result<(), CaseError> {
+    let Some(coeffs) = e.as_dict() else {
+        return Ok(());
+    };
+    let velocity = velocity_name(phase);
+    if let Some(u) = coeffs.opt_word("U")? {
+        if u != velocity {
+            return Err(at_value(
+                coeffs,
+                "U",
+                format!(
+                    "{} U '{u}': expected the continuous phase's velocity {velocity}",
+                    e.keyword()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A force's required coefficient `keyword` (DPMFoam reads it without a default); `example`
+/// shows the entry in the message when it is missing.
+fn coefficient(e: &Entry, keyword: &str, example: &str) -> Result<f64, CaseError> {
+    match e.as_dict() {
+        Some(coeffs) => coeffs.get_scalar(keyword),
+        None => Err(CaseError::at(
+            &e.key_loc,
+            format!(
+                "{} needs its coefficient '{keyword}' (DPMFoam reads it without a default): \
+                 write {example}",
+                e.keyword()
+            ),
+        )),
+    }
+}
+
+/// `nonSphereDrag { phi …; }`: the sphericity, in (0, 1] as OpenFOAM requires.
+fn non_sphere(e: &Entry) -> Result<DragClosure, CaseError> {
+    let phi = coefficient(e, "phi", "nonSphereDrag { phi 0.8; }")?;
+    if !(phi > 0.0 && phi <= 1.0) {
+        return Err(at_value(
+            e.as_dict().expect("a coefficient was read"),
+            "phi",
+            format!(
+                "nonSphereDrag phi {phi}: expected a sphericity in (0, 1] (the surface of the \
+                 sphere of the particle's volume over the particle's surface; 1 is a sphere)"
+            ),
+        ));
+    }
+    Ok(DragClosure::NonSphere { phi })
 }
 
 /// Levenshtein distance (insertions, deletions, substitutions), for spelling hints.
@@ -236,6 +369,83 @@ mod tests {
             "{}",
             e.message
         );
+        let e = forces("    sphereDrag;\n    nonSphereDrag { phi 0.5; }")
+            .err()
+            .unwrap();
+        assert!(e.message.contains("a second drag model 'nonSphereDrag'"));
+        let e = forces("    SaffmanMeiLiftForce;\n    TomiyamaLift { sigma 0.07; }")
+            .err()
+            .unwrap();
+        assert!(
+            e.message.contains("a second lift force 'TomiyamaLift'"),
+            "{}",
+            e.message
+        );
+        let e = forces("    virtualMas { Cvm 0.5; }").err().unwrap();
+        assert!(
+            e.message.contains("(did you mean 'virtualMass'?)"),
+            "{}",
+            e.message
+        );
+    }
+
+    #[test]
+    fn dpmfoam_forces_and_their_coefficients() {
+        let f = forces(
+            "    nonSphereDrag { phi 0.8; }\n    pressureGradient { U U.air; }\n    \
+             virtualMass { U U.air; Cvm 0.5; }\n    TomiyamaLift { U U.air; sigma 0.07; }",
+        )
+        .unwrap();
+        assert_eq!(f.drag, Some(DragClosure::NonSphere { phi: 0.8 }));
+        assert!(f.pressure_gradient);
+        assert_eq!(f.virtual_mass, Some(0.5));
+        assert_eq!(f.lift, Some(LiftModel::Tomiyama { sigma: 0.07 }));
+        let f = forces("    SaffmanMeiLiftForce;\n    nonSphereDrag { phi 1; }").unwrap();
+        assert_eq!(f.lift, Some(LiftModel::SaffmanMei));
+        assert_eq!(f.drag, Some(DragClosure::NonSphere { phi: 1.0 }));
+        // bad values: an error at the value, file:line:col
+        for (list, col, what) in [
+            (
+                "    nonSphereDrag { phi 0; }",
+                25,
+                "nonSphereDrag phi 0: expected a sphericity",
+            ),
+            (
+                "    nonSphereDrag { phi 1.5; }",
+                25,
+                "nonSphereDrag phi 1.5",
+            ),
+            (
+                "    virtualMass { Cvm -0.5; }",
+                23,
+                "virtualMass Cvm -0.5: expected",
+            ),
+            (
+                "    TomiyamaLift { sigma 0; }",
+                26,
+                "TomiyamaLift sigma 0: expected",
+            ),
+        ] {
+            let e = forces(list).err().expect(list);
+            assert_eq!(e.file.as_deref(), Some("constant/kinematicCloudProperties"));
+            assert_eq!((e.line, e.col), (3, col), "{}", e.message);
+            assert!(e.message.starts_with(what), "{}", e.message);
+        }
+        // coefficients DPMFoam reads without a default
+        let e = forces("    virtualMass;").err().unwrap();
+        assert!(
+            e.message.contains("needs its coefficient 'Cvm'"),
+            "{}",
+            e.message
+        );
+        let e = forces("    TomiyamaLift { U U.air; }").err().unwrap();
+        assert!(e.message.contains("sigma"), "{}", e.message);
+        let e = forces("    SaffmanMeiLiftForce { U U.water; }")
+            .err()
+            .unwrap();
+        assert!(e
+            .message
+            .contains("expected the continuous phase's velocity U.air"));
     }
 
     #[test]

@@ -9,4 +9,5 @@ mod benchmark;
 mod case;
 mod closures;
 mod figures;
+mod forces;
 mod goldschmidt;

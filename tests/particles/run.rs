@@ -311,14 +311,13 @@ fn bad_cloud_input_is_named_and_nothing_is_written() {
     // a particle force that fsim does not implement
     let case = copy_tutorial("particleSettling", &scratch.0, "force");
     let props = case.join("constant/kinematicCloudProperties");
-    let text = fs::read_to_string(&props).unwrap().replace(
-        "        gravity;",
-        "        gravity;\n        virtualMass { Cvm 0.5; }",
-    );
+    let text = fs::read_to_string(&props)
+        .unwrap()
+        .replace("        gravity;", "        gravity;\n        SRF;");
     fs::write(&props, text).unwrap();
     let err = rejected(&case);
     assert!(
-        err.contains("particle force 'virtualMass' is not supported by fsim"),
+        err.contains("particle force 'SRF' is not supported by fsim"),
         "{err}"
     );
 }

@@ -26,6 +26,11 @@
 //!
 //! The point values are refreshed once per step ([`CellPointInterpolation::update`]); a sample
 //! then reads 4 values per component ([`CellPointInterpolation::sample`]).
+//!
+//! A cell-centred field (DPMFoam's `DUcDt` and `curlUcDt`) is interpolated the same way
+//! ([`CellPointInterpolation::update_cells`]), its boundary faces taking the value of the cell
+//! inside (zero gradient: fsim does not evaluate OpenFOAM's boundary values of the derived
+//! fields, which at a no-slip wall are those of the wall's own motion).
 
 use crate::Vec3;
 use rayon::prelude::*;
@@ -60,6 +65,8 @@ pub struct CellPointInterpolation {
 struct PointTerm {
     a: u32,
     b: u32,
+    /// The padded cell inside the boundary face (for a cell-centred field).
+    inside: u32,
     w: f64,
 }
 
@@ -138,9 +145,12 @@ impl CellPointInterpolation {
                     let term = if c == d {
                         // the staggered face on the boundary plane
                         slot[d] = if high { l.n[d] + 1 } else { 1 };
+                        let face = index(slot);
+                        slot[d] = if high { l.n[d] } else { 1 };
                         PointTerm {
-                            a: index(slot),
+                            a: face,
                             b: NORMAL_FACE,
+                            inside: index(slot),
                             w,
                         }
                     } else {
@@ -150,6 +160,7 @@ impl CellPointInterpolation {
                         PointTerm {
                             a: inside,
                             b: index(slot),
+                            inside,
                             w,
                         }
                     };
@@ -209,6 +220,62 @@ impl CellPointInterpolation {
         self.point = point;
     }
 
+    /// Refreshes the cell and point values from a cell-centred field `cells` (padded, its
+    /// interior filled): the points' values as for the velocity, each boundary face holding
+    /// the value of its cell (module docs).
+    pub fn update_cells(&mut self, cells: &[[f64; 3]]) {
+        self.cell.copy_from_slice(cells);
+        let n = self.grid.n;
+        let plane = (n[0] + 1) * (n[1] + 1);
+        let mut point = std::mem::take(&mut self.point);
+        let this = &*self;
+        point
+            .par_chunks_mut(plane)
+            .enumerate()
+            .for_each(|(k, row)| {
+                for j in 0..=n[1] {
+                    for i in 0..=n[0] {
+                        row[i + (n[0] + 1) * j] =
+                            std::array::from_fn(|c| this.point_value_of_cells(c, [i, j, k]));
+                    }
+                }
+            });
+        self.point = point;
+    }
+
+    /// [`Self::point_value`] for a cell-centred field: a boundary face holds its cell's value.
+    fn point_value_of_cells(&self, c: usize, p: [usize; 3]) -> f64 {
+        let cell = &self.cell;
+        let q = 3 * self.point_index(p[0], p[1], p[2]) + c;
+        let (first, last) = (self.term_start[q] as usize, self.term_start[q + 1] as usize);
+        if first == last {
+            return self.interior_mean(c, p);
+        }
+        let mut sum = 0.0;
+        for t in &self.terms[first..last] {
+            sum += t.w * cell[t.inside as usize][c];
+        }
+        sum / self.term_weight[q]
+    }
+
+    /// The mean of component `c` over the 8 cells around interior point `p`.
+    fn interior_mean(&self, c: usize, p: [usize; 3]) -> f64 {
+        let (l, cell) = (&self.layout, &self.cell);
+        let around: [(usize, usize); 3] = std::array::from_fn(|d| {
+            let (below, above, _) = self.cells_around(d, p[d]);
+            (below, above)
+        });
+        let mut sum = 0.0;
+        for k in [around[2].0, around[2].1] {
+            for j in [around[1].0, around[1].1] {
+                for i in [around[0].0, around[0].1] {
+                    sum += cell[l.index(i, j, k)][c];
+                }
+            }
+        }
+        sum / 8.0
+    }
+
     /// Along direction `d`, the padded slots of the cells around point index `p` and whether
     /// the point lies on a boundary plane (low or high).
     fn cells_around(&self, d: usize, p: usize) -> (usize, usize, Option<bool>) {
@@ -235,20 +302,7 @@ impl CellPointInterpolation {
         let q = 3 * self.point_index(p[0], p[1], p[2]) + c;
         let (first, last) = (self.term_start[q] as usize, self.term_start[q + 1] as usize);
         if first == last {
-            let l = &self.layout;
-            let around: [(usize, usize); 3] = std::array::from_fn(|d| {
-                let (below, above, _) = self.cells_around(d, p[d]);
-                (below, above)
-            });
-            let mut sum = 0.0;
-            for k in [around[2].0, around[2].1] {
-                for j in [around[1].0, around[1].1] {
-                    for i in [around[0].0, around[0].1] {
-                        sum += cell[l.index(i, j, k)][c];
-                    }
-                }
-            }
-            return sum / 8.0;
+            return self.interior_mean(c, p);
         }
         let mut sum = 0.0;
         for t in &self.terms[first..last] {
@@ -431,6 +485,52 @@ mod tests {
                     (got[c] - want[c]).abs() < 1e-12,
                     "{x:?} {c}: {got:?} vs {want:?}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn a_cell_centred_linear_field_is_exact_inside_and_zero_gradient_on_boundary_faces() {
+        let g = grid();
+        let wall = FaceCondition::Wall { velocity: [0.0; 3] };
+        let bc = BoundaryConditions {
+            faces: std::array::from_fn(|_| wall.clone()),
+        };
+        let (a, b) = (
+            [0.3, -1.2, 2.0],
+            [[0.5, -0.2, 1.1], [2.0, 0.3, -0.7], [-1.5, 0.9, 0.4]],
+        );
+        let l = PaddedLayout::new(g.n);
+        let mut cells = vec![[0.0; 3]; l.len];
+        for k in 1..=g.n[2] {
+            for j in 1..=g.n[1] {
+                for i in 1..=g.n[0] {
+                    let x =
+                        Vec3::from_fn(|d, _| g.origin[d] + ([i, j, k][d] as f64 - 0.5) * g.h[d]);
+                    cells[l.index(i, j, k)] = linear_value(a, b, x);
+                }
+            }
+        }
+        let mut interp = CellPointInterpolation::new(&g, &bc);
+        interp.update_cells(&cells);
+        let mut state = 5;
+        for _ in 0..500 {
+            let x = Vec3::from_fn(|d, _| {
+                g.origin[d] + g.h[d] * (1.0 + (g.n[d] - 2) as f64 * lcg(&mut state))
+            });
+            let (got, want) = (interp.sample(x), linear_value(a, b, x));
+            for c in 0..3 {
+                assert!((got[c] - want[c]).abs() < 1e-12, "{x:?} {c}");
+            }
+        }
+        // a corner point on three walls: its boundary faces hold the corner cell's value, so
+        // the point takes it (the ghost cells, left at zero, are never read)
+        let [n0, n1, n2] = g.n;
+        for (p, cell) in [([0, 0, 0], [1, 1, 1]), ([n0, n1, n2], [n0, n1, n2])] {
+            let point = interp.point[interp.point_index(p[0], p[1], p[2])];
+            let inside = cells[l.index(cell[0], cell[1], cell[2])];
+            for c in 0..3 {
+                assert!((point[c] - inside[c]).abs() < 1e-14, "{p:?} {c}");
             }
         }
     }

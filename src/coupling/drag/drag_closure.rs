@@ -27,7 +27,7 @@ pub enum Convention {
 }
 
 /// A drag closure, by its DPMFoam `particleForces` name or fsim's name for it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DragClosure {
     /// Paper eq. 11–12 (OCR-garbled; read as Wen & Yu for ε > 0.8 with the exponent −2.7 of
     /// paper eq. 12, −4.7 in paper eq. 18's K, and Ergun 1952 for ε ≤ 0.8).
@@ -50,6 +50,12 @@ pub enum DragClosure {
     KochHill,
     /// Gidaspow (1994), *Multiphase Flow and Fluidization*: Wen & Yu for ε > 0.8, Ergun below.
     Gidaspow,
+    /// OpenFOAM v1912 `nonSphereDrag { phi …; }`: Haider & Levenspiel (1989), Powder Technol.
+    /// 58, 63–70, for particles of sphericity `phi` in (0, 1] (no ε, like `sphereDrag`).
+    NonSphere {
+        /// Sphericity: the surface of the sphere of the same volume over the particle's.
+        phi: f64,
+    },
 }
 
 /// The fluid and particle at one particle, as a closure needs them.
@@ -124,9 +130,22 @@ impl DragClosure {
         Ok(closure)
     }
 
-    /// The name [`Self::from_name`] accepts.
+    /// The name [`Self::from_name`] accepts (`nonSphereDrag`, which needs its `phi`, is read
+    /// by the case reader only).
     pub fn name(self) -> &'static str {
-        Self::NAMES[self as usize]
+        match self {
+            DragClosure::Paper => Self::NAMES[0],
+            DragClosure::SphereDrag => Self::NAMES[1],
+            DragClosure::WenYu => Self::NAMES[2],
+            DragClosure::ErgunWenYu => Self::NAMES[3],
+            DragClosure::PlessisMasliyah => Self::NAMES[4],
+            DragClosure::DiFelice => Self::NAMES[5],
+            DragClosure::Beetstra => Self::NAMES[6],
+            DragClosure::Tenneti => Self::NAMES[7],
+            DragClosure::KochHill => Self::NAMES[8],
+            DragClosure::Gidaspow => Self::NAMES[9],
+            DragClosure::NonSphere { .. } => "nonSphereDrag",
+        }
     }
 
     /// Whether the coefficient excludes the pressure gradient or is the total force.
@@ -141,7 +160,8 @@ impl DragClosure {
             | DragClosure::ErgunWenYu
             | DragClosure::PlessisMasliyah
             | DragClosure::Tenneti
-            | DragClosure::KochHill => Convention::Total,
+            | DragClosure::KochHill
+            | DragClosure::NonSphere { .. } => Convention::Total,
         }
     }
 
@@ -158,6 +178,7 @@ impl DragClosure {
             DragClosure::Tenneti => tenneti(q),
             DragClosure::KochHill => koch_hill(q),
             DragClosure::Gidaspow => gidaspow(q),
+            DragClosure::NonSphere { phi } => non_sphere_drag(q, phi),
         }
     }
 
@@ -234,6 +255,26 @@ pub fn sphere_drag(q: &DragInput) -> f64 {
         24.0 * (1.0 + re.powf(2.0 / 3.0) / 6.0)
     };
     q.volume() * 0.75 * q.mu * cd_re / (q.d * q.d)
+}
+
+/// Haider & Levenspiel (1989) for sphericity `phi`: `C_d Re = 24 (1 + a Re^b) + c Re/(1 + d/Re)`
+/// with `a = exp(2.3288 − 6.4581 φ + 2.4486 φ²)`, `b = 0.0964 + 0.5565 φ`,
+/// `c = exp(4.905 − 13.8944 φ + 18.4222 φ² − 10.2599 φ³)`,
+/// `d = exp(1.4681 + 12.2584 φ − 20.7322 φ² + 15.8855 φ³)` (as OpenFOAM's `NonSphereDragForce`).
+pub fn cd_re_haider_levenspiel(re: f64, phi: f64) -> f64 {
+    let (p2, p3) = (phi * phi, phi * phi * phi);
+    let a = (2.3288 - 6.4581 * phi + 2.4486 * p2).exp();
+    let b = 0.0964 + 0.5565 * phi;
+    let c = (4.905 - 13.8944 * phi + 18.4222 * p2 - 10.2599 * p3).exp();
+    let d = (1.4681 + 12.2584 * phi - 20.7322 * p2 + 15.8855 * p3).exp();
+    // Re + ROOTVSMALL under d, as OpenFOAM: the term vanishes at Re = 0
+    24.0 * (1.0 + a * re.powf(b)) + re * c / (1.0 + d / (re + 1e-150))
+}
+
+/// OpenFOAM v1912 `nonSphereDrag`: `β = V (3/4) μ CdRe(Re) / d²` with Haider & Levenspiel's
+/// `CdRe` ([`cd_re_haider_levenspiel`]); `d` the volume-equivalent diameter.
+pub fn non_sphere_drag(q: &DragInput, phi: f64) -> f64 {
+    q.volume() * 0.75 * q.mu * cd_re_haider_levenspiel(q.re(), phi) / (q.d * q.d)
 }
 
 /// OpenFOAM v1912 `WenYuDrag`: `β = V (3/4) CdRe(ε Re) μ ε^−2.65 / (ε d²)`, `CdRe` Schiller–Naumann.
@@ -505,6 +546,37 @@ mod tests {
         let mut q = water(0.5);
         q.slip = 0.0;
         assert!(close(koch_hill(&q), 9.424778e-6 * 0.5 * 40.0, 1e-6));
+    }
+
+    #[test]
+    fn haider_levenspiel_by_hand() {
+        // φ = 1: a = e^(−1.68070) = 0.186244, b = 0.6529, c = e^(−0.82710) = 0.437316,
+        // d = e^(8.87980) = 7185.354; Re = 10: 10^0.6529 = 4.496763,
+        // CdRe = 24 (1 + 0.837485) + 4.37316/(1 + 718.5354) = 44.099836 + 0.006078 = 44.105913
+        // (sphereDrag's Putnam fit gives 42.566 there: the same sphere within 4 %).
+        let hl = cd_re_haider_levenspiel(10.0, 1.0);
+        assert!(close(hl, 44.105913, 2e-7), "{hl}");
+        let sphere = sphere_drag(&water(1.0)) / (water(1.0).volume() * 0.75 * 1e-3 / 1e-6);
+        assert!(close(hl, sphere, 0.04), "{hl} against {sphere}");
+        // φ = 0.5: a = e^(−0.28810) = 0.749687, b = 0.37465, c = e^(1.28086) = 3.599743,
+        // d = e^(4.39994) = 81.4458; 10^0.37465 = 2.369463,
+        // CdRe = 24 (1 + 1.776355) + 35.99743/9.14458 = 66.632520 + 3.936478 = 70.568998
+        let hl = cd_re_haider_levenspiel(10.0, 0.5);
+        assert!(close(hl, 70.568998, 2e-7), "{hl}");
+        // β = V (3/4) μ CdRe / d², and the Stokes limit 24 (Re → 0) for every φ
+        let b = non_sphere_drag(&water(0.5), 0.5);
+        assert!(close(
+            b,
+            water(0.5).volume() * 0.75 * 1e-3 * 70.568998 / 1e-6,
+            2e-7
+        ));
+        assert!(close(cd_re_haider_levenspiel(0.0, 0.7), 24.0, 1e-12));
+        let c = DragClosure::NonSphere { phi: 0.5 };
+        assert_eq!(
+            (c.name(), c.convention()),
+            ("nonSphereDrag", Convention::Total)
+        );
+        assert_eq!(c.coefficient(&water(0.5)), b);
     }
 
     #[test]

@@ -39,11 +39,20 @@
 //! part by about `x²` (README, drag-law model). The fluid gets exactly `−f_d` (momentum
 //! conservation), plus with the semi-implicit source `K (uⁿ − uⁿ⁺¹)` with `K = Σ w β /(ρ V_cell)`
 //! (OpenFOAM's `SU − Sp(UCoeff) U` treatment), which vanishes in a steady state.
+//!
+//! DPMFoam's explicit coupled forces `F_e` ([`super::FluidForces`]: pressure gradient,
+//! virtual mass, lift) join `F` in that balance and, negated, the fluid's source beside `−f_d`
+//! (DPMFoam's `dUTrans`). With `virtualMass` the fluid-step forces move the particle through
+//! `massEff = m (1 + Cvm ρ/ρ_p)`: `x = Δt β / massEff`, and the DEM gets the load
+//! `(f_d + F_e + m_b g)/(1 + r) − m_b g` (`m_b g` the buoyant weight it adds itself), while its
+//! contact forces still divide by `m`, as DPMFoam's `CollidingParcel` does; `F` carries the
+//! contact force times `1 + r` accordingly.
 
 use super::cell_point_interpolation::CellPointInterpolation;
 use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::DragLawSettings;
+use super::fluid_forces::FluidAcceleration;
 use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{FluidSolver, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 use crate::particles::{Dem, ParticleState};
@@ -54,11 +63,11 @@ use std::f64::consts::PI;
 /// The momentum the particles and the fluid exchanged in one step, and the bed's state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ExchangeReport {
-    /// `Σ f_d` over the particles, N.
+    /// `Σ (f_d + F_e)` over the particles (drag and DPMFoam's explicit coupled forces), N.
     pub drag_on_particles: Vec3,
     /// `ρ V_cell Σ_faces s`, the explicit reaction the fluid received, N.
     pub drag_on_fluid: Vec3,
-    /// `Σ f_h` (drag and pressure-gradient force), N.
+    /// `Σ f_h` (drag, pressure-gradient force of either form, virtual mass and lift), N.
     pub hydrodynamic_force: Vec3,
     /// Smallest cell ε.
     pub min_fluid_fraction: f64,
@@ -89,6 +98,19 @@ pub struct DragLawCoupling {
     cell_scatter: ChunkedScatter,
     /// Cell-centred pressure gradient, padded (ghosts filled), used in a fully periodic box.
     cell_gradient: [Vec<f64>; 3],
+    /// DPMFoam's fluid fields at cell centres, padded (interior filled), computed once per
+    /// step when a force reads them: `DU_c/Dt` and `∇ × U_c`; the cell-centred velocity of
+    /// the last step (for `fluidAcceleration full`), `None` before the first.
+    acceleration: Vec<[f64; 3]>,
+    curl: Vec<[f64; 3]>,
+    previous_velocity: Option<Vec<[f64; 3]>>,
+    /// Their cell-point interpolations, when the case asks for them.
+    acceleration_cell_point: Option<CellPointInterpolation>,
+    curl_cell_point: Option<CellPointInterpolation>,
+    /// Per particle: the explicit coupled force (pressure gradient, virtual mass, lift) and
+    /// the load handed to the DEM (see [`Self::particle_forces`]).
+    explicit: Vec<Vec3>,
+    load: Vec<Vec3>,
     pub last: ExchangeReport,
     /// The fluid's report of the last step.
     pub last_fluid: Option<VolumeAveragedReport>,
@@ -126,6 +148,7 @@ impl DragLawCoupling {
         let va = VolumeAveragedFluid::new(fluid, settings.form, settings.gravity.into())?;
         let transfer = GridTransfer::new(&grid, &bc, va.momentum_ranges());
         let settings_cell_point = settings.cell_point;
+        let forces = settings.forces;
         let len = va.layout().len;
         let mut coupling = DragLawCoupling {
             settings,
@@ -142,6 +165,16 @@ impl DragLawCoupling {
             face_scatter: ChunkedScatter::new(),
             cell_scatter: ChunkedScatter::new(),
             cell_gradient: [(); 3].map(|_| vec![0.0; len]),
+            acceleration: vec![[0.0; 3]; if forces.needs_acceleration() { len } else { 0 }],
+            curl: vec![[0.0; 3]; if forces.needs_curl() { len } else { 0 }],
+            previous_velocity: None,
+            acceleration_cell_point: (forces.needs_acceleration()
+                && forces.acceleration_cell_point)
+                .then(|| CellPointInterpolation::new(&grid, &bc)),
+            curl_cell_point: (forces.needs_curl() && forces.curl_cell_point)
+                .then(|| CellPointInterpolation::new(&grid, &bc)),
+            explicit: Vec::new(),
+            load: Vec::new(),
             last_fluid: None,
             last: ExchangeReport::default(),
             warnings: Vec::new(),
@@ -320,6 +353,9 @@ impl DragLawCoupling {
         self.beta.resize(n, 0.0);
         self.hydro.resize(n, Vec3::zeros());
         self.write_faces.resize(n, [SampleStencil::default(); 3]);
+        self.explicit.resize(n, Vec3::zeros());
+        self.load.resize(n, Vec3::zeros());
+        self.compute_fluid_fields(fluid, dt);
         let s = &self.settings;
         let want = match s.form {
             VolumeAveragedForm::Paper => Convention::DragOnly,
@@ -373,6 +409,24 @@ impl DragLawCoupling {
         let gradient = self.fluid.pressure_gradient();
         let g_fluid = self.fluid.gravity();
         let mean_gradient = self.fluid.mean_pressure_gradient();
+        let forces = s.forces;
+        // Tomiyama's Eötvös number reads the case's g (OpenFOAM's `owner().g()`), listed
+        // `gravity` or not
+        let g_case: [f64; 3] = s.gravity.into();
+        let (acceleration, curl) = (&self.acceleration, &self.curl);
+        let (acceleration_cp, curl_cp) = (
+            self.acceleration_cell_point.as_ref(),
+            self.curl_cell_point.as_ref(),
+        );
+        let (grid, layout) = (self.fluid.grid(), self.fluid.layout());
+        // DPMFoam's `cell` interpolation of a cell-centred field: the particle's cell
+        let cell_value = |field: &[[f64; 3]], x: Vec3| -> [f64; 3] {
+            let slot: [usize; 3] = std::array::from_fn(|d| {
+                let s = ((x[d] - grid.origin[d]) / grid.h[d]).floor();
+                (s.max(0.0) as usize).min(grid.n[d] - 1) + 1
+            });
+            field[layout.index(slot[0], slot[1], slot[2])]
+        };
         let (closure, form, interpolation, averaging, analytical) = (
             s.closure,
             s.form,
@@ -404,107 +458,167 @@ impl DragLawCoupling {
                 .zip(self.drag.par_chunks_mut(PARTICLES_PER_CHUNK))
                 .zip(self.beta.par_chunks_mut(PARTICLES_PER_CHUNK))
                 .zip(self.write_faces.par_chunks_mut(PARTICLES_PER_CHUNK))
+                .zip(self.explicit.par_chunks_mut(PARTICLES_PER_CHUNK))
+                .zip(self.load.par_chunks_mut(PARTICLES_PER_CHUNK))
                 .enumerate()
-                .for_each(|(k, ((((partial, hydro), drag), beta), write))| {
-                    let first = k * PARTICLES_PER_CHUNK;
-                    let (mut lo, mut hi) = (usize::MAX, 0);
-                    for j in 0..hydro.len() {
-                        let i = first + j;
-                        let (hydro, drag, beta, write) =
-                            (&mut hydro[j], &mut drag[j], &mut beta[j], &mut write[j]);
-                        let x = position[i];
-                        let mut read = [SampleStencil::default(); 3];
-                        // The face stencils read u, and ∇p in the paper's form.
-                        if needs_read {
-                            transfer.read_face_stencils(x, interpolation, &mut read);
-                        }
-                        let u = match cell_point {
-                            Some(cp) => cp.sample(x),
-                            None => Vec3::new(
-                                read[0].gather(&velocity[0]),
-                                read[1].gather(&velocity[1]),
-                                read[2].gather(&velocity[2]),
-                            ),
-                        };
-                        let mut cell = SampleStencil::default();
-                        transfer.write_stencils(x, averaging, write, &mut cell);
-                        let eps = cell.gather(eps_cells);
-                        let slip = Vec3::new(u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]);
-                        let speed =
-                            (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
-                        let d = diameter[i];
-                        let q = DragInput {
-                            d,
-                            eps,
-                            slip: speed,
-                            rho,
-                            mu,
-                        };
-                        let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
-                        let volume = q.volume();
-                        let pressure = match form {
-                            VolumeAveragedForm::Paper => {
-                                // ∇p is the periodic part; G its uniform mean (zero if not
-                                // fully periodic). With G, ∇p is read from cell centres with
-                                // the ε stencil: the exact adjoint of the fluid's −ε_f∇p.
-                                let gp: [f64; 3] = if cell_centred {
-                                    std::array::from_fn(|c| cell.gather(&cell_gradient[c]))
+                .for_each(
+                    |(k, ((((((partial, hydro), drag), beta), write), explicit), load))| {
+                        let first = k * PARTICLES_PER_CHUNK;
+                        let (mut lo, mut hi) = (usize::MAX, 0);
+                        for j in 0..hydro.len() {
+                            let i = first + j;
+                            let (hydro, drag, beta, write, explicit, load) = (
+                                &mut hydro[j],
+                                &mut drag[j],
+                                &mut beta[j],
+                                &mut write[j],
+                                &mut explicit[j],
+                                &mut load[j],
+                            );
+                            let x = position[i];
+                            let mut read = [SampleStencil::default(); 3];
+                            // The face stencils read u, and ∇p in the paper's form.
+                            if needs_read {
+                                transfer.read_face_stencils(x, interpolation, &mut read);
+                            }
+                            let u = match cell_point {
+                                Some(cp) => cp.sample(x),
+                                None => Vec3::new(
+                                    read[0].gather(&velocity[0]),
+                                    read[1].gather(&velocity[1]),
+                                    read[2].gather(&velocity[2]),
+                                ),
+                            };
+                            let mut cell = SampleStencil::default();
+                            transfer.write_stencils(x, averaging, write, &mut cell);
+                            let eps = cell.gather(eps_cells);
+                            let slip =
+                                Vec3::new(u[0] - vel[i][0], u[1] - vel[i][1], u[2] - vel[i][2]);
+                            let speed =
+                                (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+                            let d = diameter[i];
+                            let q = DragInput {
+                                d,
+                                eps,
+                                slip: speed,
+                                rho,
+                                mu,
+                            };
+                            let b = closure.map_or(0.0, |c| c.coefficient_as(&q, want));
+                            let volume = q.volume();
+                            let pressure = match form {
+                                VolumeAveragedForm::Paper => {
+                                    // ∇p is the periodic part; G its uniform mean (zero if not
+                                    // fully periodic). With G, ∇p is read from cell centres with
+                                    // the ε stencil: the exact adjoint of the fluid's −ε_f∇p.
+                                    let gp: [f64; 3] = if cell_centred {
+                                        std::array::from_fn(|c| cell.gather(&cell_gradient[c]))
+                                    } else {
+                                        std::array::from_fn(|c| read[c].gather(&gradient[c]))
+                                    };
+                                    std::array::from_fn(|a| {
+                                        -volume * rho * (gp[a] + mean_gradient[a] - g_fluid[a])
+                                    })
+                                }
+                                VolumeAveragedForm::DpmFoam => [0.0; 3],
+                            };
+                            let mass = density[i] * volume;
+                            // DPMFoam's explicit coupled forces (pressure gradient, virtual mass,
+                            // lift), from DU_c/Dt and ∇ × U_c at the particle
+                            let mut fx = [0.0; 3];
+                            if forces.needs_acceleration() || forces.needs_curl() {
+                                let du_dt = if !forces.needs_acceleration() {
+                                    [0.0; 3]
+                                } else if let Some(cp) = acceleration_cp {
+                                    cp.sample(x).into()
                                 } else {
-                                    std::array::from_fn(|c| read[c].gather(&gradient[c]))
+                                    cell_value(acceleration, x)
                                 };
-                                std::array::from_fn(|a| {
-                                    -volume * rho * (gp[a] + mean_gradient[a] - g_fluid[a])
-                                })
+                                let w = if !forces.needs_curl() {
+                                    [0.0; 3]
+                                } else if let Some(cp) = curl_cp {
+                                    cp.sample(x).into()
+                                } else {
+                                    cell_value(curl, x)
+                                };
+                                fx = forces.explicit_force(
+                                    mass,
+                                    density[i],
+                                    d,
+                                    vel[i].into(),
+                                    rho,
+                                    mu,
+                                    u.into(),
+                                    du_dt,
+                                    w,
+                                    g_case,
+                                );
                             }
-                            VolumeAveragedForm::DpmFoam => [0.0; 3],
-                        };
-                        let mass = density[i] * volume;
-                        // The fraction of the force imbalance the implicit drag relaxes in one step:
-                        // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
-                        let x_imp = if fixed[i] { 0.0 } else { dt * b / mass };
-                        let relax = if x_imp == 0.0 {
-                            1.0
-                        } else if analytical {
-                            -(-x_imp).exp_m1() / x_imp
-                        } else {
-                            1.0 / (1.0 + x_imp)
-                        };
-                        let buoyant = 1.0 - rho_cloud / density[i];
-                        *drag = Vec3::from_fn(|a, _| {
-                            let other = mass * buoyant * g_cloud[a] + pressure[a] + contact[i][a];
-                            relax * (b * slip[a] + other) - other
-                        });
-                        *beta = b;
-                        *hydro = Vec3::from_fn(|a, _| drag[a] + pressure[a]);
-                        for st in write.iter() {
-                            let (a, b) = st.index_range();
-                            lo = lo.min(a);
-                            hi = hi.max(b);
-                        }
-                    }
-                    partial.reset(lo, hi, fields);
-                    let base = partial.base();
-                    for j in 0..hydro.len() {
-                        let (f, st) = (drag[j], &write[j]);
-                        let b = if semi_implicit { beta[j] * scale } else { 0.0 };
-                        for c in 0..3 {
-                            let value = -f[c] * scale;
-                            if value != 0.0 && b != 0.0 {
-                                // source and coefficient share the stencil's weights
-                                let (source, coefficient) = partial.field_pair_mut(c, 3 + c);
-                                st[c].scatter_pair(source, coefficient, base, value, b);
-                            } else if value != 0.0 {
-                                st[c].scatter(partial.field_mut(c), base, value);
-                            } else if b != 0.0 {
-                                st[c].scatter(partial.field_mut(3 + c), base, b);
+                            // massEff = m (1 + r), r = Cvm ρ/ρ_p: the fluid-step forces move the
+                            // particle through massEff, its contacts through m (as DPMFoam)
+                            let r = forces.added_mass_ratio(rho, density[i]);
+                            // The fraction of the force imbalance the implicit drag relaxes in one step:
+                            // 1/(1 + x) for Euler, (1 − e^−x)/x for the analytical solution.
+                            let x_imp = if fixed[i] {
+                                0.0
+                            } else {
+                                dt * b / (mass * (1.0 + r))
+                            };
+                            let relax = if x_imp == 0.0 {
+                                1.0
+                            } else if analytical {
+                                -(-x_imp).exp_m1() / x_imp
+                            } else {
+                                1.0 / (1.0 + x_imp)
+                            };
+                            let buoyant = 1.0 - rho_cloud / density[i];
+                            *drag = Vec3::from_fn(|a, _| {
+                                let other = mass * buoyant * g_cloud[a]
+                                    + pressure[a]
+                                    + fx[a]
+                                    + (1.0 + r) * contact[i][a];
+                                relax * (b * slip[a] + other) - other
+                            });
+                            *beta = b;
+                            *explicit = Vec3::from(fx);
+                            *hydro = Vec3::from_fn(|a, _| drag[a] + pressure[a] + fx[a]);
+                            // The DEM moves the particle by load/m + (1 − ρ/ρ_p) g (and its
+                            // contacts by 1/m): load = (f_h + m (1 − ρ/ρ_p) g)/(1 + r) − m (1 − ρ/ρ_p) g
+                            *load = Vec3::from_fn(|a, _| {
+                                let weight = mass * buoyant * g_cloud[a];
+                                (hydro[a] + weight) / (1.0 + r) - weight
+                            });
+                            for st in write.iter() {
+                                let (a, b) = st.index_range();
+                                lo = lo.min(a);
+                                hi = hi.max(b);
                             }
                         }
-                    }
-                });
+                        partial.reset(lo, hi, fields);
+                        let base = partial.base();
+                        for j in 0..hydro.len() {
+                            let (f, e, st) = (drag[j], explicit[j], &write[j]);
+                            let b = if semi_implicit { beta[j] * scale } else { 0.0 };
+                            for c in 0..3 {
+                                // DPMFoam's dUTrans: the drag and the explicit coupled forces
+                                let value = -(f[c] + e[c]) * scale;
+                                if value != 0.0 && b != 0.0 {
+                                    // source and coefficient share the stencil's weights
+                                    let (source, coefficient) = partial.field_pair_mut(c, 3 + c);
+                                    st[c].scatter_pair(source, coefficient, base, value, b);
+                                } else if value != 0.0 {
+                                    st[c].scatter(partial.field_mut(c), base, value);
+                                } else if b != 0.0 {
+                                    st[c].scatter(partial.field_mut(3 + c), base, b);
+                                }
+                            }
+                        }
+                    },
+                );
         }
         {
             let (force, _) = dem.external_loads_mut();
-            force.copy_from_slice(&self.hydro);
+            force.copy_from_slice(&self.load);
             let mut total = Vec3::zeros();
             for f in &self.hydro {
                 for a in 0..3 {
@@ -516,6 +630,96 @@ impl DragLawCoupling {
         self.spread_reaction();
     }
 
+    /// DPMFoam's `DUcDt = ∂U_c/∂t + (U_c·∇)U_c` and `curlUcDt = ∇ × U_c` at the cell centres,
+    /// when a force reads them, and their cell-point interpolation when asked for. The
+    /// gradient is OpenFOAM's Gauss-linear one on a uniform grid: central differences of the
+    /// cell-centred velocity (the ghost cells carry the boundary values), and along a
+    /// component's own direction the difference of its two faces. `∂U_c/∂t` is the last step's
+    /// change with `fluidAcceleration full` and zero as DPMFoam evaluates it ([`FluidAcceleration`]).
+    fn compute_fluid_fields(&mut self, fluid: &FluidSolver, dt: f64) {
+        let forces = self.settings.forces;
+        let (need_a, need_c) = (forces.needs_acceleration(), forces.needs_curl());
+        if !need_a && !need_c {
+            return;
+        }
+        let l = self.fluid.layout().clone();
+        let h = self.fluid.grid().h;
+        let bc = self.fluid.boundary_conditions();
+        let empty: [bool; 3] =
+            std::array::from_fn(|d| matches!(bc.face(d, 0), crate::fluid::FaceCondition::Empty));
+        let u = fluid.velocity();
+        let centre = |c: usize, f: usize| {
+            if empty[c] {
+                0.0
+            } else {
+                0.5 * (u[c][f] + u[c][f + l.stride[c]])
+            }
+        };
+        let full = need_a && forces.acceleration == FluidAcceleration::Full;
+        let mut previous = self.previous_velocity.take();
+        let had_previous = previous.is_some();
+        if full && previous.is_none() {
+            previous = Some(vec![[0.0; 3]; l.len]);
+        }
+        let inv_dt = if dt > 0.0 { 1.0 / dt } else { 0.0 };
+        let [n0, n1, n2] = l.n;
+        for k in 1..=n2 {
+            for j in 1..=n1 {
+                for i in 1..=n0 {
+                    let f = l.index(i, j, k);
+                    let uc = [centre(0, f), centre(1, f), centre(2, f)];
+                    // grad[d][c] = ∂U_c/∂x_d
+                    let mut grad = [[0.0; 3]; 3];
+                    for d in 0..3 {
+                        if empty[d] {
+                            continue;
+                        }
+                        let sd = l.stride[d];
+                        for c in 0..3 {
+                            if empty[c] {
+                                continue;
+                            }
+                            grad[d][c] = if c == d {
+                                (u[c][f + sd] - u[c][f]) / h[d]
+                            } else {
+                                (centre(c, f + sd) - centre(c, f - sd)) / (2.0 * h[d])
+                            };
+                        }
+                    }
+                    if need_a {
+                        let mut a = [0.0; 3];
+                        for c in 0..3 {
+                            a[c] = uc[0] * grad[0][c] + uc[1] * grad[1][c] + uc[2] * grad[2][c];
+                        }
+                        if let Some(old) = previous.as_mut() {
+                            if had_previous {
+                                for c in 0..3 {
+                                    a[c] += (uc[c] - old[f][c]) * inv_dt;
+                                }
+                            }
+                            old[f] = uc;
+                        }
+                        self.acceleration[f] = a;
+                    }
+                    if need_c {
+                        self.curl[f] = [
+                            grad[1][2] - grad[2][1],
+                            grad[2][0] - grad[0][2],
+                            grad[0][1] - grad[1][0],
+                        ];
+                    }
+                }
+            }
+        }
+        self.previous_velocity = previous;
+        if let Some(cp) = self.acceleration_cell_point.as_mut() {
+            cp.update_cells(&self.acceleration);
+        }
+        if let Some(cp) = self.curl_cell_point.as_mut() {
+            cp.update_cells(&self.curl);
+        }
+    }
+
     /// The reaction `−f_d/(ρ V_cell)` (and `β/(ρ V_cell)` for the semi-implicit source) the
     /// particle loop spread into the chunks' partials, summed into the fluid's sources in chunk
     /// order (deterministic for any thread count).
@@ -523,9 +727,9 @@ impl DragLawCoupling {
         let scale = 1.0 / (self.settings.rho * self.transfer.cell_volume());
         let semi_implicit = self.settings.semi_implicit;
         let mut on_particles = Vec3::zeros();
-        for f in &self.drag {
+        for (f, e) in self.drag.iter().zip(&self.explicit) {
             for a in 0..3 {
-                on_particles[a] += f[a];
+                on_particles[a] += f[a] + e[a];
             }
         }
         let (source, coefficient) = self.fluid.sources_mut();

@@ -1,6 +1,7 @@
 //! Everything the drag-law model needs from a case, as plain values.
 
 use super::drag_closure::DragClosure;
+use super::fluid_forces::FluidForces;
 use crate::fluid::VolumeAveragedForm;
 use crate::Vec3;
 
@@ -62,6 +63,8 @@ pub struct DragLawSettings {
     pub nu: f64,
     /// Gravity acting on the fluid, m/s².
     pub gravity: Vec3,
+    /// DPMFoam's pressure-gradient, virtual-mass and lift forces.
+    pub forces: FluidForces,
 }
 
 impl DragLawSettings {
@@ -80,6 +83,7 @@ impl DragLawSettings {
             rho,
             nu,
             gravity,
+            forces: FluidForces::default(),
         }
     }
 
