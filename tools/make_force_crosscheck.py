@@ -14,7 +14,9 @@ liquidFluidizedBed: 588 glass beads (d = 2 mm, rho_p = 2500) fluidized by water 
   virtualMass, gravity, contacts.
 shearLift: one bead (d = 1 mm, rho_p = 1100) settling in a vertical linear shear flow between
   two walls 16 mm apart sliding in opposite directions (gamma = 10 1/s): sphereDrag,
-  SaffmanMeiLiftForce, gravity; the lateral drift. shearLiftTomiyama: the same with
+  SaffmanMeiLiftForce, gravity; the lateral drift. The column is 320 mm long and closed, the
+  bead falls through its middle, out of reach of the flow the ends turn round (in a 192 mm
+  column it reached the bead within 1 s). shearLiftTomiyama: the same with
   TomiyamaLift { sigma 0.07; }.
 nonSphereSettling: settlingInLiquid with nonSphereDrag { phi 0.7; } for sphereDrag.
 
@@ -23,7 +25,8 @@ virtualMass are dictionaries naming the fluid velocity (`U U.water;`; without it
 looks up a field `U`), and the cloud's interpolationSchemes must have `DUcDt` (the field
 DUc/Dt = ddt(U) + U & grad(U) both forces interpolate); SaffmanMeiLiftForce and TomiyamaLift
 the same with `curlUcDt` (curl U); virtualMass needs `Cvm`, TomiyamaLift `sigma`,
-nonSphereDrag `phi`, WenYuDrag `alphac`.
+nonSphereDrag `phi`, WenYuDrag `alphac`. DPMFoam v1912 reads no fvOptions (neither system/ nor
+constant/), so a column periodic in z cannot hold its water up with meanVelocityForce there.
 """
 import math
 import os
