@@ -14,7 +14,9 @@ liquidFluidizedBed: 588 glass beads (d = 2 mm, rho_p = 2500) fluidized by water 
   virtualMass, gravity, contacts.
 shearLift: one bead (d = 1 mm, rho_p = 1100) settling in a vertical linear shear flow between
   two walls 16 mm apart sliding in opposite directions (gamma = 10 1/s): sphereDrag,
-  SaffmanMeiLiftForce, gravity; the lateral drift. shearLiftTomiyama: the same with
+  SaffmanMeiLiftForce, gravity; the lateral drift. The column is 320 mm long and closed, the
+  bead falls through its middle, out of reach of the flow the ends turn round (in a 192 mm
+  column it reached the bead within 1 s). shearLiftTomiyama: the same with
   TomiyamaLift { sigma 0.07; }.
 nonSphereSettling: settlingInLiquid with nonSphereDrag { phi 0.7; } for sphereDrag.
 
@@ -23,7 +25,8 @@ virtualMass are dictionaries naming the fluid velocity (`U U.water;`; without it
 looks up a field `U`), and the cloud's interpolationSchemes must have `DUcDt` (the field
 DUc/Dt = ddt(U) + U & grad(U) both forces interpolate); SaffmanMeiLiftForce and TomiyamaLift
 the same with `curlUcDt` (curl U); virtualMass needs `Cvm`, TomiyamaLift `sigma`,
-nonSphereDrag `phi`, WenYuDrag `alphac`.
+nonSphereDrag `phi`, WenYuDrag `alphac`. DPMFoam v1912 reads no fvOptions (neither system/ nor
+constant/), so a column periodic in z cannot hold its water up with meanVelocityForce there.
 """
 import math
 import os
@@ -31,7 +34,7 @@ import random
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from dpmfoam_case import (FIXED_FLUX, NO_COLLISIONS, NO_SLIP, SYMMETRY,  # noqa: E402
+from dpmfoam_case import (CYCLIC, FIXED_FLUX, NO_COLLISIONS, NO_SLIP, SYMMETRY,  # noqa: E402
                           block_mesh, cloud_properties, constant, control, fields, inlet,
                           local_interaction, manual_injection, outlet, positions,
                           spring_slider_dashpot, system)
@@ -157,43 +160,80 @@ def liquid_fluidized_bed(repo, u=0.06, d=0.002, youngs="5e3", end=0.8, dt=5e-4, 
 
 # ----- shearLift -----------------------------------------------------------------------------
 
-SHEAR_PATCHES = [("top", "wall", ["z+"], ""), ("bottom", "wall", ["z-"], ""),
-                 ("left", "wall", ["x-"], ""), ("right", "wall", ["x+"], ""),
-                 ("frontAndBack", "symmetry", ["y-", "y+"], "")]
-
-
 SAFFMAN_MEI = "SaffmanMeiLiftForce\n{\n    U   U.water;\n}"
 TOMIYAMA = "TomiyamaLift\n{\n    U     U.water;\n    sigma 0.07;\n}"
 
+# Holds the water's mean vertical velocity at (nearly) 0 in the periodic column: the periodic
+# pressure cannot carry the water's weight (both programs put g into the fluid's momentum), so
+# a uniform pressure gradient G (its weight plus the bead's share) is raised each step instead.
+# fsim refuses a zero Ubar (it names the driven axis), hence 1e-12 m/s. DPMFoam v1912 reads no
+# fvOptions, so its water falls freely: the periodic column runs under fsim alone (its drift
+# 1.3003 mm/s at 320 mm, against 1.3007 mm/s in the closed column the case uses).
+MEAN_VELOCITY_FORCE = """
+hydrostatic
+{
+    type            meanVelocityForce;
+    active          yes;
+    selectionMode   all;
+    fields          (U.water);
+    Ubar            (0 0 1e-12);
+    relaxation      1;
+}
+"""
+
+
+def shear_patches(periodic):
+    """Sliding walls in x, symmetry planes in y; in z cyclic (periodic) or closed walls."""
+    if periodic:
+        ends = [("top", "cyclic", ["z+"], "        neighbourPatch bottom;\n"),
+                ("bottom", "cyclic", ["z-"], "        neighbourPatch top;\n")]
+    else:
+        ends = [("top", "wall", ["z+"], ""), ("bottom", "wall", ["z-"], "")]
+    return ends + [("left", "wall", ["x-"], ""), ("right", "wall", ["x+"], ""),
+                   ("frontAndBack", "symmetry", ["y-", "y+"], "")]
+
 
 def shear_lift(repo, name="shearLift", gamma=10.0, lift=SAFFMAN_MEI,
-               start=(0.006, 0.010, 0.150), end=1.2, dt=5e-4, width=16):
+               start=(0.006, 0.010, 0.178), end=1.2, dt=5e-4, width=16, length=320,
+               periodic=False):
     """A bead settling in u_z = gamma (x - width/2) between the walls x = 0 and width (mm),
-    which slide at -/+ gamma width/2; closed above and below (192 mm), symmetry planes in y.
-    The closed ends turn the flow round, and the sliding walls carry that disturbance along
-    the column: at width 24 mm (walls at 0.12 m/s) the water at the bead moved sideways by
-    -0.6 to +0.3 mm/s within 1.2 s, at 16 mm (0.08 m/s) far less."""
+    which slide at -/+ gamma width/2; symmetry planes in y. With `periodic` the column is
+    cyclic in z (`length` mm) and `meanVelocityForce` holds the water's mean u_z at 0 against
+    its weight (under fsim only: DPMFoam v1912 reads no fvOptions): the Couette profile is then
+    an exact steady flow, and the only disturbance is the bead's own. Without it the column is
+    closed above and below, and the closed ends turn the flow round: a secondary flow of
+    2-3 cm/s next to them, which spreads along the column; in 192 mm it reached the bead within
+    1 s, in 320 mm (the bead in the middle) it stays out of the 0.2-1.2 s window."""
     root = os.path.join(repo, "tutorials", name)
-    size, cells = (width, 16, 192), (width // 4, 4, 48)
+    size, cells = (width, 16, length), (width // 4, 4, length // 4)
     mid = width / 2000
     constant(root, *WATER)
     system(root)
     uw = gamma * mid
+    ends = ("periodic in z, the water's mean u_z held at 0 by meanVelocityForce" if periodic
+            else "closed above and below")
     write(root, "system/controlDict", "dictionary", control(
         end, dt, 0.02,
         f"One bead (d = 1 mm, rho_p = 1100) settling in water in a vertical linear shear flow, "
         f"u_z = {gamma:g} (x - {width / 2:g} mm) 1/s,\n// between two walls sliding at "
-        f"-/+{uw:g} m/s ({width} x 16 x 192 mm, 4 mm cells): sphereDrag, lift and "
-        "gravity.\n// The lift drives it across the stream lines (+x). Runs under DPMFoam and "
-        "fsimFoam alike\n// (tools/crosscheck)."))
-    write(root, "system/blockMeshDict", "dictionary", block_mesh(size, cells, SHEAR_PATCHES))
-    fields(root, "water", [("top", NO_SLIP), ("bottom", NO_SLIP),
+        f"-/+{uw:g} m/s ({width} x 16 x {length} mm, 4 mm cells, {ends}):\n// sphereDrag, "
+        "lift and gravity. The lift drives it across the stream lines (+x). Runs under "
+        "DPMFoam and\n// fsimFoam alike (tools/crosscheck)."))
+    write(root, "system/blockMeshDict", "dictionary",
+          block_mesh(size, cells, shear_patches(periodic)))
+    end_cond = CYCLIC if periodic else NO_SLIP
+    fields(root, "water", [("top", end_cond), ("bottom", end_cond),
                            ("left", (f"type            fixedValue;\nvalue           uniform "
                                      f"(0 0 {-uw:g});", FIXED_FLUX)),
                            ("right", (f"type            fixedValue;\nvalue           uniform "
                                       f"(0 0 {uw:g});", FIXED_FLUX)),
                            ("frontAndBack", SYMMETRY)])
-    # the Couette profile from the start (its diffusion time L^2/nu is 576 s): cells x fastest
+    fv_options = os.path.join(root, "system", "fvOptions")
+    if periodic:
+        write(root, "system/fvOptions", "dictionary", MEAN_VELOCITY_FORCE)
+    elif os.path.exists(fv_options):
+        os.remove(fv_options)
+    # the Couette profile from the start (its diffusion time L^2/nu is 256 s): cells x fastest
     h = 0.004
     values = []
     for k in range(cells[2]):
@@ -209,7 +249,7 @@ def shear_lift(repo, name="shearLift", gamma=10.0, lift=SAFFMAN_MEI,
     with open(path, "w") as f:
         f.write(text)
     u0 = gamma * (start[0] - mid) - 0.0236     # the fluid's velocity less the slip
-    patches = ["top", "bottom", "left", "right", "frontAndBack"]
+    patches = ["left", "right", "frontAndBack"] + ([] if periodic else ["top", "bottom"])
     cloud = cloud_properties("water", 1100, "1e8", "cellPoint", f"sphereDrag;\n{lift}\ngravity;",
                              manual_injection("model1", 0.001, u0=f"0 0 {u0:.6g}"),
                              local_interaction(patches), NO_COLLISIONS)
