@@ -123,7 +123,7 @@ def bed_positions(d, n_side, layers, pitch, x0, z0, jitter, seed, width, cell):
     return pts
 
 
-def liquid_fluidized_bed(repo, u=0.06, d=0.002, youngs="5e3", end=0.8, dt=5e-4, seed=42,
+def liquid_fluidized_bed(repo, u=0.06, d=0.002, youngs="5e5", end=0.8, dt=5e-4, seed=42,
                          sides="symmetry"):
     """The column's sides are symmetry planes (an unbounded bed): with no-slip walls of 4 mm
     cells DPMFoam's cellPoint interpolation takes the walls' zero velocity into 12 of the 16
