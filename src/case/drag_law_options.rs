@@ -43,8 +43,6 @@
 //! cell|cellPoint|trilinear; voidFraction cell|trilinear; fixedParticles no|yes; }` in
 //! `constant/couplingProperties` chooses the equations and overrides the interpolation and the
 //! ε rule, so that the same case runs with DPMFoam's choices or with the paper's;
-//! `fluidAcceleration convective|full` chooses how `DU_c/Dt` is taken
-//! ([`FluidAcceleration`]: `convective`, DPMFoam's, by default);
 //! `fixedParticles yes` holds every particle in place (a fixed bed, porous media), as
 //! `direct { fixedParticles yes; }` does for the direct model. DPMFoam has no such switch, so
 //! it is fsim's own keyword, beside the model's other settings.
@@ -54,9 +52,7 @@ use super::dictionary::Dict;
 use super::error::CaseError;
 use super::particle_forces::ParticleForces;
 use super::transport::Transport;
-use crate::coupling::drag::{
-    DragClosure, DragLawSettings, FluidAcceleration, FluidForces, Stencil,
-};
+use crate::coupling::drag::{DragClosure, DragLawSettings, FluidForces, Stencil};
 use crate::fluid::VolumeAveragedForm;
 
 /// How the fluid velocity is taken at a particle.
@@ -269,7 +265,6 @@ impl DragLawOptions {
 
         let mut form = VolumeAveragedForm::DpmFoam;
         let mut fixed_particles = false;
-        let mut acceleration = FluidAcceleration::Convective;
         if let Some(own) = coupling
             .map(|c| c.opt_dict("dragLawCoeffs"))
             .transpose()?
@@ -300,13 +295,6 @@ impl DragLawOptions {
                 };
             }
             fixed_particles = own.get_bool_or("fixedParticles", false)?;
-            if own.contains("fluidAcceleration") {
-                acceleration =
-                    match choice(own, "fluidAcceleration", &["convective", "full"], None)? {
-                        0 => FluidAcceleration::Convective,
-                        _ => FluidAcceleration::Full,
-                    };
-            }
             for (key, loc) in own.unused() {
                 let (line, col) = loc.line_col();
                 notes.push(format!(
@@ -327,7 +315,6 @@ impl DragLawOptions {
             pressure_gradient: forces.pressure_gradient && form == VolumeAveragedForm::DpmFoam,
             virtual_mass: forces.virtual_mass,
             lift: forces.lift,
-            acceleration,
             acceleration_cell_point: schemes.acceleration == Some(Interpolation::CellPoint),
             curl_cell_point: schemes.curl == Some(Interpolation::CellPoint),
         };
@@ -812,7 +799,6 @@ subModels
                 pressure_gradient: true,
                 virtual_mass: Some(0.5),
                 lift: Some(crate::coupling::drag::LiftModel::SaffmanMei),
-                acceleration: FluidAcceleration::Convective,
                 acceleration_cell_point: true,
                 curl_cell_point: false,
             }
@@ -828,13 +814,8 @@ subModels
         };
         assert_eq!(s.settings(&transport, [0.0; 3]).forces, s.forces);
         // the paper form keeps its own −V ∇p: DPMFoam's pressureGradient is not added
-        let (s, _) = read_with(
-            &text,
-            Some("dragLawCoeffs { form paper; fluidAcceleration full; }"),
-        )
-        .unwrap();
+        let (s, _) = read_with(&text, Some("dragLawCoeffs { form paper; }")).unwrap();
         assert!(s.pressure_gradient && !s.forces.pressure_gradient);
-        assert_eq!(s.forces.acceleration, FluidAcceleration::Full);
         // missing DUcDt / curlUcDt entries (DPMFoam stops): the cell's value, noted
         let (s, notes) = read(&text.replace(" DUcDt cellPoint; curlUcDt cell;", "")).unwrap();
         assert!(!s.forces.acceleration_cell_point && !s.forces.curl_cell_point);

@@ -19,7 +19,5 @@ pub use drag_closure::{
 };
 pub use drag_law_coupling::{DragLawCoupling, ExchangeReport};
 pub use drag_law_settings::{DragLawSettings, Stencil};
-pub use fluid_forces::{
-    eotvos, saffman_mei_cl, tomiyama_cl, FluidAcceleration, FluidForces, LiftModel,
-};
+pub use fluid_forces::{eotvos, saffman_mei_cl, tomiyama_cl, FluidForces, LiftModel};
 pub use grid_transfer::{GridTransfer, SampleStencil};

@@ -5,7 +5,7 @@
 
 use fsim::coupling::drag::{
     saffman_mei_cl, sphere_drag, DragClosure, DragInput, DragLawCoupling, DragLawSettings,
-    FluidAcceleration, FluidForces, LiftModel, Stencil,
+    FluidForces, LiftModel, Stencil,
 };
 use fsim::fluid::{
     BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, PaddedLayout, VolumeAveragedForm,
@@ -279,35 +279,29 @@ fn pressure_gradient_and_virtual_mass_read_the_convective_acceleration() {
 }
 
 #[test]
-fn the_time_derivative_of_the_fluid_acceleration_is_dpmfoams_zero_unless_asked_for() {
-    // The water goes from rest to u = (0.1, 0, 0) between two force evaluations 10 ms apart:
-    // DPMFoam's DUcDt has no time derivative (its ddt is evaluated after Uc.oldTime() = Uc);
-    // `fluidAcceleration full` gives (uⁿ − uⁿ⁻¹)/Δt = 10 m/s².
+fn the_time_derivative_of_the_fluid_acceleration_is_dpmfoams_zero() {
+    // The water goes from rest to a uniform u = (0.1, 0, 0) between two force evaluations
+    // 10 ms apart: DPMFoam's DUcDt has no time derivative (its ddt is evaluated after
+    // Uc.oldTime() = Uc), and a uniform flow has no convective acceleration, so pressureGradient
+    // and virtualMass add nothing (with the time derivative they would add 1.5 m (ρ/ρ_p) 10 m/s²).
     let (h, d, rho_p, dt) = (1e-3, 5e-4, 2500.0, 1e-2);
+    let mut fluid = water([6, 6, 12], h);
+    let mut cloud = one_particle(
+        [2.5e-3, 2.5e-3, 6.3e-3],
+        d,
+        rho_p,
+        [6e-3, 6e-3, 12e-3],
+        0.0,
+        true,
+    );
+    let mut coupling = DragLawCoupling::new(dpmfoam(virtual_mass(0.5)), &fluid, &cloud).unwrap();
+    coupling.particle_forces(&fluid, &mut cloud, dt);
+    fluid.velocity_mut()[0].iter_mut().for_each(|u| *u = 0.1);
+    coupling.particle_forces(&fluid, &mut cloud, dt);
+    let explicit = coupling.last.hydrodynamic_force - coupling.drag_forces()[0];
     let m = rho_p * PI * d * d * d / 6.0;
-    for (acceleration, want) in [
-        (FluidAcceleration::Convective, 0.0),
-        (FluidAcceleration::Full, 1.5 * m * RHO / rho_p * 10.0),
-    ] {
-        let mut fluid = water([6, 6, 12], h);
-        let mut cloud = one_particle(
-            [2.5e-3, 2.5e-3, 6.3e-3],
-            d,
-            rho_p,
-            [6e-3, 6e-3, 12e-3],
-            0.0,
-            true,
-        );
-        let mut forces = virtual_mass(0.5);
-        forces.acceleration = acceleration;
-        let mut coupling = DragLawCoupling::new(dpmfoam(forces), &fluid, &cloud).unwrap();
-        coupling.particle_forces(&fluid, &mut cloud, dt);
-        fluid.velocity_mut()[0].iter_mut().for_each(|u| *u = 0.1);
-        coupling.particle_forces(&fluid, &mut cloud, dt);
-        let explicit = coupling.last.hydrodynamic_force - coupling.drag_forces()[0];
-        assert!(
-            (explicit[0] - want).abs() <= 1e-9 * want,
-            "{acceleration:?}: {explicit:?} against {want}"
-        );
-    }
+    assert!(
+        explicit.norm() <= 1e-9 * m * 10.0,
+        "{explicit:?}: the fluid's change in time entered DUcDt"
+    );
 }

@@ -52,7 +52,6 @@ use super::cell_point_interpolation::CellPointInterpolation;
 use super::chunked_scatter::{ChunkedScatter, PARTICLES_PER_CHUNK};
 use super::drag_closure::{Convention, DragInput};
 use super::drag_law_settings::DragLawSettings;
-use super::fluid_forces::FluidAcceleration;
 use super::grid_transfer::{GridTransfer, SampleStencil};
 use crate::fluid::{FluidSolver, VolumeAveragedFluid, VolumeAveragedForm, VolumeAveragedReport};
 use crate::particles::{Dem, ParticleState};
@@ -99,11 +98,9 @@ pub struct DragLawCoupling {
     /// Cell-centred pressure gradient, padded (ghosts filled), used in a fully periodic box.
     cell_gradient: [Vec<f64>; 3],
     /// DPMFoam's fluid fields at cell centres, padded (interior filled), computed once per
-    /// step when a force reads them: `DU_c/Dt` and `∇ × U_c`; the cell-centred velocity of
-    /// the last step (for `fluidAcceleration full`), `None` before the first.
+    /// step when a force reads them: `DU_c/Dt` and `∇ × U_c`.
     acceleration: Vec<[f64; 3]>,
     curl: Vec<[f64; 3]>,
-    previous_velocity: Option<Vec<[f64; 3]>>,
     /// Their cell-point interpolations, when the case asks for them.
     acceleration_cell_point: Option<CellPointInterpolation>,
     curl_cell_point: Option<CellPointInterpolation>,
@@ -167,7 +164,6 @@ impl DragLawCoupling {
             cell_gradient: [(); 3].map(|_| vec![0.0; len]),
             acceleration: vec![[0.0; 3]; if forces.needs_acceleration() { len } else { 0 }],
             curl: vec![[0.0; 3]; if forces.needs_curl() { len } else { 0 }],
-            previous_velocity: None,
             acceleration_cell_point: (forces.needs_acceleration()
                 && forces.acceleration_cell_point)
                 .then(|| CellPointInterpolation::new(&grid, &bc)),
@@ -355,7 +351,7 @@ impl DragLawCoupling {
         self.write_faces.resize(n, [SampleStencil::default(); 3]);
         self.explicit.resize(n, Vec3::zeros());
         self.load.resize(n, Vec3::zeros());
-        self.compute_fluid_fields(fluid, dt);
+        self.compute_fluid_fields(fluid);
         let s = &self.settings;
         let want = match s.form {
             VolumeAveragedForm::Paper => Convention::DragOnly,
@@ -630,13 +626,15 @@ impl DragLawCoupling {
         self.spread_reaction();
     }
 
-    /// DPMFoam's `DUcDt = ∂U_c/∂t + (U_c·∇)U_c` and `curlUcDt = ∇ × U_c` at the cell centres,
+    /// DPMFoam's `DUcDt` and `curlUcDt = ∇ × U_c` at the cell centres,
     /// when a force reads them, and their cell-point interpolation when asked for. The
     /// gradient is OpenFOAM's Gauss-linear one on a uniform grid: central differences of the
     /// cell-centred velocity (the ghost cells carry the boundary values), and along a
-    /// component's own direction the difference of its two faces. `∂U_c/∂t` is the last step's
-    /// change with `fluidAcceleration full` and zero as DPMFoam evaluates it ([`FluidAcceleration`]).
-    fn compute_fluid_fields(&mut self, fluid: &FluidSolver, dt: f64) {
+    /// component's own direction the difference of its two faces. `DUcDt` is `(U_c·∇)U_c`:
+    /// DPMFoam v1912 writes `∂U_c/∂t + (U_c·∇)U_c` but evaluates it when the cloud evolves,
+    /// before the fluid is solved in the new step and after `Uc.oldTime()` was set to `Uc`,
+    /// so its time derivative is zero (docs/user-guide/drag-law-model.md).
+    fn compute_fluid_fields(&mut self, fluid: &FluidSolver) {
         let forces = self.settings.forces;
         let (need_a, need_c) = (forces.needs_acceleration(), forces.needs_curl());
         if !need_a && !need_c {
@@ -655,13 +653,6 @@ impl DragLawCoupling {
                 0.5 * (u[c][f] + u[c][f + l.stride[c]])
             }
         };
-        let full = need_a && forces.acceleration == FluidAcceleration::Full;
-        let mut previous = self.previous_velocity.take();
-        let had_previous = previous.is_some();
-        if full && previous.is_none() {
-            previous = Some(vec![[0.0; 3]; l.len]);
-        }
-        let inv_dt = if dt > 0.0 { 1.0 / dt } else { 0.0 };
         let [n0, n1, n2] = l.n;
         for k in 1..=n2 {
             for j in 1..=n1 {
@@ -691,14 +682,6 @@ impl DragLawCoupling {
                         for c in 0..3 {
                             a[c] = uc[0] * grad[0][c] + uc[1] * grad[1][c] + uc[2] * grad[2][c];
                         }
-                        if let Some(old) = previous.as_mut() {
-                            if had_previous {
-                                for c in 0..3 {
-                                    a[c] += (uc[c] - old[f][c]) * inv_dt;
-                                }
-                            }
-                            old[f] = uc;
-                        }
                         self.acceleration[f] = a;
                     }
                     if need_c {
@@ -711,7 +694,6 @@ impl DragLawCoupling {
                 }
             }
         }
-        self.previous_velocity = previous;
         if let Some(cp) = self.acceleration_cell_point.as_mut() {
             cp.update_cells(&self.acceleration);
         }

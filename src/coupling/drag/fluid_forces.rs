@@ -43,21 +43,8 @@ impl LiftModel {
     }
 }
 
-/// How the fluid's material acceleration `DU_c/Dt` is evaluated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FluidAcceleration {
-    /// As DPMFoam v1912 runs it: `(U_c·∇)U_c` only. Its `fvc::ddt(Uc)` is evaluated when the
-    /// cloud evolves, before the fluid is solved in the new step, when `Uc.oldTime()` has just
-    /// been set to `Uc`, so the time derivative is zero (a fluid accelerating uniformly at
-    /// `g` gives the same particle velocities with and without `pressureGradient`).
-    Convective,
-    /// `(U_c − U_c^old)/Δt + (U_c·∇)U_c`, the last step's change (fsim's
-    /// `dragLawCoeffs { fluidAcceleration full; }`).
-    Full,
-}
-
 /// DPMFoam's forces besides drag and gravity, as the case lists them.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FluidForces {
     /// DPMFoam's `pressureGradient` (`m ρ_c/ρ_p DU_c/Dt`; DPMFoam's form only: the paper's
     /// form gives every particle `−V ∇p` instead).
@@ -66,25 +53,10 @@ pub struct FluidForces {
     pub virtual_mass: Option<f64>,
     /// The lift force, if any.
     pub lift: Option<LiftModel>,
-    /// How `DU_c/Dt` is evaluated.
-    pub acceleration: FluidAcceleration,
     /// `interpolationSchemes { DUcDt cellPoint; }` (else `cell`).
     pub acceleration_cell_point: bool,
     /// `interpolationSchemes { curlUcDt cellPoint; }` (else `cell`; DPMFoam's field name).
     pub curl_cell_point: bool,
-}
-
-impl Default for FluidForces {
-    fn default() -> Self {
-        FluidForces {
-            pressure_gradient: false,
-            virtual_mass: None,
-            lift: None,
-            acceleration: FluidAcceleration::Convective,
-            acceleration_cell_point: false,
-            curl_cell_point: false,
-        }
-    }
 }
 
 impl FluidForces {
