@@ -202,22 +202,7 @@ impl CellPointInterpolation {
                 }
             }
         }
-        let n = self.grid.n;
-        let plane = (n[0] + 1) * (n[1] + 1);
-        let mut point = std::mem::take(&mut self.point);
-        let this = &*self;
-        point
-            .par_chunks_mut(plane)
-            .enumerate()
-            .for_each(|(k, row)| {
-                for j in 0..=n[1] {
-                    for i in 0..=n[0] {
-                        row[i + (n[0] + 1) * j] =
-                            std::array::from_fn(|c| this.point_value(c, [i, j, k], velocity));
-                    }
-                }
-            });
-        self.point = point;
+        self.refresh_points(|this, c, p| this.point_value(c, p, velocity));
     }
 
     /// Refreshes the cell and point values from a cell-centred field `cells` (padded, its
@@ -225,6 +210,12 @@ impl CellPointInterpolation {
     /// the value of its cell (module docs).
     pub fn update_cells(&mut self, cells: &[[f64; 3]]) {
         self.cell.copy_from_slice(cells);
+        self.refresh_points(|this, c, p| this.point_value_of_cells(c, p));
+    }
+
+    /// Every point's value, component `c` of point `p` from `value(self, c, p)`, a plane of
+    /// points per task.
+    fn refresh_points(&mut self, value: impl Fn(&Self, usize, [usize; 3]) -> f64 + Sync) {
         let n = self.grid.n;
         let plane = (n[0] + 1) * (n[1] + 1);
         let mut point = std::mem::take(&mut self.point);
@@ -236,7 +227,7 @@ impl CellPointInterpolation {
                 for j in 0..=n[1] {
                     for i in 0..=n[0] {
                         row[i + (n[0] + 1) * j] =
-                            std::array::from_fn(|c| this.point_value_of_cells(c, [i, j, k]));
+                            std::array::from_fn(|c| value(this, c, [i, j, k]));
                     }
                 }
             });
