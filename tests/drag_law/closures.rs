@@ -18,13 +18,13 @@ use fsim::simulation::DragLawModel;
 use fsim::Vec3;
 use std::f64::consts::PI;
 
-const RHO: f64 = 1000.0;
-const NU: f64 = 1e-6;
-const G: f64 = 9.81;
+pub(crate) const RHO: f64 = 1000.0;
+pub(crate) const NU: f64 = 1e-6;
+pub(crate) const G: f64 = 9.81;
 
 /// Periodic in x and y; walls (`top_outlet`: an outlet at p = 0 on top, an inlet of `inflow`
 /// m/s at the bottom) along z.
-fn fluid(n: [usize; 3], h: f64, inflow: Option<f64>) -> FluidSolver {
+pub(crate) fn fluid(n: [usize; 3], h: f64, inflow: Option<f64>) -> FluidSolver {
     let grid = Grid::new(n, [h; 3], [0.0; 3]);
     let (bottom, top) = match inflow {
         Some(w) => (
@@ -51,7 +51,7 @@ fn fluid(n: [usize; 3], h: f64, inflow: Option<f64>) -> FluidSolver {
     FluidSolver::new(grid, bc, FluidSettings::new(NU)).unwrap()
 }
 
-fn dem(particles: ParticleState, hi: [f64; 3], gravity: f64, pair: PairModel) -> Dem {
+pub(crate) fn dem(particles: ParticleState, hi: [f64; 3], gravity: f64, pair: PairModel) -> Dem {
     dem_in(particles, [0.0; 3], hi, gravity, pair)
 }
 

@@ -7,36 +7,17 @@ use fsim::coupling::drag::{
     saffman_mei_cl, sphere_drag, DragClosure, DragInput, DragLawCoupling, DragLawSettings,
     FluidForces, LiftModel, Stencil,
 };
-use fsim::fluid::{
-    BoundaryConditions, FaceCondition, FluidSettings, FluidSolver, PaddedLayout, VolumeAveragedForm,
-};
-use fsim::grid::Grid;
-use fsim::particles::{
-    Dem, DemConfig, DomainBox, FaceCondition as ParticleFace, PairModel, ParticleState, WallModel,
-};
+use fsim::fluid::{FluidSolver, PaddedLayout, VolumeAveragedForm};
+use fsim::particles::{Dem, PairModel, ParticleState};
 use fsim::simulation::DragLawModel;
 use fsim::Vec3;
 use std::f64::consts::PI;
 
-const RHO: f64 = 1000.0;
-const NU: f64 = 1e-6;
-const G: f64 = 9.81;
+use crate::closures::{dem, fluid, G, NU, RHO};
 
 /// Water in a box of cells `h`, periodic in x and y, closed by walls along z.
 fn water(n: [usize; 3], h: f64) -> FluidSolver {
-    let grid = Grid::new(n, [h; 3], [0.0; 3]);
-    let wall = FaceCondition::Wall { velocity: [0.0; 3] };
-    let bc = BoundaryConditions {
-        faces: [
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            FaceCondition::Periodic,
-            wall.clone(),
-            wall,
-        ],
-    };
-    FluidSolver::new(grid, bc, FluidSettings::new(NU)).unwrap()
+    fluid(n, h, None)
 }
 
 /// One particle of diameter `d`, density `rho_p` at `x` in a box `hi`, gravity `g` along −z
@@ -45,24 +26,7 @@ fn one_particle(x: [f64; 3], d: f64, rho_p: f64, hi: [f64; 3], g: f64, held: boo
     let mut particles = ParticleState::with_capacity(1);
     particles.push(0, x, d, rho_p);
     particles.fixed[0] = held;
-    let mut config = DemConfig::new(PairModel::linear(1.0, 0.5, 0.0), WallModel::None);
-    config.gravity = Vec3::new(0.0, 0.0, -g);
-    config.fluid_density = RHO;
-    let domain = DomainBox {
-        lo: Vec3::zeros(),
-        hi: Vec3::from(hi),
-        faces: [
-            ParticleFace::Periodic,
-            ParticleFace::Periodic,
-            ParticleFace::Periodic,
-            ParticleFace::Periodic,
-            ParticleFace::Rebound { e: 0.5, mu: 0.0 },
-            ParticleFace::Rebound { e: 0.5, mu: 0.0 },
-        ],
-        planar: [false; 3],
-        wall_velocity: [Vec3::repeat(0.0); 6],
-    };
-    Dem::new(config, domain, particles).unwrap()
+    dem(particles, hi, g, PairModel::linear(1.0, 0.5, 0.0))
 }
 
 /// DPMFoam's form with `sphereDrag` and `forces`, the particle's own cell for every transfer.
