@@ -236,7 +236,12 @@ impl CellPointInterpolation {
 
     /// [`Self::point_value`] for a cell-centred field: a boundary face holds its cell's value.
     fn point_value_of_cells(&self, c: usize, p: [usize; 3]) -> f64 {
-        let cell = &self.cell;
+        self.point_mean(c, p, |t| self.cell[t.inside as usize][c])
+    }
+
+    /// Component `c` at point `p`: the mean of the 8 cells around an interior point, else the
+    /// precomputed weighted mean of the boundary terms, each valued by `term`.
+    fn point_mean(&self, c: usize, p: [usize; 3], term: impl Fn(&PointTerm) -> f64) -> f64 {
         let q = 3 * self.point_index(p[0], p[1], p[2]) + c;
         let (first, last) = (self.term_start[q] as usize, self.term_start[q + 1] as usize);
         if first == last {
@@ -244,7 +249,7 @@ impl CellPointInterpolation {
         }
         let mut sum = 0.0;
         for t in &self.terms[first..last] {
-            sum += t.w * cell[t.inside as usize][c];
+            sum += t.w * term(t);
         }
         sum / self.term_weight[q]
     }
@@ -290,21 +295,13 @@ impl CellPointInterpolation {
     /// an interior point, the precomputed boundary-face mean at a boundary point.
     fn point_value(&self, c: usize, p: [usize; 3], velocity: &[Vec<f64>; 3]) -> f64 {
         let cell = &self.cell;
-        let q = 3 * self.point_index(p[0], p[1], p[2]) + c;
-        let (first, last) = (self.term_start[q] as usize, self.term_start[q + 1] as usize);
-        if first == last {
-            return self.interior_mean(c, p);
-        }
-        let mut sum = 0.0;
-        for t in &self.terms[first..last] {
-            let value = if t.b == NORMAL_FACE {
+        self.point_mean(c, p, |t| {
+            if t.b == NORMAL_FACE {
                 velocity[c][t.a as usize]
             } else {
                 0.5 * (cell[t.a as usize][c] + cell[t.b as usize][c])
-            };
-            sum += t.w * value;
-        }
-        sum / self.term_weight[q]
+            }
+        })
     }
 
     /// The velocity at `x` (clamped into the box).
