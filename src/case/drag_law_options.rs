@@ -495,7 +495,14 @@ fn interpolation_schemes(solution: &Dict, phase: &str) -> Result<Schemes, CaseEr
         e.mark_used();
         let item = super::dictionary::single_token(e, "an interpolation scheme")?;
         let word = item.as_word().unwrap_or("");
-        if derived {
+        if field == velocity || derived {
+            // fsim reads these two of OpenFOAM's schemes; the velocity also fsim's trilinear
+            let also = if derived {
+                ""
+            } else {
+                " (or fsim's trilinear, set in constant/couplingProperties \
+                 dragLawCoeffs.velocityInterpolation)"
+            };
             let scheme = match word {
                 "cell" => Interpolation::Cell,
                 "cellPoint" => Interpolation::CellPoint,
@@ -504,33 +511,17 @@ fn interpolation_schemes(solution: &Dict, phase: &str) -> Result<Schemes, CaseEr
                         &item.loc,
                         format!(
                             "interpolation scheme {} for {field} is not supported by fsim: \
-                             expected cell or cellPoint",
+                             expected cell or cellPoint{also}",
                             item.describe()
                         ),
                     ))
                 }
             };
-            if field == "DUcDt" {
-                result.acceleration = Some(scheme);
-            } else {
-                result.curl = Some(scheme);
+            match field {
+                "DUcDt" => result.acceleration = Some(scheme),
+                "curlUcDt" => result.curl = Some(scheme),
+                _ => result.velocity = scheme,
             }
-        } else if field == velocity {
-            result.velocity = match word {
-                "cell" => Interpolation::Cell,
-                "cellPoint" => Interpolation::CellPoint,
-                _ => {
-                    return Err(CaseError::at(
-                        &item.loc,
-                        format!(
-                            "interpolation scheme {} for {velocity} is not supported by fsim: \
-                             expected cell or cellPoint (or fsim's trilinear, set in \
-                             constant/couplingProperties dragLawCoeffs.velocityInterpolation)",
-                            item.describe()
-                        ),
-                    ))
-                }
-            };
         } else if !OPENFOAM_INTERPOLATIONS.contains(&word) {
             return Err(CaseError::at(
                 &item.loc,
