@@ -131,6 +131,8 @@ impl Dem {
         );
         dem.lists
             .sort(&dem.domain, dem.cell_size, &dem.particles.position);
+        // a restart state is read from the case, as untrusted as its positions file
+        dem.check_crowding()?;
         let identity = dem
             .lists
             .order
@@ -269,8 +271,8 @@ impl Dem {
     /// d_max)`. Such spheres overlap for certain; listing their pairs would cost up to the
     /// square of their count (10⁶ particles at one point: 5·10¹¹ pairs) before the overlap
     /// check could name them.
-    /// Runs before [`Dem::apply_order`]: the particles are still in input order, which the
-    /// sort's `order` indexes.
+    /// Runs after a sort and before [`Dem::apply_order`]: the particles are still in the
+    /// order the sort's `order` indexes.
     fn check_crowding(&self) -> Result<(), DemError> {
         let lists = &self.lists;
         let (size, d_max) = (
