@@ -15,23 +15,16 @@ Both meshes are the case's one blockMesh block, cells x fastest: DPMFoam's `U.<p
 """
 import argparse
 import pathlib
-import re
 import sys
 
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+TOOLS = pathlib.Path(__file__).resolve().parent
+sys.path.insert(0, str(TOOLS))
+sys.path.insert(0, str(TOOLS / "figures"))
 import crosscheck  # noqa: E402
 import foam_dict  # noqa: E402
-
-
-def block_cells(case):
-    """The (nx, ny, nz) of the case's single blockMesh block."""
-    text = (case / "system" / "blockMeshDict").read_text()
-    m = re.search(r"hex\s*\([^)]*\)\s*\(\s*(\d+)\s+(\d+)\s+(\d+)\s*\)", text)
-    if not m:
-        raise ValueError(f"{case}/system/blockMeshDict: no hex block")
-    return tuple(int(v) for v in m.groups())
+from figure import block_cells  # noqa: E402
 
 
 def dpmfoam_fields(path, cells):
@@ -86,7 +79,7 @@ def main(argv=None):
     ap.add_argument("--window", nargs=2, type=float, default=(0.0, float("inf")))
     ap.add_argument("--layers", type=int, default=8)
     args = ap.parse_args(argv)
-    shape = block_cells(args.dir / "fsim")
+    shape = block_cells((args.dir / "fsim" / "system" / "blockMeshDict").read_text())
     for program in ("dpmfoam", "fsim"):
         w, a, aw, count = layer_means(args.dir / program, program, args.window, shape)
         n = min(args.layers, len(w))

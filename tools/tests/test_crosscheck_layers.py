@@ -65,10 +65,3 @@ def test_layer_means_of_both_programs(tmp_path):
         assert np.allclose(ma, 0.75)
         # eps w per layer: (1 (k) + 0.5 (k + .1) + 1 (k + .2) + 0.5 (k + .3))/4, doubled
         assert np.allclose(maw, [2 * (3 * k + 0.4) / 4 for k in range(3)])
-
-
-def test_the_block_shape_is_read_from_blockmesh(tmp_path):
-    (tmp_path / "system").mkdir()
-    (tmp_path / "system" / "blockMeshDict").write_text(
-        "blocks ( hex (0 1 2 3 4 5 6 7) (4 4 16) simpleGrading (1 1 1) );")
-    assert crosscheck_layers.block_cells(tmp_path) == (4, 4, 16)
