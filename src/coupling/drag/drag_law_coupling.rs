@@ -423,6 +423,19 @@ impl DragLawCoupling {
             });
             field[layout.index(slot[0], slot[1], slot[2])]
         };
+        // A cell-centred field the forces read (`DUcDt`, `curlUcDt`): zero when no force needs
+        // it, else its cell-point interpolation or its cell value
+        let fluid_field = |needed: bool,
+                           cp: Option<&CellPointInterpolation>,
+                           field: &[[f64; 3]],
+                           x: Vec3|
+         -> [f64; 3] {
+            match cp {
+                _ if !needed => [0.0; 3],
+                Some(cp) => cp.sample(x).into(),
+                None => cell_value(field, x),
+            }
+        };
         let (closure, form, interpolation, averaging, analytical) = (
             s.closure,
             s.form,
@@ -523,20 +536,13 @@ impl DragLawCoupling {
                             // lift), from DU_c/Dt and ∇ × U_c at the particle
                             let mut fx = [0.0; 3];
                             if forces.needs_acceleration() || forces.needs_curl() {
-                                let du_dt = if !forces.needs_acceleration() {
-                                    [0.0; 3]
-                                } else if let Some(cp) = acceleration_cp {
-                                    cp.sample(x).into()
-                                } else {
-                                    cell_value(acceleration, x)
-                                };
-                                let w = if !forces.needs_curl() {
-                                    [0.0; 3]
-                                } else if let Some(cp) = curl_cp {
-                                    cp.sample(x).into()
-                                } else {
-                                    cell_value(curl, x)
-                                };
+                                let du_dt = fluid_field(
+                                    forces.needs_acceleration(),
+                                    acceleration_cp,
+                                    acceleration,
+                                    x,
+                                );
+                                let w = fluid_field(forces.needs_curl(), curl_cp, curl, x);
                                 fx = forces.explicit_force(
                                     mass,
                                     density[i],
