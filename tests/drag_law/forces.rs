@@ -29,6 +29,37 @@ fn one_particle(x: [f64; 3], d: f64, rho_p: f64, hi: [f64; 3], g: f64, held: boo
     dem(particles, hi, g, PairModel::linear(1.0, 0.5, 0.0))
 }
 
+/// [`water`] with the face velocities `u(slot)` (`[u_x, u_y, u_z]` of the faces at each padded
+/// slot, ghosts included).
+fn moving_water(n: [usize; 3], h: f64, u: impl Fn([usize; 3]) -> [f64; 3]) -> FluidSolver {
+    let mut fluid = water(n, h);
+    let l = PaddedLayout::new(n);
+    let v = fluid.velocity_mut();
+    for k in 0..l.dims[2] {
+        for j in 0..l.dims[1] {
+            for i in 0..l.dims[0] {
+                let value = u([i, j, k]);
+                for c in 0..3 {
+                    v[c][l.index(i, j, k)] = value[c];
+                }
+            }
+        }
+    }
+    fluid
+}
+
+/// A particle held at rest, without gravity, in the box of [`water`]`([6, 6, 12], 1e-3)`.
+fn held_bead(d: f64, rho_p: f64) -> Dem {
+    one_particle(
+        [2.5e-3, 2.5e-3, 6.3e-3],
+        d,
+        rho_p,
+        [6e-3, 6e-3, 12e-3],
+        0.0,
+        true,
+    )
+}
+
 /// DPMFoam's form with `sphereDrag` and `forces`, the particle's own cell for every transfer.
 fn dpmfoam(forces: FluidForces) -> DragLawSettings {
     let mut s = DragLawSettings::paper(RHO, NU, Vec3::new(0.0, 0.0, -G));
@@ -160,27 +191,10 @@ fn saffman_mei_lift_of_a_held_particle_in_a_linear_shear() {
     // u = (S z, 0, 0): ω = ∇ × u = (0, S, 0); a particle held at rest has slip (S z, 0, 0)
     // and slip × ω = (0, 0, S² z): the lift V ρ C_l S² z pushes it up (towards faster fluid).
     let (h, d, s_rate) = (1e-3, 5e-4, 20.0);
-    let n = [6, 6, 12];
-    let mut fluid = water(n, h);
-    let l = PaddedLayout::new(n);
-    {
-        let u = fluid.velocity_mut();
-        for k in 0..l.dims[2] {
-            for j in 0..l.dims[1] {
-                for i in 0..l.dims[0] {
-                    u[0][l.index(i, j, k)] = s_rate * (k as f64 - 0.5) * h;
-                }
-            }
-        }
-    }
-    let mut cloud = one_particle(
-        [2.5e-3, 2.5e-3, 6.3e-3],
-        d,
-        2500.0,
-        [6e-3, 6e-3, 12e-3],
-        0.0,
-        true,
-    );
+    let fluid = moving_water([6, 6, 12], h, |[_, _, k]| {
+        [s_rate * (k as f64 - 0.5) * h, 0.0, 0.0]
+    });
+    let mut cloud = held_bead(d, 2500.0);
     let lift = FluidForces {
         lift: Some(LiftModel::SaffmanMei),
         ..FluidForces::default()
@@ -208,28 +222,10 @@ fn pressure_gradient_and_virtual_mass_read_the_convective_acceleration() {
     // u = (a, 0, S x): (u·∇)u = (0, 0, a S), uniform; a held particle feels
     // (1 + Cvm) m (ρ/ρ_p) a S along z besides its drag, DPMFoam's explicit coupled force.
     let (h, d, rho_p, a, s_rate) = (1e-3, 5e-4, 2500.0, 0.05, 20.0);
-    let n = [6, 6, 12];
-    let mut fluid = water(n, h);
-    let l = PaddedLayout::new(n);
-    {
-        let u = fluid.velocity_mut();
-        for k in 0..l.dims[2] {
-            for j in 0..l.dims[1] {
-                for i in 0..l.dims[0] {
-                    u[0][l.index(i, j, k)] = a;
-                    u[2][l.index(i, j, k)] = s_rate * (i as f64 - 0.5) * h;
-                }
-            }
-        }
-    }
-    let mut cloud = one_particle(
-        [2.5e-3, 2.5e-3, 6.3e-3],
-        d,
-        rho_p,
-        [6e-3, 6e-3, 12e-3],
-        0.0,
-        true,
-    );
+    let fluid = moving_water([6, 6, 12], h, |[i, _, _]| {
+        [a, 0.0, s_rate * (i as f64 - 0.5) * h]
+    });
+    let mut cloud = held_bead(d, rho_p);
     let mut coupling = DragLawCoupling::new(dpmfoam(virtual_mass(0.5)), &fluid, &cloud).unwrap();
     coupling.particle_forces(&fluid, &mut cloud, 1e-4);
     let m = rho_p * PI * d * d * d / 6.0;
@@ -250,14 +246,7 @@ fn the_time_derivative_of_the_fluid_acceleration_is_dpmfoams_zero() {
     // and virtualMass add nothing (with the time derivative they would add 1.5 m (ρ/ρ_p) 10 m/s²).
     let (h, d, rho_p, dt) = (1e-3, 5e-4, 2500.0, 1e-2);
     let mut fluid = water([6, 6, 12], h);
-    let mut cloud = one_particle(
-        [2.5e-3, 2.5e-3, 6.3e-3],
-        d,
-        rho_p,
-        [6e-3, 6e-3, 12e-3],
-        0.0,
-        true,
-    );
+    let mut cloud = held_bead(d, rho_p);
     let mut coupling = DragLawCoupling::new(dpmfoam(virtual_mass(0.5)), &fluid, &cloud).unwrap();
     coupling.particle_forces(&fluid, &mut cloud, dt);
     fluid.velocity_mut()[0].iter_mut().for_each(|u| *u = 0.1);
