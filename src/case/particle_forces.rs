@@ -361,32 +361,27 @@ mod tests {
             "{}",
             e.message
         );
-        let e = forces("    sphereDrag;\n    WenYuDrag { alphac alpha.air; }")
-            .err()
-            .unwrap();
-        assert!(
-            e.message.contains("the first, 'sphereDrag', is on line 3"),
-            "{}",
-            e.message
-        );
-        let e = forces("    sphereDrag;\n    nonSphereDrag { phi 0.5; }")
-            .err()
-            .unwrap();
-        assert!(e.message.contains("a second drag model 'nonSphereDrag'"));
-        let e = forces("    SaffmanMeiLiftForce;\n    TomiyamaLift { sigma 0.07; }")
-            .err()
-            .unwrap();
-        assert!(
-            e.message.contains("a second lift force 'TomiyamaLift'"),
-            "{}",
-            e.message
-        );
-        let e = forces("    virtualMas { Cvm 0.5; }").err().unwrap();
-        assert!(
-            e.message.contains("(did you mean 'virtualMass'?)"),
-            "{}",
-            e.message
-        );
+        for (entries, says) in [
+            (
+                "    sphereDrag;\n    WenYuDrag { alphac alpha.air; }",
+                "the first, 'sphereDrag', is on line 3",
+            ),
+            (
+                "    sphereDrag;\n    nonSphereDrag { phi 0.5; }",
+                "a second drag model 'nonSphereDrag'",
+            ),
+            (
+                "    SaffmanMeiLiftForce;\n    TomiyamaLift { sigma 0.07; }",
+                "a second lift force 'TomiyamaLift'",
+            ),
+            (
+                "    virtualMas { Cvm 0.5; }",
+                "(did you mean 'virtualMass'?)",
+            ),
+        ] {
+            let e = forces(entries).err().expect(entries);
+            assert!(e.message.contains(says), "{entries}: {}", e.message);
+        }
     }
 
     #[test]
