@@ -423,8 +423,16 @@ mod tests {
         }
     }
 
-    /// Face velocities of the linear field `u_c(x) = a_c + B_c · x`.
-    fn linear_faces(g: &Grid, a: [f64; 3], b: [[f64; 3]; 3]) -> [Vec<f64>; 3] {
+    /// The linear field `u_c(x) = A_c + B_c · x` of the exactness tests.
+    const A: [f64; 3] = [0.3, -1.2, 2.0];
+    const B: [[f64; 3]; 3] = [[0.5, -0.2, 1.1], [2.0, 0.3, -0.7], [-1.5, 0.9, 0.4]];
+
+    fn linear_value(x: Vec3) -> [f64; 3] {
+        std::array::from_fn(|c| A[c] + B[c][0] * x[0] + B[c][1] * x[1] + B[c][2] * x[2])
+    }
+
+    /// Face velocities of the linear field.
+    fn linear_faces(g: &Grid) -> [Vec<f64>; 3] {
         let l = PaddedLayout::new(g.n);
         std::array::from_fn(|c| {
             let mut u = vec![0.0; l.len];
@@ -436,8 +444,7 @@ mod tests {
                             let offset = if d == c { 1.0 } else { 0.5 };
                             g.origin[d] + (slot[d] as f64 - offset) * g.h[d]
                         });
-                        u[l.index(i, j, k)] =
-                            a[c] + b[c][0] * x[0] + b[c][1] * x[1] + b[c][2] * x[2];
+                        u[l.index(i, j, k)] = linear_value(x)[c];
                     }
                 }
             }
@@ -445,29 +452,21 @@ mod tests {
         })
     }
 
-    fn linear_value(a: [f64; 3], b: [[f64; 3]; 3], x: Vec3) -> [f64; 3] {
-        std::array::from_fn(|c| a[c] + b[c][0] * x[0] + b[c][1] * x[1] + b[c][2] * x[2])
+    /// No-slip walls at rest on all six faces.
+    fn walls() -> BoundaryConditions {
+        BoundaryConditions {
+            faces: std::array::from_fn(|_| FaceCondition::Wall { velocity: [0.0; 3] }),
+        }
     }
 
-    #[test]
-    fn linear_field_is_exact_inside_cells_away_from_the_boundary() {
-        let g = grid();
-        let bc = BoundaryConditions {
-            faces: std::array::from_fn(|_| FaceCondition::Wall { velocity: [0.0; 3] }),
-        };
-        let (a, b) = (
-            [0.3, -1.2, 2.0],
-            [[0.5, -0.2, 1.1], [2.0, 0.3, -0.7], [-1.5, 0.9, 0.4]],
-        );
-        let mut interp = CellPointInterpolation::new(&g, &bc);
-        interp.update(&linear_faces(&g, a, b));
-        let mut state = 7;
+    /// 500 seeded samples in cells 1..n−2 (every corner point interior) equal the linear field.
+    fn assert_linear_inside(interp: &CellPointInterpolation, g: &Grid, seed: u64) {
+        let mut state = seed;
         for _ in 0..500 {
-            // in cells 1..n−2: every corner point is interior
             let x = Vec3::from_fn(|d, _| {
                 g.origin[d] + g.h[d] * (1.0 + (g.n[d] - 2) as f64 * lcg(&mut state))
             });
-            let (got, want) = (interp.sample(x), linear_value(a, b, x));
+            let (got, want) = (interp.sample(x), linear_value(x));
             for c in 0..3 {
                 assert!(
                     (got[c] - want[c]).abs() < 1e-12,
@@ -478,16 +477,16 @@ mod tests {
     }
 
     #[test]
+    fn linear_field_is_exact_inside_cells_away_from_the_boundary() {
+        let g = grid();
+        let mut interp = CellPointInterpolation::new(&g, &walls());
+        interp.update(&linear_faces(&g));
+        assert_linear_inside(&interp, &g, 7);
+    }
+
+    #[test]
     fn a_cell_centred_linear_field_is_exact_inside_and_zero_gradient_on_boundary_faces() {
         let g = grid();
-        let wall = FaceCondition::Wall { velocity: [0.0; 3] };
-        let bc = BoundaryConditions {
-            faces: std::array::from_fn(|_| wall.clone()),
-        };
-        let (a, b) = (
-            [0.3, -1.2, 2.0],
-            [[0.5, -0.2, 1.1], [2.0, 0.3, -0.7], [-1.5, 0.9, 0.4]],
-        );
         let l = PaddedLayout::new(g.n);
         let mut cells = vec![[0.0; 3]; l.len];
         for k in 1..=g.n[2] {
@@ -495,22 +494,13 @@ mod tests {
                 for i in 1..=g.n[0] {
                     let x =
                         Vec3::from_fn(|d, _| g.origin[d] + ([i, j, k][d] as f64 - 0.5) * g.h[d]);
-                    cells[l.index(i, j, k)] = linear_value(a, b, x);
+                    cells[l.index(i, j, k)] = linear_value(x);
                 }
             }
         }
-        let mut interp = CellPointInterpolation::new(&g, &bc);
+        let mut interp = CellPointInterpolation::new(&g, &walls());
         interp.update_cells(&cells);
-        let mut state = 5;
-        for _ in 0..500 {
-            let x = Vec3::from_fn(|d, _| {
-                g.origin[d] + g.h[d] * (1.0 + (g.n[d] - 2) as f64 * lcg(&mut state))
-            });
-            let (got, want) = (interp.sample(x), linear_value(a, b, x));
-            for c in 0..3 {
-                assert!((got[c] - want[c]).abs() < 1e-12, "{x:?} {c}");
-            }
-        }
+        assert_linear_inside(&interp, &g, 5);
         // a corner point on three walls: its boundary faces hold the corner cell's value, so
         // the point takes it (the ghost cells, left at zero, are never read)
         let [n0, n1, n2] = g.n;
