@@ -94,15 +94,7 @@ impl ParticleForces {
             };
             if let Some(model) = closure {
                 if let Some(first) = drag_at {
-                    let (line, _) = first.key_loc.line_col();
-                    return Err(CaseError::at(
-                        &e.key_loc,
-                        format!(
-                            "a second drag model '{name}' (the first, '{}', is on line {line}): \
-                             DPMFoam would add both forces; fsim takes one drag closure",
-                            first.keyword()
-                        ),
-                    ));
+                    return Err(second(e, first, "drag model", "drag closure"));
                 }
                 drag_at = Some(e);
                 if let Some(coeffs) = e.as_dict() {
@@ -135,15 +127,7 @@ impl ParticleForces {
                 forces.virtual_mass = Some(cvm);
             } else if name == "SaffmanMeiLiftForce" || name == "TomiyamaLift" {
                 if let Some(first) = lift_at {
-                    let (line, _) = first.key_loc.line_col();
-                    return Err(CaseError::at(
-                        &e.key_loc,
-                        format!(
-                            "a second lift force '{name}' (the first, '{}', is on line {line}): \
-                             DPMFoam would add both; fsim takes one lift force",
-                            first.keyword()
-                        ),
-                    ));
+                    return Err(second(e, first, "lift force", "lift force"));
                 }
                 lift_at = Some(e);
                 fluid_velocity(e, phase)?;
@@ -207,6 +191,21 @@ impl ParticleForces {
         }
         Ok(forces)
     }
+}
+
+/// A second `kind` in `particleForces` at `e`, `first` being the one already read: DPMFoam
+/// would add both, fsim takes one `takes`.
+fn second(e: &Entry, first: &Entry, kind: &str, takes: &str) -> CaseError {
+    let (line, _) = first.key_loc.line_col();
+    CaseError::at(
+        &e.key_loc,
+        format!(
+            "a second {kind} '{}' (the first, '{}', is on line {line}): DPMFoam would add \
+             both; fsim takes one {takes}",
+            e.keyword(),
+            first.keyword()
+        ),
+    )
 }
 
 /// A force's `U` (the fluid velocity it reads, OpenFOAM's default `U`): when given, the
